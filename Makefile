@@ -1,0 +1,138 @@
+# brdffit -- library (libbrdffit.a, libbrdffit.so), program (brdffit), tests, benchmark.
+#
+#   make             build/libbrdffit.a build/libbrdffit.so build/brdffit
+#   make demo        build, then fit every model to the embedded synthetic material
+#   make test        build and run the Check suite (uses ../shared when present)
+#   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make bench       the benchmark (bench/), figures as in README.md
+#   make install PREFIX=/usr/local   header, libraries, brdffit.pc, program
+#   make clean
+
+PREFIX   ?= /usr/local
+BUILD    ?= build
+CC       ?= cc
+OPT      ?= -O2
+SONAME    = libbrdffit.so.0
+VERSION   = 0.1.0
+
+# On a fresh machine the first `make` installs the Debian packages it needs
+# (.ci/install-deps: a no-op when they are there).
+DEPS_OK := $(shell sh .ci/install-deps >&2 && echo ok)
+ifneq ($(DEPS_OK),ok)
+$(error build dependencies missing: see the message above)
+endif
+
+PKGS       = cminpack
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null || echo -I/usr/include/cminpack-1)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lcminpack)
+CHECK_CFLAGS := $(shell pkg-config --cflags check 2>/dev/null)
+CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck -lsubunit -lrt -lpthread -lm)
+
+CPPFLAGS += -Iinclude -Ikernels -Isrc/lib -DCL_TARGET_OPENCL_VERSION=120 \
+            -DCL_USE_DEPRECATED_OPENCL_1_2_APIS $(PKG_CFLAGS)
+CFLAGS   += -std=c11 $(OPT) -g -Wall -Wextra -fPIC $(SAN)
+LDLIBS   += $(PKG_LIBS) -lOpenCL -lm
+LDFLAGS  += $(SAN)
+
+LIB_SRC  = $(wildcard src/lib/*.c)
+LIB_OBJ  = $(LIB_SRC:src/lib/%.c=$(BUILD)/lib/%.o) $(BUILD)/lib/kernel_source.o
+KERNELS  = kernels/bf_common.h kernels/bf_models.h kernels/bf_he.h kernels/bf_lobe.h \
+           kernels/bf_pass.h kernels/bf_pass.cl
+HEADERS  = include/brdffit.h $(wildcard src/lib/*.h) $(wildcard kernels/*.h)
+CLI_SRC  = $(wildcard src/cli/*.c)
+TEST_SRC = $(wildcard tests/*.c)
+BENCH_SRC = $(wildcard bench/*.c)
+
+all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
+
+$(BUILD)/lib $(BUILD)/cli $(BUILD)/tests $(BUILD)/bench:
+	mkdir -p $@
+
+# The kernel sources, embedded at build time as C strings, in the order they
+# are concatenated for clCreateProgramWithSource.
+$(BUILD)/lib/kernel_source.c: $(KERNELS) | $(BUILD)/lib
+	{ echo '/* generated from kernels/ by the Makefile: do not edit */'; \
+	  echo '#include <stddef.h>'; \
+	  echo 'const char *const bf_kernel_sources[] = {'; \
+	  for f in $(KERNELS); do \
+	    echo "/* $$f */"; \
+	    sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/^/"/' -e 's/$$/\\n"/' $$f; \
+	    echo ','; \
+	  done; \
+	  echo '};'; \
+	  echo 'const size_t bf_kernel_source_count = sizeof bf_kernel_sources / sizeof bf_kernel_sources[0];'; \
+	} > $@.tmp && mv $@.tmp $@
+
+$(BUILD)/lib/%.o: src/lib/%.c $(HEADERS) | $(BUILD)/lib
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/lib/kernel_source.o: $(BUILD)/lib/kernel_source.c
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/libbrdffit.a: $(LIB_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/libbrdffit.so: $(LIB_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) -o $(BUILD)/$(SONAME) $^ $(LDLIBS)
+	ln -sf $(SONAME) $@
+
+$(BUILD)/cli/%.o: src/cli/%.c $(HEADERS) | $(BUILD)/cli
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/tests/%.o: tests/%.c $(HEADERS) tests/suites.def | $(BUILD)/tests
+	$(CC) $(CPPFLAGS) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) $(LDLIBS)
+
+$(BUILD)/bench/%.o: bench/%.c $(HEADERS) | $(BUILD)/bench
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+# The environment every run gets: PoCL needs a writable cache directory.
+RUN_ENV = POCL_CACHE_DIR="$${POCL_CACHE_DIR:-$(CURDIR)/$(BUILD)/pocl-cache}"
+
+demo: all
+	@mkdir -p $(BUILD)/pocl-cache
+	$(RUN_ENV) ./$(BUILD)/brdffit demo
+
+test: $(BUILD)/test_brdffit $(BUILD)/brdffit
+	@mkdir -p $(BUILD)/pocl-cache
+	$(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit ./$(BUILD)/test_brdffit
+
+# The same suite built with ASan + UBSan in its own build directory.  LLVM
+# (inside PoCL) keeps allocations until exit: tests/lsan.supp names them.
+sanitize:
+	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+	    build-san/test_brdffit build-san/brdffit
+	@mkdir -p build-san/pocl-cache
+	POCL_CACHE_DIR="$(CURDIR)/build-san/pocl-cache" BRDFFIT_CLI=./build-san/brdffit \
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	./build-san/test_brdffit
+
+bench: $(BUILD)/bench_brdffit
+	@mkdir -p $(BUILD)/pocl-cache
+	$(RUN_ENV) ./$(BUILD)/bench_brdffit
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
+	install -m 644 include/brdffit.h $(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(BUILD)/libbrdffit.a $(DESTDIR)$(PREFIX)/lib/
+	install -m 755 $(BUILD)/$(SONAME) $(DESTDIR)$(PREFIX)/lib/
+	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libbrdffit.so
+	install -m 755 $(BUILD)/brdffit $(DESTDIR)$(PREFIX)/bin/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' brdffit.pc.in \
+	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/brdffit.pc
+
+clean:
+	rm -rf build build-san
+
+.PHONY: all demo test sanitize bench install clean
+.DELETE_ON_ERROR:

@@ -1,0 +1,204 @@
+/* bench.c -- `make bench`: the figures README.md reports.
+ *
+ *  1. per model, on the full alum-bronze table: one OpenCL data pass (value +
+ *     Jacobian moments) against the same sums from the plain single-threaded
+ *     C loop (compiled -O2), measured back to back in one run (ratio);
+ *  2. per model, one complete fit: wall time, passes, share inside cminpack;
+ *  3. all models on 10 materials end to end.
+ *
+ * Tables come from ../shared/tools/merl-table (BRDFFIT_SHARED overrides).
+ * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N]
+ */
+#define _POSIX_C_SOURCE 200809L
+#include "context.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const materials[10] = {
+    "alum-bronze", "blue-rubber", "gold-metallic-paint", "green-metallic-paint2", "chrome",
+    "chrome-steel", "blue-acrylic", "red-fabric", "white-marble", "black-oxidized-steel",
+};
+
+static int table_path(const char *name, char *buf, size_t len)
+{
+    const char *root = getenv("BRDFFIT_SHARED");
+    char cmd[2048];
+    snprintf(cmd, sizeof cmd, "'%s/tools/merl-table' '%s'", root && *root ? root : "../shared", name);
+    FILE *p = popen(cmd, "r");
+    if (!p)
+        return -1;
+    char *got = fgets(buf, (int)len, p);
+    int rc = pclose(p);
+    if (!got || rc != 0)
+        return -1;
+    buf[strcspn(buf, "\r\n")] = '\0';
+    return 0;
+}
+
+static brdffit_samples *load(const char *name)
+{
+    char path[1024];
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    brdffit_samples *s = NULL;
+    if (table_path(name, path, sizeof path) != 0) {
+        fprintf(stderr, "bench: merl-table %s failed\n", name);
+        return NULL;
+    }
+    if (brdffit_table_read(path, &t, &err) != BRDFFIT_OK ||
+        brdffit_samples_create(t, NULL, &s, &err) != BRDFFIT_OK) {
+        fprintf(stderr, "bench: %s\n", err.message);
+        brdffit_table_free(t);
+        return NULL;
+    }
+    brdffit_table_free(t);
+    return s;
+}
+
+/* A representative pass point: the model's typical start. */
+static void point_of(brdffit_model m, bf_pass_par *pp)
+{
+    const brdffit_model_info *mi = brdffit_model_get(m);
+    memset(pp, 0, sizeof *pp);
+    for (int c = 0; c < 3; c++) {
+        pp->d[c] = 0.05;
+        pp->s[c] = 0.1;
+    }
+    pp->lam[0] = 0.645, pp->lam[1] = 0.526, pp->lam[2] = 0.444;
+    int np = bf_model_ncoords(m);
+    for (int j = 0; j <= np; j++) {
+        memcpy(pp->p[j], mi->start, sizeof pp->p[j]);
+        if (j > 0) {
+            int k = (m == BRDFFIT_LAFORTUNE) ? j : j - 1; /* perturb a real parameter */
+            pp->p[j][k] *= 1 + 1e-7;
+            pp->inv_h[j - 1] = 1e7;
+        }
+    }
+}
+
+static int model_selected(const char *list, brdffit_model m)
+{
+    if (!list)
+        return 1;
+    const char *name = brdffit_model_get(m)->name;
+    size_t n = strlen(name);
+    for (const char *p = list; (p = strstr(p, name)) != NULL; p += n)
+        if ((p == list || p[-1] == ',') && (p[n] == ',' || p[n] == '\0'))
+            return 1;
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    int quick = 0, nmat = 10;
+    const char *models = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--quick"))
+            quick = 1, nmat = 2;
+        else if (!strcmp(argv[i], "--models") && i + 1 < argc)
+            models = argv[++i];
+        else if (!strcmp(argv[i], "--materials") && i + 1 < argc)
+            nmat = atoi(argv[++i]);
+        else {
+            fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (nmat < 1 || nmat > 10)
+        nmat = 10;
+
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    if (brdffit_context_create(NULL, &ctx, &err) != BRDFFIT_OK) {
+        fprintf(stderr, "bench: %s\n", err.message);
+        return 1;
+    }
+    printf("brdffit %s bench -- %s\n", brdffit_version(), brdffit_context_describe(ctx));
+    brdffit_samples *s = load("alum-bronze");
+    if (!s)
+        return 1;
+    printf("alum-bronze: %zu valid samples (cutoff 80 deg, standard scale)\n\n", brdffit_samples_count(s));
+
+    /* 1. one pass: kernel vs plain C loop */
+    printf("1. one data pass (value + Jacobian moments), alum-bronze\n");
+    printf("%-18s %12s %12s %8s\n", "model", "C loop ms", "kernel ms", "ratio");
+    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+        if (!model_selected(models, (brdffit_model)m))
+            continue;
+        bf_passer ps;
+        if (bf_passer_open(&ps, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            return 1;
+        }
+        bf_pass_par pp;
+        point_of((brdffit_model)m, &pp);
+        double mom[BF_NMOM_MAX], ref[BF_NMOM_MAX];
+        bf_passer_run(&ps, 1, &pp, mom, &err); /* warm-up (build, first touch) */
+        int reps = quick ? 2 : 5, creps = quick ? 1 : 2;
+        double tk = 1e30, tc = 1e30;
+        for (int r = 0; r < reps; r++) {
+            double t0 = bf_now();
+            if (bf_passer_run(&ps, 1, &pp, mom, &err) != BRDFFIT_OK) {
+                fprintf(stderr, "bench: %s\n", err.message);
+                return 1;
+            }
+            tk = fmin(tk, bf_now() - t0);
+        }
+        for (int r = 0; r < creps; r++) {
+            double t0 = bf_now();
+            bf_pass_host(s, (brdffit_model)m, ps.nk, ps.np, &pp, ref);
+            tc = fmin(tc, bf_now() - t0);
+        }
+        printf("%-18s %12.1f %12.1f %7.1fx\n", brdffit_model_get((brdffit_model)m)->name, tc * 1e3,
+               tk * 1e3, tc / tk);
+        bf_passer_close(&ps);
+    }
+
+    /* 2. one full fit per model */
+    printf("\n2. one complete fit, alum-bronze (default options)\n");
+    printf("%-18s %10s %7s %7s %10s %10s %12s\n", "model", "Error", "passes", "LM it", "fit s",
+           "passes s", "cminpack %");
+    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+        if (!model_selected(models, (brdffit_model)m))
+            continue;
+        brdffit_fit_result r;
+        if (brdffit_fit(ctx, s, (brdffit_model)m, NULL, &r, &err) != BRDFFIT_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            return 1;
+        }
+        printf("%-18s %10.3e %7d %7d %10.3f %10.3f %11.3f%%\n", brdffit_model_get((brdffit_model)m)->name,
+               r.error, r.evaluations, r.iterations, r.seconds, r.seconds_passes,
+               100.0 * r.seconds_solver / r.seconds);
+    }
+    brdffit_samples_free(s);
+
+    /* 3. every model on nmat materials, end to end (read + prepare + fit) */
+    printf("\n3. end to end: %d materials x the models (read, prepare, fit)\n", nmat);
+    double t0 = bf_now();
+    int fits = 0;
+    for (int i = 0; i < nmat; i++) {
+        double tm = bf_now();
+        brdffit_samples *ms = load(materials[i]);
+        if (!ms)
+            return 1;
+        for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+            if (!model_selected(models, (brdffit_model)m))
+                continue;
+            brdffit_fit_result r;
+            if (brdffit_fit(ctx, ms, (brdffit_model)m, NULL, &r, &err) != BRDFFIT_OK) {
+                fprintf(stderr, "bench: %s: %s\n", materials[i], err.message);
+                return 1;
+            }
+            fits++;
+        }
+        printf("  %-24s %6.2f s\n", materials[i], bf_now() - tm);
+        brdffit_samples_free(ms);
+    }
+    double total = bf_now() - t0;
+    printf("  total %d fits in %.2f s (%.2f s per fit)\n", fits, total, fits ? total / fits : 0.0);
+    brdffit_context_free(ctx);
+    return 0;
+}

@@ -1,0 +1,331 @@
+/*
+ * brdffit.h -- fit analytic BRDF models to measured (MERL) reflectance data.
+ *
+ * One public header, plain C11, usable from C++ and through FFI.  Every name
+ * is prefixed brdffit_ / BRDFFIT_.  Objects are opaque handles with
+ * create/free pairs; every fallible function returns a brdffit_status and,
+ * when the caller passes a brdffit_error, fills it with a message that names
+ * the file and the problem.  The library never prints, exits or aborts.
+ *
+ * CONVENTIONS (all of them; README.md repeats them)
+ *
+ *   Frame.  Local shading frame, z is the surface normal N.  wi points from
+ *   the surface TOWARD THE LIGHT, wo TOWARD THE VIEWER, both unit vectors
+ *   (brdffit_eval normalises what it is given).  H = normalize(wi + wo),
+ *   delta = angle(N, H), theta_i = angle(N, wi), theta_o = angle(N, wo).
+ *
+ *   BRDF value.  f(wi, wo) in 1/sr, WITHOUT the cosine factor, per channel
+ *   c in {R, G, B}:   f_c = d_c / pi + s_c * K_c(wi, wo; p)
+ *   d = Lambertian albedo, s = specular coefficient rho_s, p = lobe
+ *   parameters shared by the channels.  K is the same for the three channels
+ *   except for the He model, whose lobe depends on the wavelength.  A
+ *   direction at or below the horizon (z <= 0) gives f = 0.
+ *
+ *   Lobes (Ngan, Durand, Matusik 2005, as their published parameters fit):
+ *     ward [alpha]           K = exp(-tan^2 d / a^2) / (4 pi a^2 sqrt(cos ti cos to))
+ *     ward-duer [alpha]      K = exp(-tan^2 d / a^2) / (4 pi a^2 cos ti cos to)
+ *     blinn-phong [n]        K = (n+2)/(2 pi) cos^n d
+ *     lafortune [Cxy, Cz, n] K = (n+2)/(2 pi) (max(0, Cxy(lx vx + ly vy) + Cz lz vz)
+ *                                               / max(|Cxy|, |Cz|))^n
+ *     cook-torrance [F0, m]  K = F(F0, V.H) G exp(-tan^2 d / m^2)
+ *                                 / (4 pi m^2 cos^4 d cos ti cos to)
+ *                            G = min(1, 2(N.H)(N.V)/(V.H), 2(N.H)(N.L)/(V.H))
+ *                            NOTE: the constant 1/(4 pi m^2) is the one the
+ *                            published parameters fit; the paper's printed
+ *                            formula is 4x larger (only rho_s would change).
+ *     ashikhmin-shirley [F0, n]  K = (n+1)/(8 pi) (N.H)^n / ((V.H) max(cos ti, cos to)) F(F0, V.H)
+ *     he [tau, sigma0, n]    He et al. 1991 directional-diffuse term (tau, sigma0
+ *                            in micrometres, n a real refractive index), per
+ *                            channel at wavelengths lambda = (0.645, 0.526,
+ *                            0.444) um unless brdffit_params.lambda_um says.
+ *     F(F0, c) = F0 + (1 - F0)(1 - c)^5 (Schlick).
+ *   The Lafortune lobe depends on (Cxy, Cz) only through their direction;
+ *   fits report them scaled to 2 Cxy^2 + Cz^2 = 1.
+ *
+ *   MERL tables.  int32 dims (90, 90, 180), then 3 x 1,458,000 float64, all
+ *   R, then G, then B; index k + 180*(j + 90*i) for theta_h bin i, theta_d
+ *   bin j, phi_d bin k.  Bin (i, j, k) stands for theta_h = (i/90)^2 pi/2,
+ *   theta_d = j/90 pi/2, phi_d = k/180 pi, phi_h = 0.  Negative stored
+ *   values mean "not measured / below the horizon" and are masked, never
+ *   clamped.  Stored value x channel scale = BRDF value (1/sr):
+ *     BRDFFIT_SCALE_STANDARD = (1, 1.15, 1.66) / 1500  (MERL's reader; default)
+ *     BRDFFIT_SCALE_FLAT     = 1/1500 for all channels  (the data Ngan et al. fitted)
+ *
+ *   Error metric "ngan-l2" (the Error of every fit):
+ *     E = sqrt( sum_s sum_c w_s ((rho_c(s) - f_c(s)) cos ti(s))^2 / (3 sum_s w_s) )
+ *   over the valid samples (all channels >= 0, theta_i and theta_o <= the
+ *   cutoff, default 80 deg), w_s = the bin's solid angle
+ *   (cos th_lo - cos th_hi)(sin^2 td_hi - sin^2 td_lo)/2.
+ */
+#ifndef BRDFFIT_H
+#define BRDFFIT_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define BRDFFIT_VERSION_MAJOR 0
+#define BRDFFIT_VERSION_MINOR 1
+#define BRDFFIT_VERSION_PATCH 0
+const char *brdffit_version(void);
+
+/* ------------------------------------------------------------------ status */
+
+typedef enum brdffit_status {
+    BRDFFIT_OK = 0,
+    BRDFFIT_E_INVALID_ARGUMENT,  /* NULL pointer, unknown option, bad value   */
+    BRDFFIT_E_NO_MEMORY,
+    BRDFFIT_E_FILE_OPEN,         /* missing or unreadable file                */
+    BRDFFIT_E_FILE_NOT_REGULAR,  /* a directory or other non-file             */
+    BRDFFIT_E_FILE_READ,         /* an I/O error while reading                */
+    BRDFFIT_E_FILE_EMPTY,        /* zero bytes                                */
+    BRDFFIT_E_FILE_TRUNCATED,    /* fewer bytes than the header promises      */
+    BRDFFIT_E_FILE_DIMS,         /* dimensions other than 90 x 90 x 180       */
+    BRDFFIT_E_FILE_TRAILING,     /* bytes after the last sample               */
+    BRDFFIT_E_FILE_NONFINITE,    /* NaN or inf stored in the table            */
+    BRDFFIT_E_FILE_WRITE,        /* could not write a file                    */
+    BRDFFIT_E_UNKNOWN_MODEL,
+    BRDFFIT_E_PARAM_RANGE,       /* parameter NaN, inf or outside its bounds  */
+    BRDFFIT_E_NO_SAMPLES,        /* no valid sample to fit                    */
+    BRDFFIT_E_NO_DEVICE,         /* no OpenCL platform/device (or none matches) */
+    BRDFFIT_E_OPENCL,            /* an OpenCL call failed                     */
+    BRDFFIT_E_KERNEL_BUILD,      /* the OpenCL program did not build (log in message) */
+    BRDFFIT_E_FIT_FAILED,        /* the optimiser could not produce a result  */
+    BRDFFIT_STATUS_COUNT
+} brdffit_status;
+
+/* A fixed text for each status; never NULL. */
+const char *brdffit_strerror(brdffit_status status);
+
+/* Caller-owned error report.  Pass NULL where no message is wanted. */
+#define BRDFFIT_MESSAGE_MAX 2048
+typedef struct brdffit_error {
+    brdffit_status status;
+    char message[BRDFFIT_MESSAGE_MAX]; /* "path: truncated at byte N (...)" etc. */
+} brdffit_error;
+
+/* ------------------------------------------------------------------ models */
+
+typedef enum brdffit_model {
+    BRDFFIT_WARD = 0,
+    BRDFFIT_WARD_DUER,
+    BRDFFIT_BLINN_PHONG,
+    BRDFFIT_LAFORTUNE,
+    BRDFFIT_COOK_TORRANCE,
+    BRDFFIT_ASHIKHMIN_SHIRLEY,
+    BRDFFIT_HE,
+    BRDFFIT_MODEL_COUNT
+} brdffit_model;
+
+#define BRDFFIT_MAX_LOBE_PARAMS 3
+
+typedef struct brdffit_model_info {
+    brdffit_model id;
+    const char *name;            /* "ward", "ward-duer", ..., "he"          */
+    const char *title;           /* "Ward", "Ward-Duer", ...                */
+    int nparams;                 /* lobe parameters, 1..3                   */
+    const char *param_names[BRDFFIT_MAX_LOBE_PARAMS];
+    double lower[BRDFFIT_MAX_LOBE_PARAMS]; /* inclusive bounds; brdffit_eval */
+    double upper[BRDFFIT_MAX_LOBE_PARAMS]; /* rejects parameters outside them */
+    double start[BRDFFIT_MAX_LOBE_PARAMS]; /* a typical starting value        */
+    int chromatic;               /* 1 when K differs per channel (He)       */
+} brdffit_model_info;
+
+/* The descriptor of a model, or NULL for an id out of range. */
+const brdffit_model_info *brdffit_model_get(brdffit_model model);
+/* Look a model up by name ("cook-torrance"; '_' is accepted for '-'). */
+brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out);
+
+typedef struct brdffit_params {
+    double d[3];          /* Lambertian albedo per channel (diffuse = d/pi), >= 0 */
+    double s[3];          /* specular coefficient rho_s per channel, >= 0        */
+    double p[BRDFFIT_MAX_LOBE_PARAMS]; /* lobe parameters in the paper's units   */
+    double lambda_um[3];  /* He only: wavelength per channel in micrometres;
+                             0 means the default (0.645, 0.526, 0.444)          */
+} brdffit_params;
+
+/* Check params against the model's bounds: BRDFFIT_OK or BRDFFIT_E_PARAM_RANGE. */
+brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *params,
+                                    brdffit_error *err);
+
+/* f(wi, wo) per channel (no cosine factor) into rgb[3].  Allocates nothing.
+ * Directions need not be normalised but must be finite and non-zero. */
+brdffit_status brdffit_eval(brdffit_model model, const brdffit_params *params,
+                            const double wi[3], const double wo[3], double rgb[3]);
+
+/* The same for n pairs: wi, wo are 3n doubles (x, y, z per pair), rgb 3n.
+ * Every pair is evaluated; a pair with a non-finite or zero direction gets
+ * rgb = 0 and the call then returns BRDFFIT_E_INVALID_ARGUMENT. */
+brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *params,
+                                  size_t n, const double *wi, const double *wo,
+                                  double *rgb);
+
+/* ------------------------------------------------------------------ MERL tables */
+
+#define BRDFFIT_MERL_NTH 90
+#define BRDFFIT_MERL_NTD 90
+#define BRDFFIT_MERL_NPD 180
+#define BRDFFIT_MERL_BINS (90 * 90 * 180)   /* 1,458,000 per channel */
+
+typedef enum brdffit_scale {
+    BRDFFIT_SCALE_STANDARD = 0,  /* (1, 1.15, 1.66) / 1500 */
+    BRDFFIT_SCALE_FLAT = 1       /* 1/1500, 1/1500, 1/1500 */
+} brdffit_scale;
+
+/* The three channel factors of a scale mode (stored x factor = BRDF). */
+brdffit_status brdffit_scale_factors(brdffit_scale scale, double factors[3]);
+/* "standard" / "flat" */
+const char *brdffit_scale_name(brdffit_scale scale);
+brdffit_status brdffit_scale_from_name(const char *name, brdffit_scale *out);
+
+typedef struct brdffit_table brdffit_table;
+
+/* A new table with every stored value 0. */
+brdffit_status brdffit_table_create(brdffit_table **out, brdffit_error *err);
+/* Read and validate a MERL .binary file. */
+brdffit_status brdffit_table_read(const char *path, brdffit_table **out, brdffit_error *err);
+/* Write the table in MERL .binary format. */
+brdffit_status brdffit_table_write(const brdffit_table *table, const char *path,
+                                   brdffit_error *err);
+void brdffit_table_free(brdffit_table *table);
+
+/* The stored values: 3 x BRDFFIT_MERL_BINS doubles, R plane, G plane, B plane,
+ * in stored units (multiply by the channel scale for the BRDF). */
+double *brdffit_table_values(brdffit_table *table);
+const double *brdffit_table_values_const(const brdffit_table *table);
+
+/* Index of bin (i, j, k) within a plane: k + 180*(j + 90*i). */
+size_t brdffit_bin_index(int i, int j, int k);
+/* The directions a bin stands for (see the conventions above). */
+brdffit_status brdffit_bin_directions(int i, int j, int k, double wi[3], double wo[3]);
+/* The bin's solid-angle weight w (see the conventions above). */
+double brdffit_bin_weight(int i, int j);
+
+/* Fill a table from a model: every bin whose directions are both above the
+ * horizon gets f(wi, wo) / scale, the others -1 (as MERL stores them). */
+brdffit_status brdffit_table_fill_model(brdffit_table *table, brdffit_model model,
+                                        const brdffit_params *params, brdffit_scale scale,
+                                        brdffit_error *err);
+
+typedef enum brdffit_interp {
+    BRDFFIT_INTERP_NEAREST = 0,  /* MERL's BRDFRead bin                          */
+    BRDFFIT_INTERP_TRILINEAR = 1 /* trilinear in the (theta_h index, theta_d, phi_d) grid */
+} brdffit_interp;
+
+/* Value at (wi, wo) in BRDF units (stored x scale), MERL's BRDFRead mapping:
+ * theta_h index = floor(sqrt(theta_h / (pi/2)) * 90), phi_d folded into
+ * [0, pi) by reciprocity.  Masked (negative) bins give -1 in that channel;
+ * trilinear lookup gives -1 where any contributing bin is masked. */
+brdffit_status brdffit_table_lookup(const brdffit_table *table, const double wi[3],
+                                    const double wo[3], brdffit_scale scale,
+                                    brdffit_interp interp, double rgb[3]);
+
+/* ------------------------------------------------------------------ sample sets */
+
+typedef struct brdffit_sample_options {
+    double cutoff_deg;     /* theta_i, theta_o <= cutoff; default 80      */
+    brdffit_scale scale;   /* default BRDFFIT_SCALE_STANDARD              */
+} brdffit_sample_options;
+
+void brdffit_sample_options_default(brdffit_sample_options *opt);
+
+typedef struct brdffit_samples brdffit_samples;
+
+typedef struct brdffit_sample {
+    double wi[3], wo[3];   /* unit directions (wi toward the light)        */
+    double rgb[3];         /* measured BRDF value (stored x scale)         */
+    double weight;         /* the bin's solid-angle weight w               */
+    int i, j, k;           /* the bin                                      */
+} brdffit_sample;
+
+/* The valid samples of a table: all channels >= 0, both directions above the
+ * horizon and within the cutoff.  opt may be NULL for the defaults. */
+brdffit_status brdffit_samples_create(const brdffit_table *table,
+                                      const brdffit_sample_options *opt,
+                                      brdffit_samples **out, brdffit_error *err);
+void brdffit_samples_free(brdffit_samples *samples);
+size_t brdffit_samples_count(const brdffit_samples *samples);
+/* Bins with a negative stored value in some channel (masked, not clamped). */
+size_t brdffit_samples_masked(const brdffit_samples *samples);
+/* Bins with valid values whose directions fall outside the cutoff. */
+size_t brdffit_samples_beyond_cutoff(const brdffit_samples *samples);
+brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
+                                   brdffit_sample *out);
+void brdffit_samples_options(const brdffit_samples *samples, brdffit_sample_options *out);
+
+/* ------------------------------------------------------------------ fitting */
+
+typedef enum brdffit_backend {
+    BRDFFIT_BACKEND_AUTO = 0,   /* OpenCL when a device is found, else host C */
+    BRDFFIT_BACKEND_OPENCL = 1, /* OpenCL or fail with BRDFFIT_E_NO_DEVICE    */
+    BRDFFIT_BACKEND_HOST = 2    /* the same model maths compiled as C, 1 thread */
+} brdffit_backend;
+
+typedef struct brdffit_context_options {
+    brdffit_backend backend;    /* default AUTO                                 */
+    const char *device;         /* "PLATFORM:DEVICE" by index or name substring;
+                                   NULL: $BRDFFIT_DEVICE, else the first PoCL CPU
+                                   device, else the first device                */
+} brdffit_context_options;
+
+void brdffit_context_options_default(brdffit_context_options *opt);
+
+typedef struct brdffit_context brdffit_context;
+
+/* Create a context: picks the device, owns the OpenCL state and the per-model
+ * program cache.  When POCL_CACHE_DIR is unset it is set to a writable
+ * directory ($XDG_CACHE_HOME/brdffit/pocl, ~/.cache/brdffit/pocl or
+ * $TMPDIR/brdffit-pocl-UID) so that PoCL works out of the box. */
+brdffit_status brdffit_context_create(const brdffit_context_options *opt,
+                                      brdffit_context **out, brdffit_error *err);
+void brdffit_context_free(brdffit_context *ctx);
+/* "opencl" or "host" */
+brdffit_backend brdffit_context_backend(const brdffit_context *ctx);
+/* A human description: "opencl: Portable Computing Language / pthread-haswell..."
+ * or "host: C (no OpenCL device: ...)". */
+const char *brdffit_context_describe(const brdffit_context *ctx);
+
+typedef struct brdffit_fit_options {
+    int starts;          /* starting points screened per model; default 8   */
+    int refine;          /* best starts refined by LM; default 1             */
+    double ftol, xtol, gtol; /* cminpack tolerances; default 1e-8, 1e-8, 0    */
+    int max_evals;       /* data passes per LM run; default 200              */
+    double lambda_um[3]; /* He only: wavelengths; 0 = (0.645, 0.526, 0.444)  */
+} brdffit_fit_options;
+
+void brdffit_fit_options_default(brdffit_fit_options *opt);
+
+typedef struct brdffit_fit_result {
+    brdffit_model model;
+    brdffit_params params;   /* in the paper's units                        */
+    double error;            /* the "ngan-l2" Error of params               */
+    int cminpack_info;       /* lmder's info of the run kept (1..4 converged) */
+    int iterations;          /* Jacobian evaluations of that run (njev)     */
+    int evaluations;         /* all data passes of the fit (starts + LM)    */
+    double seconds;          /* wall time of the fit                        */
+    double seconds_solver;   /* of which inside cminpack (not the passes)   */
+    double seconds_passes;   /* of which in data passes                     */
+    size_t samples;          /* samples fitted                              */
+    brdffit_backend backend; /* the path used                               */
+} brdffit_fit_result;
+
+/* Fit a model to a sample set.  opt may be NULL for the defaults. */
+brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
+                           brdffit_model model, const brdffit_fit_options *opt,
+                           brdffit_fit_result *result, brdffit_error *err);
+
+/* The "ngan-l2" Error of given parameters on a sample set. */
+brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *samples,
+                                brdffit_model model, const brdffit_params *params,
+                                double *error, brdffit_error *err);
+
+/* "ngan-l2" */
+const char *brdffit_metric_name(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BRDFFIT_H */

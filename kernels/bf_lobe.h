@@ -1,0 +1,35 @@
+/*
+ * bf_lobe.h -- one entry point to the seven lobes, for the C library and the
+ * OpenCL kernel alike.  In the kernel `model` is a compile-time constant
+ * (-DBF_MODEL=...), so the switch folds away.
+ */
+#ifndef BF_LOBE_H
+#define BF_LOBE_H
+
+#ifndef __OPENCL_VERSION__
+#include "bf_models.h"
+#include "bf_he.h"
+#endif
+
+/* K per channel into K[0..2] for lobe parameters p[0..2] (paper units) and,
+ * for He, wavelengths lam[0..2] in micrometres. */
+BF_FN void bf_lobe(int model, const bf_geom *g, const double *p, const double *lam,
+                   BF_REAL *K)
+{
+    BF_REAL k;
+    switch (model) {
+    case BF_WARD: k = bf_ward(g, p[0]); break;
+    case BF_WARD_DUER: k = bf_ward_duer(g, p[0]); break;
+    case BF_BLINN_PHONG: k = bf_blinn_phong(g, p[0]); break;
+    case BF_LAFORTUNE: k = bf_lafortune(g, p[0], p[1], p[2]); break;
+    case BF_COOK_TORRANCE: k = bf_cook_torrance(g, p[0], p[1]); break;
+    case BF_ASHIKHMIN_SHIRLEY: k = bf_ashikhmin_shirley(g, p[0], p[1]); break;
+    case BF_HE: bf_he(g, p[0], p[1], p[2], lam, K); return;
+    default: k = BF_R(0.0); break;
+    }
+    K[0] = k;
+    K[1] = k;
+    K[2] = k;
+}
+
+#endif /* BF_LOBE_H */

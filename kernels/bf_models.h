@@ -1,0 +1,114 @@
+/*
+ * bf_models.h -- the BRDF lobes K(wi, wo; p) of the seven models, written once
+ * for the C library and the OpenCL kernel (see bf_common.h).
+ *
+ * Frame: z is the normal; wi (i*) points toward the light, wo (o*) toward the
+ * viewer; both unit vectors strictly above the horizon.  H = normalize(wi+wo),
+ * delta = angle(N, H).  f_c = d_c/pi + s_c K_c, no cosine factor.
+ *
+ * A renderer may include this header (with bf_common.h and bf_he.h) and call
+ * bf_geom_make + bf_lobe directly: nothing here allocates or has state.
+ */
+#ifndef BF_MODELS_H
+#define BF_MODELS_H
+
+#ifndef __OPENCL_VERSION__
+#include "bf_common.h"
+#endif
+
+/* Model ids: the values of brdffit_model in include/brdffit.h. */
+#define BF_WARD 0
+#define BF_WARD_DUER 1
+#define BF_BLINN_PHONG 2
+#define BF_LAFORTUNE 3
+#define BF_COOK_TORRANCE 4
+#define BF_ASHIKHMIN_SHIRLEY 5
+#define BF_HE 6
+
+/* The geometry of a (wi, wo) pair: computed once per sample of a table. */
+typedef struct bf_geom {
+    BF_REAL ix, iy, iz;  /* wi, toward the light  */
+    BF_REAL ox, oy, oz;  /* wo, toward the viewer */
+    BF_REAL nh;          /* N.H = cos delta       */
+    BF_REAL vh;          /* V.H = L.H = cos theta_d */
+} bf_geom;
+
+/* Fill the derived fields of g from its two unit directions. */
+BF_FN void bf_geom_derive(bf_geom *g)
+{
+    BF_REAL c = g->ix * g->ox + g->iy * g->oy + g->iz * g->oz;   /* wi.wo */
+    /* |wi + wo| = sqrt(2 + 2 wi.wo); wi = -wo cannot happen above the horizon */
+    BF_REAL len = sqrt(fmax(2.0 + 2.0 * c, BF_TINY));
+    g->nh = fmin(fmax((g->iz + g->oz) / len, BF_TINY), 1.0);
+    g->vh = fmin(sqrt(fmax(0.5 + 0.5 * c, 0.0)), 1.0);
+}
+
+/* tan^2(delta) from cos(delta), finite for cos delta in (0, 1]. */
+BF_FN BF_REAL bf_tan2(BF_REAL c)
+{
+    return fmax(1.0 - c * c, 0.0) / (c * c);
+}
+
+/* Schlick's Fresnel term F0 + (1 - F0)(1 - c)^5, without pow. */
+BF_FN BF_REAL bf_schlick(double f0, BF_REAL c)
+{
+    BF_REAL u = 1.0 - c, u2 = u * u;
+    return f0 + (1.0 - f0) * (u2 * u2 * u);
+}
+
+/* x^n for x >= 0 (at most 1 + rounding) and real n > 0: exp(n log x), 0 where
+ * x <= 0.  Not clamped at 1: the reference values are not either. */
+BF_FN BF_REAL bf_powu(BF_REAL x, double n)
+{
+    BF_REAL xs = fmax(x, BF_TINY);
+    return BF_SEL(exp(n * log(xs)), BF_R(0.0), x <= 0.0);
+}
+
+/* Ward [alpha] */
+BF_FN BF_REAL bf_ward(const bf_geom *g, double alpha)
+{
+    double a2 = alpha * alpha;
+    return exp(-bf_tan2(g->nh) / a2) / ((4.0 * BF_PI * a2) * sqrt(g->iz * g->oz));
+}
+
+/* Ward-Duer [alpha] */
+BF_FN BF_REAL bf_ward_duer(const bf_geom *g, double alpha)
+{
+    double a2 = alpha * alpha;
+    return exp(-bf_tan2(g->nh) / a2) / ((4.0 * BF_PI * a2) * (g->iz * g->oz));
+}
+
+/* Blinn-Phong [n] */
+BF_FN BF_REAL bf_blinn_phong(const bf_geom *g, double n)
+{
+    return ((n + 2.0) / (2.0 * BF_PI)) * bf_powu(g->nh, n);
+}
+
+/* Lafortune [Cxy, Cz, n]: the base is normalised by max(|Cxy|, |Cz|) before
+ * the power, so that large n cannot underflow the normalisation. */
+BF_FN BF_REAL bf_lafortune(const bf_geom *g, double cxy, double cz, double n)
+{
+    double m = fmax(fabs(cxy), fabs(cz));
+    BF_REAL x = (cxy * (g->ix * g->ox + g->iy * g->oy) + cz * (g->iz * g->oz)) / m;
+    return ((n + 2.0) / (2.0 * BF_PI)) * bf_powu(x, n);
+}
+
+/* Cook-Torrance [F0, m], with the constant 1/(4 pi m^2) of the published fits */
+BF_FN BF_REAL bf_cook_torrance(const bf_geom *g, double f0, double m)
+{
+    double m2 = m * m;
+    BF_REAL nh = g->nh, vh = g->vh;
+    BF_REAL gg = fmin(fmin(2.0 * nh * g->oz / vh, 2.0 * nh * g->iz / vh), 1.0);
+    BF_REAL nh2 = nh * nh;
+    BF_REAL d = exp(-bf_tan2(nh) / m2) / ((4.0 * BF_PI * m2) * (nh2 * nh2));
+    return bf_schlick(f0, vh) * gg * d / (g->iz * g->oz);
+}
+
+/* Ashikhmin-Shirley [F0, n] */
+BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
+{
+    return ((n + 1.0) / (8.0 * BF_PI)) * bf_powu(g->nh, n)
+         / (g->vh * fmax(g->iz, g->oz)) * bf_schlick(f0, g->vh);
+}
+
+#endif /* BF_MODELS_H */

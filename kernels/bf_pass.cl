@@ -1,0 +1,80 @@
+/*
+ * bf_pass.cl -- the OpenCL data pass.  The library prepends bf_common.h,
+ * bf_models.h, bf_he.h, bf_lobe.h and bf_pass.h and builds it once per model
+ * and context with
+ *     -DBF_MODEL=<id> -DBF_NP=<lobe coordinates> -DBF_NK=<1|3> -DBF_WIDTH=<4|8>
+ *
+ * Each work-item walks a contiguous run of BF_WIDTH-wide sample vectors
+ * (explicit vector types: PoCL does not vectorise scalar work-items that call
+ * exp/log), keeps its sums in BF_REAL lanes, and writes their lane sums, in
+ * double, to out[gid * nmom ...].  The host adds the work-items' rows.
+ * Global size = number of work-items (a multiple of the work-group size the
+ * host picks); items past the data write zeros.
+ *
+ * Two kernels: bf_pass_full (value + forward-difference Jacobian moments,
+ * np = BF_NP) and bf_pass_value (np = 0: value moments only).
+ */
+#ifndef BF_MODEL
+#error "build with -DBF_MODEL=<model id>"
+#endif
+
+#if BF_WIDTH == 8
+#define BF_VLOAD(i, p) vload8((i), (p))
+#define BF_HSUM(v) ((((v).s0 + (v).s1) + ((v).s2 + (v).s3)) + (((v).s4 + (v).s5) + ((v).s6 + (v).s7)))
+#elif BF_WIDTH == 4
+#define BF_VLOAD(i, p) vload4((i), (p))
+#define BF_HSUM(v) (((v).s0 + (v).s1) + ((v).s2 + (v).s3))
+#else
+#error "BF_WIDTH must be 4 or 8"
+#endif
+
+inline void bf_pass_run(const int np, __global const double *data, const ulong npad,
+                        const uint vec_per_item, __constant const double *ppar,
+                        __global double *out)
+{
+    const uint gid = get_global_id(0);
+    const int nmom = bf_nmom(BF_NK, np);
+    bf_pass_par pp;
+    double *q = (double *)&pp;
+    for (int i = 0; i < BF_PASS_PAR_DOUBLES; i++)
+        q[i] = ppar[i];
+
+    BF_REAL acc[BF_NMOM_MAX];
+    for (int m = 0; m < nmom; m++)
+        acc[m] = BF_R(0.0);
+
+    const ulong nvec = npad / BF_WIDTH;
+    ulong v0 = (ulong)gid * vec_per_item;
+    ulong v1 = min(v0 + vec_per_item, nvec);
+    for (ulong v = v0; v < v1; v++) {
+        bf_geom g;
+        g.ix = BF_VLOAD(v, data + BF_F_IX * npad);
+        g.iy = BF_VLOAD(v, data + BF_F_IY * npad);
+        g.iz = BF_VLOAD(v, data + BF_F_IZ * npad);
+        g.ox = BF_VLOAD(v, data + BF_F_OX * npad);
+        g.oy = BF_VLOAD(v, data + BF_F_OY * npad);
+        g.oz = BF_VLOAD(v, data + BF_F_OZ * npad);
+        g.nh = BF_VLOAD(v, data + BF_F_NH * npad);
+        g.vh = BF_VLOAD(v, data + BF_F_VH * npad);
+        BF_REAL rho[3];
+        rho[0] = BF_VLOAD(v, data + BF_F_R * npad);
+        rho[1] = BF_VLOAD(v, data + BF_F_G * npad);
+        rho[2] = BF_VLOAD(v, data + BF_F_B * npad);
+        BF_REAL a2 = BF_VLOAD(v, data + BF_F_A2 * npad);
+        bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc);
+    }
+    for (int m = 0; m < nmom; m++)
+        out[(ulong)gid * nmom + m] = BF_HSUM(acc[m]);
+}
+
+__kernel void bf_pass_full(__global const double *data, const ulong npad, const uint vec_per_item,
+                           __constant const double *ppar, __global double *out)
+{
+    bf_pass_run(BF_NP, data, npad, vec_per_item, ppar, out);
+}
+
+__kernel void bf_pass_value(__global const double *data, const ulong npad, const uint vec_per_item,
+                            __constant const double *ppar, __global double *out)
+{
+    bf_pass_run(0, data, npad, vec_per_item, ppar, out);
+}

@@ -1,0 +1,153 @@
+/* models.c -- the model table, parameter checks and the plain-C evaluators.
+ * The maths itself is kernels/bf_lobe.h (shared with the OpenCL kernel). */
+#include "internal.h"
+
+#include "bf_lobe.h"
+
+#include <math.h>
+#include <string.h>
+
+_Static_assert(BF_WARD == BRDFFIT_WARD && BF_WARD_DUER == BRDFFIT_WARD_DUER &&
+                   BF_BLINN_PHONG == BRDFFIT_BLINN_PHONG && BF_LAFORTUNE == BRDFFIT_LAFORTUNE &&
+                   BF_COOK_TORRANCE == BRDFFIT_COOK_TORRANCE &&
+                   BF_ASHIKHMIN_SHIRLEY == BRDFFIT_ASHIKHMIN_SHIRLEY && BF_HE == BRDFFIT_HE,
+               "kernels/bf_models.h ids must match brdffit_model");
+
+/* Bounds are inclusive: brdffit_eval accepts exactly these, and fits stay in them. */
+static const brdffit_model_info model_table[BRDFFIT_MODEL_COUNT] = {
+    { BRDFFIT_WARD, "ward", "Ward", 1, { "alpha" }, { 1e-4 }, { 0.5 }, { 0.1 }, 0 },
+    { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", 1, { "alpha" }, { 1e-4 }, { 0.5 }, { 0.1 }, 0 },
+    { BRDFFIT_BLINN_PHONG, "blinn-phong", "Blinn-Phong", 1, { "n" }, { 0.1 }, { 1e6 }, { 100 }, 0 },
+    { BRDFFIT_LAFORTUNE, "lafortune", "Lafortune", 3, { "Cxy", "Cz", "n" },
+      { -100, -100, 0.1 }, { 100, 100, 1e6 }, { -0.57735026918962576, 0.57735026918962576, 100 }, 0 },
+    { BRDFFIT_COOK_TORRANCE, "cook-torrance", "Cook-Torrance", 2, { "F0", "m" },
+      { 0, 1e-4 }, { 1, 0.5 }, { 0.5, 0.1 }, 0 },
+    { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley", "Ashikhmin-Shirley", 2, { "F0", "n" },
+      { 0, 0.1 }, { 1, 1e6 }, { 0.5, 100 }, 0 },
+    { BRDFFIT_HE, "he", "He", 3, { "tau", "sigma0", "n" },
+      { 1, 0.001, 1 }, { 200, 10, 15 }, { 16, 0.5, 2 }, 1 },
+};
+
+const brdffit_model_info *brdffit_model_get(brdffit_model model)
+{
+    if ((int)model < 0 || model >= BRDFFIT_MODEL_COUNT)
+        return NULL;
+    return &model_table[model];
+}
+
+brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out)
+{
+    if (!name || !out)
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+        const char *a = model_table[m].name, *b = name;
+        while (*a && (*a == *b || (*a == '-' && *b == '_')))
+            a++, b++;
+        if (*a == '\0' && *b == '\0') {
+            *out = (brdffit_model)m;
+            return BRDFFIT_OK;
+        }
+    }
+    return BRDFFIT_E_UNKNOWN_MODEL;
+}
+
+void bf_lambdas(const brdffit_params *params, double lam[3])
+{
+    static const double dflt[3] = { 0.645, 0.526, 0.444 };
+    for (int c = 0; c < 3; c++)
+        lam[c] = (params && params->lambda_um[c] != 0.0) ? params->lambda_um[c] : dflt[c];
+}
+
+brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *params,
+                                    brdffit_error *err)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    if (!mi)
+        return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
+    if (!params)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "params is NULL");
+    static const char ch[3] = { 'R', 'G', 'B' };
+    for (int c = 0; c < 3; c++) {
+        if (!isfinite(params->d[c]) || params->d[c] < 0)
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: d_%c = %g must be finite and >= 0",
+                           mi->name, ch[c], params->d[c]);
+        if (!isfinite(params->s[c]) || params->s[c] < 0)
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: s_%c = %g must be finite and >= 0",
+                           mi->name, ch[c], params->s[c]);
+        if (model == BRDFFIT_HE && params->lambda_um[c] != 0.0 &&
+            !(params->lambda_um[c] >= 0.1 && params->lambda_um[c] <= 10.0))
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE,
+                           "%s: lambda_%c = %g um must be 0 (default) or in [0.1, 10]", mi->name,
+                           ch[c], params->lambda_um[c]);
+    }
+    for (int k = 0; k < mi->nparams; k++) {
+        double v = params->p[k];
+        if (!(v >= mi->lower[k] && v <= mi->upper[k]))
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: %s = %g outside [%g, %g]", mi->name,
+                           mi->param_names[k], v, mi->lower[k], mi->upper[k]);
+    }
+    if (model == BRDFFIT_LAFORTUNE && fmax(fabs(params->p[0]), fabs(params->p[1])) < 1e-12)
+        return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "lafortune: Cxy and Cz are both 0");
+    bf_ok(err);
+    return BRDFFIT_OK;
+}
+
+/* Normalise a direction; 0 when it is not finite or has no length. */
+static int unit(const double v[3], double u[3])
+{
+    double l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (!isfinite(l2) || !(l2 > 0))
+        return 0;
+    double inv = 1.0 / sqrt(l2);
+    for (int k = 0; k < 3; k++)
+        u[k] = v[k] * inv;
+    return 1;
+}
+
+/* f for one pair of checked parameters; returns 0 for a bad direction. */
+static int eval_one(brdffit_model model, const brdffit_params *params, const double lam[3],
+                    const double *wi, const double *wo, double *rgb)
+{
+    double a[3], b[3];
+    if (!unit(wi, a) || !unit(wo, b))
+        return 0;
+    if (a[2] <= 0 || b[2] <= 0) {
+        rgb[0] = rgb[1] = rgb[2] = 0;
+        return 1;
+    }
+    bf_geom g = { a[0], a[1], a[2], b[0], b[1], b[2], 0, 0 };
+    bf_geom_derive(&g);
+    double K[3];
+    bf_lobe((int)model, &g, params->p, lam, K);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = params->d[c] / BF_PI + params->s[c] * K[c];
+    return 1;
+}
+
+brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *params, size_t n,
+                                  const double *wi, const double *wo, double *rgb)
+{
+    brdffit_status st = brdffit_params_check(model, params, NULL);
+    if (st != BRDFFIT_OK)
+        return st;
+    if (n > 0 && (!wi || !wo || !rgb))
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    double lam[3];
+    bf_lambdas(params, lam);
+    brdffit_status result = BRDFFIT_OK;
+    for (size_t s = 0; s < n; s++) {
+        if (!eval_one(model, params, lam, wi + 3 * s, wo + 3 * s, rgb + 3 * s)) {
+            rgb[3 * s] = rgb[3 * s + 1] = rgb[3 * s + 2] = 0;
+            result = BRDFFIT_E_INVALID_ARGUMENT;
+        }
+    }
+    return result;
+}
+
+brdffit_status brdffit_eval(brdffit_model model, const brdffit_params *params, const double wi[3],
+                            const double wo[3], double rgb[3])
+{
+    if (!wi || !wo || !rgb)
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    return brdffit_eval_batch(model, params, 1, wi, wo, rgb);
+}

@@ -1,0 +1,85 @@
+/* status.c -- status texts, error reports, and the small utilities every file uses. */
+#define _POSIX_C_SOURCE 200809L
+#include "internal.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+const char *brdffit_version(void)
+{
+    return "0.1.0";
+}
+
+static const char *const status_text[BRDFFIT_STATUS_COUNT] = {
+    [BRDFFIT_OK] = "success",
+    [BRDFFIT_E_INVALID_ARGUMENT] = "invalid argument",
+    [BRDFFIT_E_NO_MEMORY] = "out of memory",
+    [BRDFFIT_E_FILE_OPEN] = "cannot open file",
+    [BRDFFIT_E_FILE_NOT_REGULAR] = "not a regular file",
+    [BRDFFIT_E_FILE_READ] = "read error",
+    [BRDFFIT_E_FILE_EMPTY] = "empty file",
+    [BRDFFIT_E_FILE_TRUNCATED] = "truncated file",
+    [BRDFFIT_E_FILE_DIMS] = "unexpected table dimensions",
+    [BRDFFIT_E_FILE_TRAILING] = "trailing bytes after the table",
+    [BRDFFIT_E_FILE_NONFINITE] = "non-finite value in the table",
+    [BRDFFIT_E_FILE_WRITE] = "write error",
+    [BRDFFIT_E_UNKNOWN_MODEL] = "unknown model",
+    [BRDFFIT_E_PARAM_RANGE] = "parameter out of range",
+    [BRDFFIT_E_NO_SAMPLES] = "no valid samples",
+    [BRDFFIT_E_NO_DEVICE] = "no OpenCL device",
+    [BRDFFIT_E_OPENCL] = "OpenCL error",
+    [BRDFFIT_E_KERNEL_BUILD] = "OpenCL kernel build failed",
+    [BRDFFIT_E_FIT_FAILED] = "fit failed",
+};
+
+const char *brdffit_strerror(brdffit_status status)
+{
+    if ((int)status < 0 || status >= BRDFFIT_STATUS_COUNT)
+        return "unknown status";
+    return status_text[status];
+}
+
+brdffit_status bf_fail(brdffit_error *err, brdffit_status status, const char *fmt, ...)
+{
+    if (err) {
+        err->status = status;
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(err->message, sizeof err->message, fmt, ap);
+        va_end(ap);
+    }
+    return status;
+}
+
+void bf_ok(brdffit_error *err)
+{
+    if (err) {
+        err->status = BRDFFIT_OK;
+        err->message[0] = '\0';
+    }
+}
+
+double bf_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void *bf_alloc_aligned(size_t bytes)
+{
+    void *p = NULL;
+    if (bytes == 0)
+        bytes = 64;
+    if (posix_memalign(&p, 64, bytes) != 0)
+        return NULL;
+    return p;
+}
+
+void bf_free_aligned(void *p)
+{
+    free(p);
+}

@@ -1,0 +1,268 @@
+/* test_fit.c -- acceptance of brdffit_fit: recovery of known parameters, the
+ * published Ngan et al. fits as a bar to clear, degenerate data, bad input. */
+#define _DEFAULT_SOURCE /* M_PI */
+#define _POSIX_C_SOURCE 200809L
+#include "testutil.h"
+
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The published row (ngan2005-fits.tsv) of a material and model; 0 if absent. */
+static int published(const char *material, brdffit_model model, brdffit_params *p)
+{
+    char path[1024], line[4096];
+    FILE *f = fopen(tu_shared("data/ngan2005-fits.tsv", path, sizeof path), "r");
+    ck_assert_msg(f != NULL, "cannot open %s", path);
+    char *fl[16];
+    int found = 0;
+    while (!found && tu_tsv_next(f, line, sizeof line, fl, 16) >= 8) {
+        brdffit_model m;
+        if (strcmp(fl[0], material) != 0 || brdffit_model_from_name(fl[1], &m) != BRDFFIT_OK || m != model)
+            continue;
+        memset(p, 0, sizeof *p);
+        for (int c = 0; c < 3; c++) {
+            p->d[c] = atof(fl[2 + c]);
+            p->s[c] = atof(fl[5 + c]);
+        }
+        for (int k = 0; k < 3; k++)
+            p->p[k] = fl[8 + k][0] ? atof(fl[8 + k]) : 0.0;
+        found = 1;
+    }
+    fclose(f);
+    return found;
+}
+
+static brdffit_context *make_context(void)
+{
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    ck_assert_msg(brdffit_context_create(NULL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    return ctx;
+}
+
+static brdffit_samples *samples_of(brdffit_table *t, brdffit_scale scale)
+{
+    brdffit_error err;
+    brdffit_samples *s = NULL;
+    brdffit_sample_options so;
+    brdffit_sample_options_default(&so);
+    so.scale = scale;
+    ck_assert_msg(brdffit_samples_create(t, &so, &s, &err) == BRDFFIT_OK, "%s", err.message);
+    return s;
+}
+
+static void assert_finite_result(const brdffit_fit_result *r)
+{
+    ck_assert(isfinite(r->error) && r->error >= 0);
+    for (int c = 0; c < 3; c++)
+        ck_assert(isfinite(r->params.d[c]) && r->params.d[c] >= 0 && isfinite(r->params.s[c]) &&
+                  r->params.s[c] >= 0);
+    const brdffit_model_info *mi = brdffit_model_get(r->model);
+    for (int k = 0; k < mi->nparams; k++)
+        ck_assert_msg(r->params.p[k] >= mi->lower[k] && r->params.p[k] <= mi->upper[k],
+                      "%s: %s = %g out of bounds", mi->name, mi->param_names[k], r->params.p[k]);
+    ck_assert_int_eq(brdffit_params_check(r->model, &r->params, NULL), BRDFFIT_OK);
+}
+
+/* ---------------------------------------------------------------- recovery */
+
+static const brdffit_model closed_form[] = {
+    BRDFFIT_WARD, BRDFFIT_WARD_DUER, BRDFFIT_BLINN_PHONG,
+    BRDFFIT_LAFORTUNE, BRDFFIT_COOK_TORRANCE, BRDFFIT_ASHIKHMIN_SHIRLEY,
+};
+static const char *const recovery_materials[] = { "alum-bronze", "blue-rubber" };
+
+/* A table made by a model at published parameters fits back: Error below
+ * 1e-6 of the data's RMS, parameters within 1e-3 relative (Lafortune: the
+ * direction Cxy/Cz and n), from the default starts. */
+START_TEST(recovery)
+{
+    brdffit_model m = closed_form[_i % 6];
+    const char *material = recovery_materials[_i / 6];
+    const brdffit_model_info *mi = brdffit_model_get(m);
+    brdffit_params truth;
+    ck_assert(published(material, m, &truth));
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    ck_assert_msg(brdffit_table_fill_model(t, m, &truth, BRDFFIT_SCALE_STANDARD, &err) == BRDFFIT_OK,
+                  "%s", err.message);
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
+    brdffit_context *ctx = make_context();
+
+    brdffit_params zero = truth;
+    memset(zero.d, 0, sizeof zero.d);
+    memset(zero.s, 0, sizeof zero.s);
+    double rms = 0, e_truth = 1;
+    ck_assert_int_eq(brdffit_error_of(ctx, s, m, &zero, &rms, &err), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_error_of(ctx, s, m, &truth, &e_truth, &err), BRDFFIT_OK);
+    ck_assert_msg(rms > 0 && e_truth <= 1e-10 * rms, "truth Error %g of rms %g", e_truth, rms);
+
+    brdffit_fit_result r;
+    ck_assert_msg(brdffit_fit(ctx, s, m, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    assert_finite_result(&r);
+    ck_assert_msg(r.error < 1e-6 * rms, "%s/%s: Error %g, rms %g", material, mi->name, r.error, rms);
+    for (int c = 0; c < 3; c++) {
+        ck_assert_msg(tu_reldiff(r.params.d[c], truth.d[c]) < 1e-3, "%s/%s d[%d] %.6g vs %.6g", material,
+                      mi->name, c, r.params.d[c], truth.d[c]);
+        ck_assert_msg(tu_reldiff(r.params.s[c], truth.s[c]) < 1e-3, "%s/%s s[%d] %.6g vs %.6g", material,
+                      mi->name, c, r.params.s[c], truth.s[c]);
+    }
+    if (m == BRDFFIT_LAFORTUNE) {
+        ck_assert_msg(tu_reldiff(r.params.p[0] / r.params.p[1], truth.p[0] / truth.p[1]) < 1e-3,
+                      "Cxy/Cz %.6g vs %.6g", r.params.p[0] / r.params.p[1], truth.p[0] / truth.p[1]);
+        ck_assert(fabs(2 * r.params.p[0] * r.params.p[0] + r.params.p[1] * r.params.p[1] - 1) < 1e-12);
+        ck_assert_msg(tu_reldiff(r.params.p[2], truth.p[2]) < 1e-3, "n %.6g vs %.6g", r.params.p[2], truth.p[2]);
+    } else {
+        for (int k = 0; k < mi->nparams; k++)
+            ck_assert_msg(tu_reldiff(r.params.p[k], truth.p[k]) < 1e-3, "%s/%s %s %.6g vs %.6g", material,
+                          mi->name, mi->param_names[k], r.params.p[k], truth.p[k]);
+    }
+    ck_assert(r.cminpack_info >= 1 && r.cminpack_info <= 4);
+    ck_assert(r.evaluations > 0 && r.iterations > 0 && r.seconds > 0);
+    ck_assert_int_eq(r.samples, brdffit_samples_count(s));
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
+/* ---------------------------------------------------------------- the paper */
+
+static const char *const paper_materials[] = {
+    "alum-bronze", "blue-rubber", "gold-metallic-paint", "green-metallic-paint2",
+};
+
+/* On real-shaped tables, with the data Ngan et al. fitted (flat scale), the
+ * fitted Error is no worse than the Error of their published parameters on
+ * the same table with the same metric. */
+START_TEST(beats_published)
+{
+    const char *material = paper_materials[_i];
+    char path[1024];
+    ck_assert_msg(tu_merl_table(material, path, sizeof path) != NULL, "merl-table %s", material);
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_msg(brdffit_table_read(path, &t, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_FLAT);
+    brdffit_context *ctx = make_context();
+    for (int i = 0; i < 6; i++) {
+        brdffit_model m = closed_form[i];
+        brdffit_params pub;
+        ck_assert(published(material, m, &pub));
+        double e_pub;
+        ck_assert_msg(brdffit_error_of(ctx, s, m, &pub, &e_pub, &err) == BRDFFIT_OK, "%s", err.message);
+        brdffit_fit_result r;
+        ck_assert_msg(brdffit_fit(ctx, s, m, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
+        assert_finite_result(&r);
+        ck_assert_msg(r.error <= e_pub, "%s/%s: fitted Error %.6g > published %.6g", material,
+                      brdffit_model_get(m)->name, r.error, e_pub);
+    }
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
+/* ---------------------------------------------------------------- degenerate data */
+
+enum { DATA_ZERO, DATA_LAMBERT, DATA_ONE_BIN, DATA_KINDS };
+
+START_TEST(degenerate_data)
+{
+    int kind = _i / BRDFFIT_MODEL_COUNT;
+    brdffit_model m = (brdffit_model)(_i % BRDFFIT_MODEL_COUNT);
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    double *v = brdffit_table_values(t);
+    if (kind == DATA_LAMBERT) {
+        brdffit_params lam = { { 0.3, 0.2, 0.1 }, { 0, 0, 0 }, { 0.1, 0, 0 }, { 0 } };
+        ck_assert_int_eq(brdffit_table_fill_model(t, BRDFFIT_WARD, &lam, BRDFFIT_SCALE_STANDARD, &err),
+                         BRDFFIT_OK);
+    } else if (kind == DATA_ONE_BIN) {
+        size_t b = brdffit_bin_index(10, 20, 30);
+        for (int c = 0; c < 3; c++)
+            v[c * (size_t)BRDFFIT_MERL_BINS + b] = 500.0;
+    }
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
+    brdffit_context *ctx = make_context();
+    brdffit_fit_options fo;
+    brdffit_fit_options_default(&fo);
+    fo.starts = 3;
+    fo.refine = 1;
+    fo.max_evals = 60;
+    brdffit_fit_result r;
+    ck_assert_msg(brdffit_fit(ctx, s, m, &fo, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    assert_finite_result(&r);
+    if (kind == DATA_ZERO)
+        ck_assert_msg(r.error < 1e-12, "all-zero data: Error %g", r.error);
+    if (kind == DATA_LAMBERT) {
+        ck_assert_msg(r.error < 1e-6 * 0.3 / M_PI, "Lambertian data: Error %g", r.error);
+        ck_assert_msg(fabs(r.params.d[0] - 0.3) < 1e-4, "d_r %g", r.params.d[0]);
+    }
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
+/* ---------------------------------------------------------------- bad input */
+
+START_TEST(bad_arguments)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
+    brdffit_context *ctx = make_context();
+    brdffit_fit_result r;
+    brdffit_fit_options fo;
+    brdffit_fit_options_default(&fo);
+    ck_assert_int_eq(brdffit_fit(NULL, s, BRDFFIT_WARD, NULL, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_fit(ctx, NULL, BRDFFIT_WARD, NULL, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_fit(ctx, s, BRDFFIT_WARD, NULL, NULL, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_fit(ctx, s, (brdffit_model)77, NULL, &r, &err), BRDFFIT_E_UNKNOWN_MODEL);
+    fo.starts = 0;
+    ck_assert_int_eq(brdffit_fit(ctx, s, BRDFFIT_WARD, &fo, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_ptr_nonnull(strstr(err.message, "starts"));
+    brdffit_fit_options_default(&fo);
+    fo.ftol = NAN;
+    ck_assert_int_eq(brdffit_fit(ctx, s, BRDFFIT_WARD, &fo, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    brdffit_fit_options_default(&fo);
+    fo.lambda_um[1] = -1;
+    ck_assert_int_eq(brdffit_fit(ctx, s, BRDFFIT_HE, &fo, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    brdffit_params p = { { 0.1, 0.1, 0.1 }, { 0.1, 0.1, 0.1 }, { NAN, 0, 0 }, { 0 } };
+    double e = -1;
+    ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_WARD, &p, &e, &err), BRDFFIT_E_PARAM_RANGE);
+    ck_assert(e == -1); /* untouched */
+    p.p[0] = 0.1;
+    ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_WARD, &p, &e, &err), BRDFFIT_OK);
+    ck_assert(e > 0 && isfinite(e));
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
+Suite *fit_suite(void)
+{
+    Suite *s = suite_create("fit");
+    TCase *tr = tcase_create("recovery");
+    tcase_set_timeout(tr, 300);
+    tcase_add_loop_test(tr, recovery, 0, 12);
+    suite_add_tcase(s, tr);
+    TCase *tp = tcase_create("paper");
+    tcase_set_timeout(tp, 600);
+    tcase_add_loop_test(tp, beats_published, 0, 4);
+    suite_add_tcase(s, tp);
+    TCase *td = tcase_create("degenerate");
+    tcase_set_timeout(td, 300);
+    tcase_add_loop_test(td, degenerate_data, 0, DATA_KINDS * BRDFFIT_MODEL_COUNT);
+    tcase_add_test(td, bad_arguments);
+    suite_add_tcase(s, td);
+    return s;
+}

@@ -1,0 +1,245 @@
+/* test_pass.c -- the OpenCL data pass against the host C loop, device
+ * selection, the host fallback, PoCL set-up and kernel build failures. */
+#define _POSIX_C_SOURCE 200809L
+#include "testutil.h"
+#include "context.h"
+
+#include <check.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static brdffit_samples *load_samples(const char *material)
+{
+    char path[1024];
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    brdffit_samples *s = NULL;
+    ck_assert_msg(tu_merl_table(material, path, sizeof path) != NULL, "merl-table %s failed", material);
+    ck_assert_msg(brdffit_table_read(path, &t, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(brdffit_samples_create(t, NULL, &s, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_table_free(t);
+    return s;
+}
+
+/* A pass point away from any optimum (so that no sum cancels). */
+static void some_point(brdffit_model m, bf_pass_par *pp)
+{
+    const brdffit_model_info *mi = brdffit_model_get(m);
+    memset(pp, 0, sizeof *pp);
+    for (int c = 0; c < 3; c++) {
+        pp->d[c] = 0.02 + 0.01 * c;
+        pp->s[c] = 0.05 + 0.02 * c;
+    }
+    pp->lam[0] = 0.645, pp->lam[1] = 0.526, pp->lam[2] = 0.444;
+    int np = bf_model_ncoords(m);
+    for (int j = 0; j <= np; j++) {
+        memcpy(pp->p[j], mi->start, sizeof pp->p[j]);
+        if (j > 0) {
+            int k = (m == BRDFFIT_LAFORTUNE) ? j : j - 1;
+            pp->p[j][k] *= 1 + 1e-6;
+            pp->inv_h[j - 1] = 1e6;
+        }
+    }
+}
+
+/* The kernel's sums equal the host C loop's to 1e-9 relative, every model,
+ * both kernels (value only and value + Jacobian). */
+START_TEST(kernel_equals_host)
+{
+    brdffit_model m = (brdffit_model)_i;
+    brdffit_samples *s = load_samples("gold-metallic-paint");
+    brdffit_error err;
+    brdffit_context_options co;
+    brdffit_context_options_default(&co);
+    co.backend = BRDFFIT_BACKEND_OPENCL;
+    brdffit_context *ctx = NULL;
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_passer ps;
+    ck_assert_msg(bf_passer_open(&ps, ctx, s, m, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_par pp;
+    some_point(m, &pp);
+    for (int full = 0; full <= 1; full++) {
+        int np = full ? ps.np : 0, nmom = bf_nmom(ps.nk, np);
+        double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
+        ck_assert_msg(bf_passer_run(&ps, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
+        bf_pass_host(s, m, ps.nk, np, &pp, h);
+        for (int i = 0; i < nmom; i++) {
+            ck_assert_msg(isfinite(k[i]) && isfinite(h[i]), "moment %d not finite", i);
+            ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "%s full=%d moment %d: kernel %.17g host %.17g",
+                          brdffit_model_get(m)->name, full, i, k[i], h[i]);
+        }
+        if (!full)
+            ck_assert(h[0] > 0); /* A = sum of the weights: the pass saw the data */
+    }
+    bf_passer_close(&ps);
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+}
+END_TEST
+
+/* The sum of the metric weights A is 1/3 of ... by construction: 3A = 1. */
+START_TEST(weights_normalised)
+{
+    brdffit_samples *s = load_samples("blue-rubber");
+    bf_pass_par pp;
+    some_point(BRDFFIT_WARD, &pp);
+    double h[BF_NMOM_MAX];
+    bf_pass_host(s, BRDFFIT_WARD, 1, 0, &pp, h);
+    /* a2 = w cos^2 / (3 sum w) so 3 A = sum w cos^2 / sum w, in (0, 1] */
+    ck_assert(3 * h[0] > 0.1 && 3 * h[0] <= 1.0);
+    brdffit_samples_free(s);
+}
+END_TEST
+
+START_TEST(device_selection)
+{
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    brdffit_context_options co;
+    brdffit_context_options_default(&co);
+    /* default: the first PoCL CPU device */
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_int_eq(brdffit_context_backend(ctx), BRDFFIT_BACKEND_OPENCL);
+    ck_assert_ptr_nonnull(strstr(brdffit_context_describe(ctx), "opencl"));
+    brdffit_context_free(ctx);
+    /* by index and by name */
+    co.device = "0:0";
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_context_free(ctx);
+    co.device = "Portable Computing Language";
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_context_free(ctx);
+    /* no such device: OPENCL fails with NO_DEVICE, AUTO falls back to the host and says why */
+    co.device = "no-such-device-xyz";
+    co.backend = BRDFFIT_BACKEND_OPENCL;
+    ctx = (brdffit_context *)&co;
+    ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_E_NO_DEVICE);
+    ck_assert_ptr_null(ctx);
+    ck_assert_ptr_nonnull(strstr(err.message, "no-such-device-xyz"));
+    co.backend = BRDFFIT_BACKEND_AUTO;
+    ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_context_backend(ctx), BRDFFIT_BACKEND_HOST);
+    ck_assert_ptr_nonnull(strstr(brdffit_context_describe(ctx), "no-such-device-xyz"));
+    brdffit_context_free(ctx);
+    /* the environment variable does the same */
+    setenv("BRDFFIT_DEVICE", "9:9", 1);
+    co.device = NULL;
+    co.backend = BRDFFIT_BACKEND_OPENCL;
+    ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_E_NO_DEVICE);
+    unsetenv("BRDFFIT_DEVICE");
+    co.backend = (brdffit_backend)42;
+    ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_context_create(NULL, NULL, &err), BRDFFIT_E_INVALID_ARGUMENT);
+}
+END_TEST
+
+/* With no OpenCL device at all the fit runs through the host C path, and the
+ * result says so.  OCL_ICD_VENDORS pointing at an empty directory makes the
+ * ICD loader find no platform, as on a machine without OpenCL. */
+START_TEST(no_platform_falls_back_to_host)
+{
+    char dir[] = "/tmp/brdffit-noicd-XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    setenv("OCL_ICD_VENDORS", dir, 1);
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    brdffit_context_options co;
+    brdffit_context_options_default(&co);
+    co.backend = BRDFFIT_BACKEND_OPENCL;
+    ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_E_NO_DEVICE);
+    ck_assert(strlen(err.message) > 0);
+    co.backend = BRDFFIT_BACKEND_AUTO;
+    ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_context_backend(ctx), BRDFFIT_BACKEND_HOST);
+    ck_assert_ptr_nonnull(strstr(brdffit_context_describe(ctx), "host"));
+
+    /* a small fit through the host path: a Ward table, recovered */
+    brdffit_table *t = NULL;
+    brdffit_samples *s = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.2, 0, 0 }, { 0 } };
+    ck_assert_int_eq(brdffit_table_fill_model(t, BRDFFIT_WARD, &p, BRDFFIT_SCALE_STANDARD, &err), BRDFFIT_OK);
+    brdffit_sample_options so;
+    brdffit_sample_options_default(&so);
+    so.cutoff_deg = 30; /* fewer samples: the host path is single-threaded */
+    ck_assert_int_eq(brdffit_samples_create(t, &so, &s, &err), BRDFFIT_OK);
+    brdffit_fit_options fo;
+    brdffit_fit_options_default(&fo);
+    fo.starts = 4;
+    fo.refine = 1;
+    brdffit_fit_result r;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD, &fo, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_int_eq(r.backend, BRDFFIT_BACKEND_HOST);
+    ck_assert_msg(fabs(r.params.p[0] - 0.2) < 1e-4, "alpha %g", r.params.p[0]);
+    ck_assert(isfinite(r.error) && r.error < 1e-6);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+    brdffit_context_free(ctx);
+    rmdir(dir);
+}
+END_TEST
+
+/* Unset POCL_CACHE_DIR: the context makes a writable one, and kernels build. */
+START_TEST(pocl_cache_out_of_the_box)
+{
+    char home[] = "/tmp/brdffit-home-XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(home));
+    unsetenv("POCL_CACHE_DIR");
+    unsetenv("XDG_CACHE_HOME");
+    setenv("HOME", home, 1);
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    brdffit_context_options co;
+    brdffit_context_options_default(&co);
+    co.backend = BRDFFIT_BACKEND_OPENCL;
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    const char *cache = getenv("POCL_CACHE_DIR");
+    ck_assert_ptr_nonnull(cache);
+    ck_assert_ptr_nonnull(strstr(cache, home));
+    struct stat st;
+    ck_assert_int_eq(stat(cache, &st), 0);
+    ck_assert(S_ISDIR(st.st_mode));
+    cl_kernel kf, kv;
+    ck_assert_msg(bf_context_kernels(ctx, BRDFFIT_WARD, &kf, &kv, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_context_free(ctx);
+}
+END_TEST
+
+/* A kernel that does not build reports BRDFFIT_E_KERNEL_BUILD with the log. */
+START_TEST(build_failure_carries_log)
+{
+    setenv("BRDFFIT_CL_OPTIONS", "-DBF_WIDTH=5", 1); /* bf_common.h: #error */
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    brdffit_context_options co;
+    brdffit_context_options_default(&co);
+    co.backend = BRDFFIT_BACKEND_OPENCL;
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    cl_kernel kf, kv;
+    brdffit_status st = bf_context_kernels(ctx, BRDFFIT_WARD, &kf, &kv, &err);
+    ck_assert_int_eq(st, BRDFFIT_E_KERNEL_BUILD);
+    ck_assert_int_eq(err.status, BRDFFIT_E_KERNEL_BUILD);
+    ck_assert_ptr_nonnull(strstr(err.message, "build log"));
+    ck_assert_ptr_nonnull(strstr(err.message, "BF_WIDTH must be 4 or 8")); /* the compiler's words */
+    brdffit_context_free(ctx);
+    unsetenv("BRDFFIT_CL_OPTIONS");
+}
+END_TEST
+
+Suite *pass_suite(void)
+{
+    Suite *s = suite_create("pass");
+    TCase *tc = tcase_create("kernel");
+    tcase_set_timeout(tc, 300);
+    tcase_add_loop_test(tc, kernel_equals_host, 0, BRDFFIT_MODEL_COUNT);
+    tcase_add_test(tc, weights_normalised);
+    tcase_add_test(tc, device_selection);
+    tcase_add_test(tc, no_platform_falls_back_to_host);
+    tcase_add_test(tc, pocl_cache_out_of_the_box);
+    tcase_add_test(tc, build_failure_carries_log);
+    suite_add_tcase(s, tc);
+    return s;
+}

@@ -1,0 +1,25 @@
+/* testutil.h -- helpers the test files share: ../shared data, temporary files. */
+#ifndef BRDFFIT_TESTUTIL_H
+#define BRDFFIT_TESTUTIL_H
+
+#include "brdffit.h"
+
+#include <stddef.h>
+
+/* Path of a file under ../shared (or $BRDFFIT_SHARED), into buf. */
+const char *tu_shared(const char *rel, char *buf, size_t len);
+/* Run ../shared/tools/merl-table NAME and return its path in buf (NULL on failure). */
+const char *tu_merl_table(const char *name, char *buf, size_t len);
+/* A fresh temporary file path (the file exists, empty) into buf. */
+const char *tu_tmpfile(char *buf, size_t len);
+/* Write len bytes to path; 0 on success. */
+int tu_write_bytes(const char *path, const void *data, size_t len);
+
+/* One row of a TSV file split into fields (tabs); comment lines start with '#'.
+ * Returns the number of fields, 0 at end of file.  fields point into line. */
+int tu_tsv_next(void *file, char *line, size_t len, char **fields, int maxfields);
+
+/* Relative difference |a - b| / max(|a|, |b|, tiny). */
+double tu_reldiff(double a, double b);
+
+#endif

@@ -38,7 +38,7 @@ LIB_SRC  = $(wildcard src/lib/*.c)
 LIB_OBJ  = $(LIB_SRC:src/lib/%.c=$(BUILD)/lib/%.o) $(BUILD)/lib/kernel_source.o
 KERNELS  = kernels/bf_common.h kernels/bf_models.h kernels/bf_he.h kernels/bf_lobe.h \
            kernels/bf_pass.h kernels/bf_pass.cl
-HEADERS  = include/brdffit.h $(wildcard src/lib/*.h) $(wildcard kernels/*.h)
+HEADERS  = include/brdffit.h $(wildcard src/lib/*.h) $(wildcard src/cli/*.h) $(wildcard kernels/*.h)
 CLI_SRC  = $(wildcard src/cli/*.c)
 TEST_SRC = $(wildcard tests/*.c)
 BENCH_SRC = $(wildcard bench/*.c)

@@ -288,7 +288,9 @@ brdffit_backend brdffit_context_backend(const brdffit_context *ctx);
 const char *brdffit_context_describe(const brdffit_context *ctx);
 
 typedef struct brdffit_fit_options {
-    int starts;          /* starting points screened per model; default 8   */
+    int starts;          /* starting points screened; 0 (default): the model's
+                            own, 8 (a log grid of the lobe width), He 7 (tau =
+                            4, 8, ..., 28 as Ngan et al.)                    */
     int refine;          /* best starts refined by LM; default 1             */
     double ftol, xtol, gtol; /* cminpack tolerances; default 1e-8, 1e-8, 0    */
     int max_evals;       /* data passes per LM run; default 200              */

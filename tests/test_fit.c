@@ -226,7 +226,7 @@ START_TEST(bad_arguments)
     ck_assert_int_eq(brdffit_fit(ctx, NULL, BRDFFIT_WARD, NULL, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_fit(ctx, s, BRDFFIT_WARD, NULL, NULL, &err), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_fit(ctx, s, (brdffit_model)77, NULL, &r, &err), BRDFFIT_E_UNKNOWN_MODEL);
-    fo.starts = 0;
+    fo.starts = -1;
     ck_assert_int_eq(brdffit_fit(ctx, s, BRDFFIT_WARD, &fo, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_ptr_nonnull(strstr(err.message, "starts"));
     brdffit_fit_options_default(&fo);
@@ -242,6 +242,113 @@ START_TEST(bad_arguments)
     p.p[0] = 0.1;
     ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_WARD, &p, &e, &err), BRDFFIT_OK);
     ck_assert(e > 0 && isfinite(e));
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
+
+/* ---------------------------------------------------------------- He */
+
+/* Recovery of tau, sigma0, n (and d, s) from a table the He model made: a
+ * rough surface (blue-rubber's published fit) and a smooth one (alum-bronze's). */
+START_TEST(he_recovery)
+{
+    const char *material = _i == 0 ? "blue-rubber" : "alum-bronze";
+    brdffit_params truth;
+    ck_assert(published(material, BRDFFIT_HE, &truth));
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    ck_assert_msg(brdffit_table_fill_model(t, BRDFFIT_HE, &truth, BRDFFIT_SCALE_STANDARD, &err) == BRDFFIT_OK,
+                  "%s", err.message);
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
+    brdffit_context *ctx = make_context();
+    brdffit_params zero = truth;
+    memset(zero.d, 0, sizeof zero.d);
+    memset(zero.s, 0, sizeof zero.s);
+    double rms = 0;
+    ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_HE, &zero, &rms, &err), BRDFFIT_OK);
+    brdffit_fit_result r;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    assert_finite_result(&r);
+    ck_assert_msg(r.error < 1e-6 * rms, "he/%s: Error %g, rms %g", material, r.error, rms);
+    static const char *const names[3] = { "tau", "sigma0", "n" };
+    for (int k = 0; k < 3; k++)
+        ck_assert_msg(tu_reldiff(r.params.p[k], truth.p[k]) < 1e-3, "he/%s %s %.6g vs %.6g", material,
+                      names[k], r.params.p[k], truth.p[k]);
+    for (int c = 0; c < 3; c++) {
+        ck_assert(tu_reldiff(r.params.d[c], truth.d[c]) < 1e-3);
+        ck_assert(tu_reldiff(r.params.s[c], truth.s[c]) < 1e-3);
+        ck_assert(r.params.lambda_um[c] > 0.4 && r.params.lambda_um[c] < 0.7);
+    }
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
+/* On the alum-bronze and blue-rubber tables (flat scale) the fitted He Error
+ * is no worse than that of the published He parameters. */
+START_TEST(he_beats_published)
+{
+    const char *material = _i == 0 ? "alum-bronze" : "blue-rubber";
+    char path[1024];
+    ck_assert_msg(tu_merl_table(material, path, sizeof path) != NULL, "merl-table %s", material);
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_msg(brdffit_table_read(path, &t, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_FLAT);
+    brdffit_context *ctx = make_context();
+    brdffit_params pub;
+    ck_assert(published(material, BRDFFIT_HE, &pub));
+    double e_pub;
+    ck_assert_msg(brdffit_error_of(ctx, s, BRDFFIT_HE, &pub, &e_pub, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_fit_result r;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    assert_finite_result(&r);
+    ck_assert_msg(r.error <= e_pub, "he/%s: fitted Error %.6g > published %.6g", material, r.error, e_pub);
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
+/* Every published He row gives finite values on every valid sample of a
+ * table: a data pass sums f over all of them and refuses a non-finite sum. */
+START_TEST(he_published_rows_finite)
+{
+    char path[1024], line[4096];
+    ck_assert(tu_merl_table("chrome", path, sizeof path) != NULL);
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_msg(brdffit_table_read(path, &t, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_FLAT);
+    brdffit_context *ctx = make_context();
+    FILE *f = fopen(tu_shared("data/ngan2005-fits.tsv", path, sizeof path), "r");
+    ck_assert_ptr_nonnull(f);
+    char *fl[16];
+    int rows = 0;
+    while (tu_tsv_next(f, line, sizeof line, fl, 16) >= 11) {
+        if (strcmp(fl[1], "he") != 0)
+            continue;
+        brdffit_params p;
+        memset(&p, 0, sizeof p);
+        for (int c = 0; c < 3; c++) {
+            p.d[c] = atof(fl[2 + c]);
+            p.s[c] = atof(fl[5 + c]);
+        }
+        for (int k = 0; k < 3; k++)
+            p.p[k] = atof(fl[8 + k]);
+        double e = NAN;
+        ck_assert_msg(brdffit_error_of(ctx, s, BRDFFIT_HE, &p, &e, &err) == BRDFFIT_OK, "%s: %s", fl[0],
+                      err.message);
+        ck_assert_msg(isfinite(e) && e > 0, "%s: Error %g", fl[0], e);
+        rows++;
+    }
+    fclose(f);
+    ck_assert_int_eq(rows, 86);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
     brdffit_table_free(t);
@@ -264,5 +371,11 @@ Suite *fit_suite(void)
     tcase_add_loop_test(td, degenerate_data, 0, DATA_KINDS * BRDFFIT_MODEL_COUNT);
     tcase_add_test(td, bad_arguments);
     suite_add_tcase(s, td);
+    TCase *th = tcase_create("he");
+    tcase_set_timeout(th, 900);
+    tcase_add_loop_test(th, he_recovery, 0, 2);
+    tcase_add_loop_test(th, he_beats_published, 0, 2);
+    tcase_add_test(th, he_published_rows_finite);
+    suite_add_tcase(s, th);
     return s;
 }

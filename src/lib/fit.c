@@ -301,11 +301,11 @@ static void start_params(brdffit_model model, int i, int n, double p[3])
         p[1] = lo * pow(hi / lo, t);
         break;
     case BRDFFIT_HE:
-        /* tau over 4, 8, ..., 28 as Ngan et al.; sigma0 and n from the table */
+        /* tau over 4, 8, ..., 28 as Ngan et al.; further rounds of 7 vary sigma0 */
         p[0] = 4.0 * (1 + (i % 7));
-        p[1] = mi->start[1] * pow(4.0, (double)(i / 7) - 0.5 * ((n - 1) / 7));
-        if (p[1] < mi->lower[1]) p[1] = mi->lower[1];
-        if (p[1] > mi->upper[1]) p[1] = mi->upper[1];
+        p[1] = mi->start[1] * pow(4.0, (double)(i / 7));
+        if (p[1] > mi->upper[1])
+            p[1] = mi->upper[1];
         break;
     default:
         break;
@@ -377,7 +377,7 @@ void brdffit_fit_options_default(brdffit_fit_options *opt)
     if (!opt)
         return;
     memset(opt, 0, sizeof *opt);
-    opt->starts = 8;
+    opt->starts = 0; /* the model's own: 8, He 7 */
     opt->refine = 1;
     opt->ftol = 1e-8;
     opt->xtol = 1e-8;
@@ -392,8 +392,9 @@ const char *brdffit_metric_name(void)
 
 static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_error *err)
 {
-    if (o->starts < 1 || o->starts > 1000)
-        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "starts = %d must be in [1, 1000]", o->starts);
+    if (o->starts < 0 || o->starts > 1000)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "starts = %d must be in [1, 1000] (or 0: the model's default)", o->starts);
     if (o->refine < 1)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "refine = %d must be >= 1", o->refine);
     if (!(o->ftol >= 0) || !(o->xtol >= 0) || !(o->gtol >= 0) || !isfinite(o->ftol) ||
@@ -446,10 +447,11 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     enum { MAX_KEEP = 16 };
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
-    for (int i = 0; i < o.starts; i++) {
+    int nstarts = o.starts ? o.starts : model == BRDFFIT_HE ? 7 : 8;
+    for (int i = 0; i < nstarts; i++) {
         double p[3];
         start st;
-        start_params(model, i, o.starts, p);
+        start_params(model, i, nstarts, p);
         rc = screen_start(&S, p, &st);
         if (rc != BRDFFIT_OK) {
             bf_passer_close(&ps);

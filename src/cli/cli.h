@@ -1,0 +1,100 @@
+/* cli.h -- what the source files of the brdffit program share.
+ *
+ *   brdffit.c  main: the subcommands, --help, --version, `models`, `eval`
+ *   args.c     strict number parsing and the options of `fit` and `demo`
+ *   run.c      `fit` and `demo`: tables, sample sets, one context, the fits
+ *   report.c   the paper-style table and the JSON Lines records
+ *   json.c     JSON text: escaped strings, round-tripping numbers
+ *
+ * The library never prints or exits; this program does both. */
+#ifndef BRDFFIT_CLI_H
+#define BRDFFIT_CLI_H
+
+#include "brdffit.h"
+
+#include <stdio.h>
+
+/* Exit statuses. */
+enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
+
+#if defined(__GNUC__)
+#define CLI_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define CLI_PRINTF(a, b)
+#endif
+
+/* ---- args.c ---- */
+
+/* A finite double, the whole string (strtod with an end check). 0 on success. */
+int cli_parse_double(const char *s, double *out);
+/* A decimal int in [lo, hi], the whole string. 0 on success. */
+int cli_parse_int(const char *s, int lo, int hi, int *out);
+/* "brdffit: <message>" and a pointer to --help on stderr; returns CLI_USAGE. */
+int cli_usage_error(const char *fmt, ...) CLI_PRINTF(1, 2);
+/* The valid model names, comma-separated, into buf. */
+const char *cli_model_names(char *buf, size_t len);
+
+typedef struct cli_options {
+    brdffit_model models[BRDFFIT_MODEL_COUNT]; /* in the order asked, no repeats */
+    int nmodels;                                /* 0 until --model; then >= 1    */
+    brdffit_sample_options sample;
+    brdffit_fit_options fit;
+    brdffit_context_options context;
+    int json;
+    const char **files;                         /* the positional arguments      */
+    int nfiles;
+} cli_options;
+
+/* Parse the arguments after `fit` / `demo` into o (defaults first).  Returns
+ * CLI_OK, CLI_USAGE (message printed), or -1 when --help was asked (usage
+ * printed by the caller).  Free with cli_options_free. */
+int cli_parse_options(int argc, char **argv, cli_options *o);
+void cli_options_free(cli_options *o);
+
+/* ---- run.c ---- */
+
+int cli_run_fit(const cli_options *o);
+int cli_run_demo(const cli_options *o);
+
+/* ---- report.c ---- */
+
+/* What a fit report is about: a material and the settings of its samples. */
+typedef struct cli_material {
+    const char *name;                 /* "alum-bronze"                          */
+    const char *file;                 /* its path, or NULL (the demo)           */
+    const char *about;                /* one extra line for the table, or NULL  */
+    brdffit_sample_options sample;    /* cutoff and scale                       */
+} cli_material;
+
+/* The material's name from a path: the base name without ".binary", into buf. */
+const char *cli_material_name(const char *path, char *buf, size_t len);
+
+/* Table mode. */
+void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
+                   const brdffit_context *ctx, const brdffit_fit_options *fo);
+void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
+                const brdffit_params *p, double error, const brdffit_fit_result *r);
+void report_row_failed(FILE *f, brdffit_model model, const brdffit_error *err);
+void report_legend(FILE *f, const brdffit_model *models, int nmodels);
+
+/* JSON Lines mode: one object per fit; r is NULL when the fit failed. */
+void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
+                     const brdffit_samples *s, brdffit_model model, brdffit_status st,
+                     const brdffit_error *err, const brdffit_fit_result *r);
+/* One object for a material that could not be fitted at all (file, samples, context). */
+void report_json_failure(FILE *f, const cli_material *m, brdffit_status st,
+                         const brdffit_error *err);
+
+/* ---- json.c ---- */
+
+/* s as a JSON string (quotes included); invalid UTF-8 bytes become U+FFFD. */
+void json_string(FILE *f, const char *s);
+/* x with %.17g, or null when x is not finite. */
+void json_number(FILE *f, double x);
+/* "[x0,x1,...]" of n numbers. */
+void json_numbers(FILE *f, const double *x, int n);
+
+/* s with control characters replaced by '?', for the terminal. */
+void plain_string(FILE *f, const char *s);
+
+#endif

@@ -1,6 +1,42 @@
 /*
- * bf_he.h -- the He et al. 1991 lobe as Ngan et al. fitted it (p0 = tau,
- * p1 = sigma0, p2 = n).  PLACEHOLDER until the He issue lands: K = 0.
+ * bf_he.h -- the He et al. 1991 directional-diffuse lobe as Ngan et al. fitted
+ * it: p0 = tau (autocorrelation length, um), p1 = sigma0 (rms roughness, um),
+ * p2 = n (real refractive index), K per channel at wavelengths lam[0..2] (um).
+ * Written once for the C library and the OpenCL kernel (see bf_common.h).
+ *
+ * With wi toward the light, wo toward the viewer, v = wi + wo, N = z:
+ *
+ *   K = F G S D / (pi cos ti cos to)
+ *   F  Fresnel, unpolarised, real n, at c = cos theta_b = |v| / 2
+ *   G  = (v.v / v_z)^2.  The issue's form
+ *        (v.v / v_z)^2 [(s_r.k_i)^2 + (p_r.k_i)^2] [(s_i.k_r)^2 + (p_i.k_r)^2] / |k_r x k_i|^4
+ *      is exactly this: (s_r, p_r, k_r) is an orthonormal basis, so
+ *      (s_r.k_i)^2 + (p_r.k_i)^2 = 1 - (k_r.k_i)^2 = |k_r x k_i|^2, and likewise
+ *      for the other bracket.  The closed form has no 0/0 at wi = wo (where it
+ *      is 4 / cos^2 theta) nor at normal incidence (where s is arbitrary).
+ *   S  = S(ti) S(to), S(t) = (1 - erfc(u)/2) / (1 + L(u)), u = tau cot t / (2 sigma0),
+ *      L(u) = (exp(-u^2) / (sqrt(pi) u) - erfc(u)) / 2
+ *   sigma = sigma0 / sqrt(1 + x^2),  x e^(x^2/2) = (K(ti) + K(to)) / sqrt(8 pi),
+ *      K(t) = tan t erfc(u)
+ *   g  = ((2 pi sigma / lam)(cos ti + cos to))^2,  a = pi^2 (tau/lam)^2 |v_xy|^2
+ *   D  = (pi tau / (2 lam))^2 sum_{m>=1} g^m e^-g / (m! m) e^(-a/m)   (g <= 18)
+ *      ~ (pi tau / (2 lam))^2 e^(-a/g) / g                             (g >= 19)
+ *      blended linearly in g over [18, 19].
+ *
+ * Numerics.  The terms T_m of the series are log-concave in m (their log
+ * ratios decrease), so per lane the peak m* is found exactly (a Newton
+ * estimate, then a step or two on the sign of the log ratio).  K is computed
+ * as e^(ln T_m* + ln(pref F G S / (pi cos cos))) sum_m T_m / T_m*, so nothing
+ * underflows unless K does: a lane whose peak term puts less than e^-760 into
+ * K is 0 without summing; the sum starts where the terms are within e^-40 of
+ * the peak and stops, past the peak, once a term is below 1e-12 of the sum
+ * (relative error ~1e-12; 3e-13 measured against 40-digit sums).  The cap
+ * m <= BF_HE_MMAX = 400 is exact: for g < 19, T_m < Poisson(m; 19) < e^-840
+ * beyond it, and the scale factor is below e^45 for directions up to 89.9 deg
+ * (and far beyond), so no later term reaches the double range.  The peak can
+ * lie far beyond the ~80 terms a = 0 needs (m* = 166 at g = 16.3, a = 6.4e4,
+ * K = 2e-269: a row of he-reference.tsv).  Cosines are floored at 1e-100, so
+ * every lane stays finite for any direction strictly above the horizon.
  */
 #ifndef BF_HE_H
 #define BF_HE_H
@@ -9,13 +45,605 @@
 #include "bf_models.h"
 #endif
 
-BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n,
-                 const double *lam, BF_REAL *K)
+#define BF_HE_G_LO 18.0      /* below: the series                  */
+#define BF_HE_G_HI 19.0      /* above: the rough-surface limit      */
+#define BF_HE_MMAX 400       /* last term of the series             */
+#define BF_HE_COS_MIN 1e-100 /* floor of cos ti, cos to, cos theta_b */
+#define BF_HE_LN_DEAD (-760.0)
+#define BF_HE_LN_SQRT_2PI 0.91893853320467274178
+
+/* bf_he_lkk[k] = ln(k k!) for k = 1..BF_HE_MMAX, correctly rounded (so that
+ * a term of the series costs one exp and no log). */
+#ifdef __OPENCL_VERSION__
+#define BF_HE_CONSTANT __constant
+#else
+#define BF_HE_CONSTANT static const
+#endif
+BF_HE_CONSTANT double bf_he_lkk[BF_HE_MMAX + 1] = {
+    0.0, 0.0, 1.3862943611198906, 2.8903717578961645,
+    4.564348191467836, 6.396929655216146, 8.371010681238156, 10.471071510120728,
+    12.684044444425085, 14.999052057417689, 17.40699766606956, 19.900203118672255,
+    22.472121145449886, 25.11711321058496, 27.83027851235394, 30.6073215849431,
+    33.44444882832045, 36.3382867941931, 39.28581696592922, 42.28432316636594,
+    45.331348734307475, 48.42466133620033, 51.56222380519354, 54.74216978369353,
+    57.96278322846027, 61.22248104784872, 64.51979829902348, 67.85337549301066,
+    71.22194764735674, 74.62433479715449, 78.05943373049232, 81.52621075780046,
+    85.02369535891476, 88.550974579048, 92.10718806681383, 95.6915236651765,
+    99.30321348059931, 102.94153036743165, 106.60578477424019, 110.29532190677311,
+    114.00951916887134, 117.74778384816601, 121.50955101802845, 125.2942816311322,
+    129.10146078327514, 132.93059612889755, 136.7812164321054, 140.65287023903642,
+    144.54512465914215, 148.4575642444555, 152.38978995720117, 156.34141821722167,
+    160.31208002166022, 164.30142013018303, 168.30909630975947, 172.33477863366014,
+    176.37814882989795, 180.4388996748319, 184.5167344280902, 188.6113663053552,
+    192.7225179858937, 196.84992115201823, 200.9933160579351, 205.15245112567305,
+    209.32708256600088, 213.51697402243246, 217.72189623658969, 221.9416267333452,
+    226.17594952430645, 230.42465482832486, 234.68753880782631, 238.96440331985957,
+    243.25505568085038, 247.55930844413112, 251.87697918939105, 256.2078903232595,
+    260.55186889029585, 264.9087463937169, 269.2783586252424, 273.66054550348684,
+    278.05515092036757, 282.4620225950386, 286.8810119348947, 291.3119739032236,
+    295.75476689311364, 300.20925260725096, 304.67529594326766, 309.1527648843233,
+    313.64153039462514, 318.1414663196112, 322.6524492905396, 327.174358633243,
+    331.70707628082425, 336.25048669008174, 340.8044767614685, 345.36893576239953,
+    349.9437552537347, 354.52882901927364, 359.1240529981114, 363.72932521971,
+    368.3445457415516, 372.969616589246, 377.6044416989733, 382.24892686214827,
+    386.9029796722014, 391.56650947337505, 396.23942731144166, 400.92164588625343,
+    405.61307950604, 410.31364404337404, 415.0232568927297, 419.741836929562,
+    424.4693044708398, 429.2055812369694, 433.95059031504604, 438.70425612337806,
+    443.4665043772275, 448.2372620557167, 453.0164573698503, 457.80401973160764,
+    462.5998797240602, 467.4039690724717, 472.21622061634145, 477.036568282353,
+    481.8649470581907, 486.7012929671902, 491.5455430437909, 496.3976353097566,
+    501.25750875113727, 506.12510329594096, 511.0003597924905, 515.8832199884372,
+    520.7736265104088, 525.671522844266, 530.576853315946, 535.4895630728719,
+    540.4095980659056, 545.3369050318258, 550.271431476312, 555.2131256574163,
+    560.1619365695042, 565.1178139276512, 570.0807081524756, 575.0505703553941,
+    580.0273523242862, 585.0110065095514, 590.0014860105474, 594.9987445623966,
+    600.002736523146, 605.0134168612728, 610.0307411435199, 615.0546655230536,
+    620.0851467279311, 625.1221420498698, 630.1656093333046, 635.2155069647295,
+    640.2717938623093, 645.3344294657563, 650.403373726462, 655.4785870978754,
+    660.5600305261229, 665.647665440858, 670.7414537463383, 675.8413578127195,
+    680.947340467561, 686.0593649875381, 691.1773950903505, 696.3013949268275,
+    701.4313290732173, 706.5671625236602, 711.7088606828376, 716.8563893587926,
+    722.0097147559169, 727.168803468099, 732.3336224720302, 737.5041391206628,
+    742.6803211368156, 747.8621366069251, 753.0495539749354, 758.2425420363248,
+    763.4410699322646, 768.645107143906, 773.8546234867937, 779.0695891053998,
+    784.2899744677763, 789.515750360324, 794.746887882672, 799.9833584426681,
+    805.2251337514733, 810.4721858187627, 815.724486948024, 820.9820097319567,
+    826.2447270479657, 831.5126120537477, 836.7856381829695, 842.0637791410337,
+    847.347008900931, 852.6353016991764, 857.9286320318275, 863.226974650582,
+    868.5303045589535, 873.8385970085236, 879.151827495267, 884.4699717559494,
+    889.7930057645959, 895.1209057290286, 900.4536480874693, 905.7912095052105,
+    911.1335668713477, 916.4806972955761, 921.8325781050462, 927.1891868412808,
+    932.5505012571488, 937.9164993138957, 943.2871591782299, 948.6624592194634,
+    954.0423780067041, 959.4268943061008, 964.8159870781385, 970.2096354749824,
+    975.6078188378707, 981.0105166945538, 986.4177087567806, 991.8293749178285,
+    997.2454952500785, 1002.6660500026323, 1008.0910195989725, 1013.5203846346631,
+    1018.9541258750905, 1024.3922242532444, 1029.8346608675367, 1035.281416979657,
+    1040.732474012468, 1046.187813547933, 1051.6474173250826, 1057.1112672380134,
+    1062.5793453339204, 1068.051633811165, 1073.5281150173728, 1079.0087714475644,
+    1084.4935857423168, 1089.982540685956, 1095.475619204779, 1100.9728043653033,
+    1106.474079372549, 1111.9794275683455, 1117.4888324296653, 1123.002277566989,
+    1128.519746722691, 1134.0412237694554, 1139.5666927087152, 1145.0961376691166,
+    1150.6295429050076, 1156.1668927949513, 1161.7081718402608, 1167.253364663559,
+    1172.8024560073598, 1178.3554307326706, 1183.9122738176186, 1189.472970356096,
+    1195.0375055564277, 1200.6058647400575, 1206.1780333402571, 1211.7539969008515,
+    1217.3337410749664, 1222.9172516237925, 1228.5045144153696, 1234.0955154233884,
+    1239.69024072601, 1245.2886765047026, 1250.8908090430975, 1256.4966247258587,
+    1262.106110037571, 1267.7192515616448, 1273.336035979236, 1278.956450068181,
+    1284.5804807019488, 1290.2081148486063, 1295.8393395698004, 1301.4741420197524,
+    1307.1125094442696, 1312.7544291797678, 1318.3998886523102, 1324.0488753766585,
+    1329.7013769553378, 1335.3573810777139, 1341.016875519085, 1346.6798481397843,
+    1352.3462868842967, 1358.0161797803855, 1363.6895149382342, 1369.3662805495965,
+    1375.0464648869618, 1380.7300563027275, 1386.417043228388, 1392.1074141737288,
+    1397.801157726037, 1403.4982625493185, 1409.1987173835264, 1414.9025110438024,
+    1420.6096324197242, 1426.3200704745657, 1432.0338142445667, 1437.7508528382104,
+    1443.4711754355135, 1449.194771287322, 1454.9216297146195, 1460.6517401078415,
+    1466.3850919262015, 1472.1216746970233, 1477.861478015084, 1483.6044915419634,
+    1489.350705005403, 1495.1001081986738, 1500.8526909799502, 1506.6084432716932,
+    1512.3673550600415, 1518.129416394209, 1523.8946173858922, 1529.6629482086817,
+    1535.4343990974844, 1541.2089603479506, 1546.9866223159095, 1552.7673754168104,
+    1558.5512101251722, 1564.3381169740394, 1570.1280865544431, 1575.921109514871,
+    1581.717176560742, 1587.5162784538886, 1593.3184060120443, 1599.123550108338,
+    1604.9317016707937, 1610.7428516818381, 1616.5569911778111, 1622.3741112484845,
+    1628.1942030365858, 1634.0172577373273, 1639.843266597941, 1645.672220917219,
+    1651.504112045059, 1657.3389313820157, 1663.1766703788574, 1669.0173205361268,
+    1674.8608734037075, 1680.707320580397, 1686.556653713481, 1692.408864498317,
+    1698.263944677919, 1704.1218860425495, 1709.9826804293139, 1715.8463197217623,
+    1721.7127958494925, 1727.582100787761, 1733.4542265570954, 1739.3291652229123,
+    1745.206908895141, 1751.0874497278483, 1756.97077991887, 1762.8568917094458,
+    1768.7457773838578, 1774.6374292690734, 1780.5318397343922, 1786.4290011910962,
+    1792.3289060921047, 1798.231546931633, 1804.1369162448532, 1810.045006607561,
+    1815.9558106358443, 1821.8693209857563, 1827.7855303529925, 1833.704431472569,
+    1839.626017118508, 1845.5502801035223, 1851.4772132787075, 1857.4068095332339,
+    1863.3390617940433, 1869.2739630255494, 1875.2115062293406, 1881.1516844438859,
+    1887.0944907442442, 1893.0399182417773, 1898.9879600838638, 1904.9386094536185,
+    1910.8918595696132, 1916.8477036856011, 1922.8061350902428, 1928.7671471068377,
+    1934.7307330930544, 1940.696886440668, 1946.665600575297, 1952.636868956144,
+    1958.6106850757396, 1964.5870424596876, 1970.5659346664143, 1976.5473552869184,
+    1982.5312979445264, 1988.5177562946462, 1994.506724024528, 2000.4981948530233,
+    2006.4921625303493
+};
+
+/* Fresnel reflectance, unpolarised, real index n >= 1, at c = cos theta_b in
+ * (0, 1]; g' - c = (n^2 - 1) / (g' + c) without cancellation for n ~ 1. */
+BF_FN BF_REAL bf_he_fresnel(BF_REAL c, double n)
 {
-    (void)g; (void)tau; (void)sigma0; (void)n; (void)lam;
-    K[0] = BF_R(0.0);
-    K[1] = BF_R(0.0);
-    K[2] = BF_R(0.0);
+    double e = (n - 1.0) * (n + 1.0);
+    BF_REAL gpc = sqrt(e + c * c) + c;
+    BF_REAL gmc = e / gpc;
+    BF_REAL q = gmc / gpc;
+    BF_REAL r = (c * gpc - 1.0) / (c * gmc + 1.0);
+    return 0.5 * (q * q) * (1.0 + r * r);
+}
+
+/* The geometrical factor G = (v.v / v_z)^2, v = wi + wo (see the header comment). */
+BF_FN BF_REAL bf_he_geometry(const bf_geom *g)
+{
+    BF_REAL vx = g->ix + g->ox, vy = g->iy + g->oy;
+    BF_REAL vz = fmax(g->iz, BF_HE_COS_MIN) + fmax(g->oz, BF_HE_COS_MIN);
+    BF_REAL q = (vx * vx + vy * vy + vz * vz) / vz;
+    return q * q;
+}
+
+/* u = tau cot(theta) / (2 sigma0) from cos and sin, kept in [1e-300, 1e10]
+ * (u = 1e10 is the normal: every use below is exactly its u -> inf value there). */
+BF_FN BF_REAL bf_he_u(BF_REAL c, BF_REAL s, double tau, double sigma0)
+{
+    BF_REAL u = (tau / (2.0 * sigma0)) * c / fmax(s, 1e-300);
+    return fmin(fmax(u, 1e-300), 1e10);
+}
+
+/* One direction's shadowing S(theta) from u, erfc(u) and exp(-u^2). */
+BF_FN BF_REAL bf_he_shadow1x(BF_REAL u, BF_REAL ec, BF_REAL ex)
+{
+    BF_REAL lam = 0.5 * (ex / (BF_SQRT_PI * u) - ec);
+    return (1.0 - 0.5 * ec) / (1.0 + lam);
+}
+
+/* dS/du of bf_he_shadow1x, finite for u in [1e-300, 1e10]:
+ * with L' = -e^(-u^2) / (2 sqrt(pi) u^2) and (1 + L) u = u + (e^(-u^2) / sqrt(pi) - erfc(u) u) / 2,
+ * dS/du = e^(-u^2) / sqrt(pi) (u (1 + L) u + (1 - erfc(u) / 2) / 2) / ((1 + L) u)^2. */
+BF_FN BF_REAL bf_he_dshadow1(BF_REAL u, BF_REAL ec, BF_REAL ex)
+{
+    BF_REAL xs = ex * (1.0 / BF_SQRT_PI);
+    BF_REAL lu = u + 0.5 * (xs - ec * u);
+    return xs * (u * lu + 0.5 * (1.0 - 0.5 * ec)) / (lu * lu);
+}
+
+/* One direction's shadowing S(theta) from u and erfc(u). */
+BF_FN BF_REAL bf_he_shadow1(BF_REAL u, BF_REAL ec)
+{
+    return bf_he_shadow1x(u, ec, exp(-u * u));
+}
+
+/* The directions' cosines and sines (cosines floored at BF_HE_COS_MIN). */
+#define BF_HE_ANGLES(g, ci, si, co, so)                                           \
+    BF_REAL ci = fmax((g)->iz, BF_HE_COS_MIN), co = fmax((g)->oz, BF_HE_COS_MIN); \
+    BF_REAL si = sqrt((g)->ix * (g)->ix + (g)->iy * (g)->iy);                     \
+    BF_REAL so = sqrt((g)->ox * (g)->ox + (g)->oy * (g)->oy)
+
+/* The shadowing S = S(theta_i) S(theta_o). */
+BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
+{
+    BF_HE_ANGLES(g, ci, si, co, so);
+    BF_REAL ui = bf_he_u(ci, si, tau, sigma0), uo = bf_he_u(co, so, tau, sigma0);
+    return bf_he_shadow1(ui, erfc(ui)) * bf_he_shadow1(uo, erfc(uo));
+}
+
+/* The effective roughness sigma = sigma0 / sqrt(1 + x^2), x e^(x^2/2) = r, from
+ * r = (K(ti) + K(to)) / sqrt(8 pi) >= 0.  Newton on ln x + x^2/2 - ln r (no
+ * overflow for any r), from r when r <= 1 (the right of the root; the first
+ * step lands left of it and the rest increase monotonically) and from
+ * max(sqrt(2 ln r), 0.75) otherwise (monotone on either side of x = 1). */
+BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
+{
+    BF_REAL rs = fmax(r, BF_TINY);
+    BF_REAL lr = log(rs);
+    BF_REAL x = BF_SEL(rs, fmax(sqrt(2.0 * fmax(lr, 0.0)), BF_R(0.75)), rs > 1.0);
+    BF_REAL act = BF_R(1.0);
+    for (int it = 0; it < 60 && BF_ANY(act > 0.0); it++) {
+        BF_REAL dx = (log(x) + 0.5 * x * x - lr) * x / (1.0 + x * x);
+        x = BF_SEL(x, fmax(x - dx, 0.5 * x), act > 0.0);
+        act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-15 * x);
+    }
+    return x;
+}
+
+BF_FN BF_REAL bf_he_sigma_r(BF_REAL r, double sigma0)
+{
+    BF_REAL x = bf_he_newton_x(r);
+    return sigma0 / sqrt(1.0 + x * x);
+}
+
+/* The effective roughness sigma of a direction pair. */
+BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
+{
+    BF_HE_ANGLES(g, ci, si, co, so);
+    BF_REAL ui = bf_he_u(ci, si, tau, sigma0), uo = bf_he_u(co, so, tau, sigma0);
+    BF_REAL r = (si / ci * erfc(ui) + so / co * erfc(uo)) * (1.0 / sqrt(8.0 * BF_PI));
+    return bf_he_sigma_r(r, sigma0);
+}
+
+/* d(m) = ln(T_{m+1} / T_m), T_m = g^m e^-g / (m! m) e^(-a/m): decreasing in m. */
+BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
+{
+    return lng - log((m + 1.0) * (m + 1.0) / m) + a / (m * (m + 1.0));
+}
+
+/* sum_{m>=1} exp(ln T_m + lk) for the lanes where act > 0 (the others: 0),
+ * for g = min(g, 19) > 0 with lng = ln g, a >= 0 with la ~ ln a (only a
+ * starting point depends on la).  See the header comment.
+ *
+ * With deriv != 0 (a constant at every call) it also returns the partials of
+ * ln V, V = e^(lpk + lk) sum_m t_m (t_m = T_m / T_m*, the terms it sums):
+ *     *vg = d ln V / dg = sum m t_m / (g sum t_m) - 1
+ *     *va = d ln V / da = -sum (t_m / m) / sum t_m
+ * (of the truncated sum, from the same terms: no further exp; 0 where V is
+ * 0).  The value is the same, bit for bit, with and without them. */
+BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk,
+                             BF_REAL act, int deriv, BF_REAL *vg, BF_REAL *va)
+{
+    const double mmax = (double)BF_HE_MMAX, lnmmax = log(mmax);
+    if (deriv) {
+        *vg = BF_R(0.0);
+        *va = BF_R(0.0);
+    }
+    if (!BF_ANY(act > 0.0))
+        return BF_R(0.0);
+
+    /* The continuous peak of ln T_m ~ m ln(g/m) + m - a/m: ln(m/g) = a/m^2,
+     * Newton in y = ln m (concave increasing: monotone after the first step). */
+    BF_REAL y = fmax(lng, 0.5 * (la - log(fmax(0.5 * la - lng, BF_R(1.0)))));
+    y = fmin(fmax(y, 0.0), lnmmax);
+    for (int it = 0; it < 3; it++) {
+        BF_REAL e = a * exp(-2.0 * y);
+        y = fmin(fmax(y - (y - lng - e) / (1.0 + 2.0 * e), 0.0), lnmmax);
+    }
+    BF_REAL m = fmin(fmax(floor(exp(y) + 0.5), BF_R(1.0)), BF_R(mmax));
+
+    /* The exact discrete peak m*: d(m* - 1) > 0 >= d(m*) (or m* = 1, = mmax). */
+    BF_REAL up = BF_SEL(BF_R(0.0), BF_R(1.0),
+                        (act > 0.0) && (m < mmax) && (bf_he_dlog(m, lng, a) > 0.0));
+    for (int it = 0; it < 64 && BF_ANY(up > 0.0); it++) {
+        m = BF_SEL(m, m + 1.0, up > 0.0);
+        up = BF_SEL(BF_R(0.0), BF_R(1.0),
+                    (act > 0.0) && (m < mmax) && (bf_he_dlog(m, lng, a) > 0.0));
+    }
+    BF_REAL dn = BF_SEL(BF_R(0.0), BF_R(1.0),
+                        (act > 0.0) && (m > 1.0)
+                            && (bf_he_dlog(fmax(m - 1.0, BF_R(1.0)), lng, a) <= 0.0));
+    for (int it = 0; it < 64 && BF_ANY(dn > 0.0); it++) {
+        m = BF_SEL(m, m - 1.0, dn > 0.0);
+        dn = BF_SEL(BF_R(0.0), BF_R(1.0),
+                    (act > 0.0) && (m > 1.0)
+                        && (bf_he_dlog(fmax(m - 1.0, BF_R(1.0)), lng, a) <= 0.0));
+    }
+    /* conv: m is the peak (a lane that hit a search cap is summed in full) */
+    BF_REAL conv = BF_SEL(BF_R(1.0), BF_R(0.0), (up > 0.0) || (dn > 0.0));
+
+    /* ln T at the peak (ln m! to ~1e-3 is enough here): too small -> 0. */
+    BF_REAL x1 = m + 1.0;
+    BF_REAL lpk = m * lng - ((x1 - 0.5) * log(x1) - x1 + BF_HE_LN_SQRT_2PI + 1.0 / (12.0 * x1))
+                - g - a / m - log(m);
+    act = BF_SEL(act, BF_R(0.0), (conv > 0.0) && (lpk + lk < BF_HE_LN_DEAD));
+    if (!BF_ANY(act > 0.0))
+        return BF_R(0.0);
+
+    /* First term within e^-40 of the peak: the curvature of ln T is at least
+     * kap on [3, m*], so ln T(m* - w) <= ln T(m*) - kap w (w - 1) / 2. */
+    BF_REAL kap = 2.0 * a / (x1 * x1 * x1) + (m - 1.0) / (m * x1);
+    BF_REAL w = 0.5 + sqrt(0.25 + 80.0 / fmax(kap, BF_R(1e-300)));
+    BF_REAL mlo = floor(m - w);
+    mlo = BF_SEL(mlo, BF_R(1.0), (mlo < 3.0) || (conv <= 0.0));
+    mlo = BF_SEL(BF_R(1e9), mlo, act > 0.0);
+    int m0 = 1;
+    while (m0 + 16 <= BF_HE_MMAX && !BF_ANY(mlo <= (double)(m0 + 16)))
+        m0 += 16;
+    while (m0 < BF_HE_MMAX && !BF_ANY(mlo <= (double)m0))
+        m0++;
+
+    /* The sum, while some lane is before its peak or above 1e-12 of its sum,
+     * of the terms relative to the peak (exp's arguments stay in about
+     * [-60, 0], away from its slow underflow paths; the clamps only guard
+     * the finiteness of lanes that are not summed). */
+    BF_REAL sum = BF_R(0.0), s1 = BF_R(0.0), sinv = BF_R(0.0);
+    BF_REAL base = -g - lpk;
+    for (int k = m0; k <= BF_HE_MMAX; k++) {
+        double dk = (double)k, ik = 1.0 / dk;
+        BF_REAL e = dk * lng - a * ik + (base - bf_he_lkk[k]);
+        BF_REAL t = exp(fmin(fmax(e, BF_R(-700.0)), BF_R(700.0)));
+        sum = BF_SEL(sum, sum + t, act > 0.0);
+        if (deriv) {
+            s1 = BF_SEL(s1, s1 + t * dk, act > 0.0);
+            sinv = BF_SEL(sinv, sinv + t * ik, act > 0.0);
+        }
+        act = BF_SEL(act, BF_R(0.0), (m <= dk) && (t <= 1e-12 * sum));
+        if (!BF_ANY(act > 0.0))
+            break;
+    }
+    BF_REAL sc = exp(fmin(lpk + lk, BF_R(700.0)));
+    if (deriv) {
+        /* sum >= 1 where a lane was summed (its peak term is 1) */
+        BF_REAL is = BF_SEL(BF_R(0.0), 1.0 / fmax(sum, BF_R(1.0)), sum > 0.0);
+        *vg = (s1 * is) / g - BF_SEL(BF_R(0.0), BF_R(1.0), sum > 0.0);
+        *va = -(sinv * is);
+    }
+    return sum * sc;
+}
+
+BF_FN BF_REAL bf_he_series(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk,
+                           BF_REAL act)
+{
+    return bf_he_series_x(g, lng, a, la, lk, act, 0, (BF_REAL *)0, (BF_REAL *)0);
+}
+
+/* The blend weight t of the rough limit (0 below g = 18, 1 above 19) and the
+ * limit e^(lk - a/g) / g itself (g clamped to >= 18). */
+BF_FN BF_REAL bf_he_blend_t(BF_REAL g)
+{
+    return fmin(fmax(g - BF_HE_G_LO, 0.0), 1.0);
+}
+
+BF_FN BF_REAL bf_he_limit(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL lk)
+{
+    return exp(lk - a / fmax(g, BF_HE_G_LO) - fmax(lng, BF_R(log(BF_HE_G_LO))));
+}
+
+BF_FN BF_REAL bf_he_blend(BF_REAL t, BF_REAL ser, BF_REAL lim)
+{
+    return BF_SEL(BF_SEL((1.0 - t) * ser + t * lim, ser, t <= 0.0), lim, t >= 1.0);
+}
+
+/* e^lk D / (pi tau / (2 lam))^2 from g > 0 with lng = ln g and a >= 0 with
+ * la ~ ln a: the series below g = 18, the rough limit e^(lk - a/g) / g above
+ * 19, linear in g in between.  Finite wherever e^lk D is (lanes on one side
+ * never see the other side's value).  (bf_he_fd inlines the same steps.) */
+BF_FN BF_REAL bf_he_dscaled(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk)
+{
+    BF_REAL t = bf_he_blend_t(g);
+    BF_REAL lim = BF_R(0.0);
+    if (BF_ANY(t > 0.0))
+        lim = bf_he_limit(g, lng, a, lk);
+    BF_REAL ser = bf_he_series(fmin(g, BF_HE_G_HI), fmin(lng, BF_R(log(BF_HE_G_HI))), a, la, lk,
+                               BF_SEL(BF_R(0.0), BF_R(1.0), g < BF_HE_G_HI));
+    return bf_he_blend(t, ser, lim);
+}
+
+/* The distribution D(g, a) of one wavelength lam (um) for tau (um), g > 0, a >= 0. */
+BF_FN BF_REAL bf_he_D(BF_REAL g, BF_REAL a, double tau, double lam)
+{
+    double k = BF_PI * tau / (2.0 * lam);
+    BF_REAL gs = fmax(g, BF_TINY), as = fmax(a, 0.0);
+    return bf_he_dscaled(gs, log(gs), as, log(fmax(as, BF_TINY)), BF_R(log(k * k)));
+}
+
+/* ---- K in stages: the direction pair, then (tau, sigma0), then n, then the
+ * per-channel arguments of D.  bf_he runs them in order; bf_he_fd (a value
+ * and its forward-difference neighbours) reuses what a parameter step leaves
+ * unchanged. */
+
+/* What depends on the directions only. */
+typedef struct bf_he_dir {
+    BF_REAL ci, si, co, so; /* cosines (floored) and sines of ti, to   */
+    BF_REAL c;              /* cos theta_b = |v| / 2                    */
+    BF_REAL vz, vxy2;       /* v_z, |v_xy|^2                            */
+    BF_REAL lg2;            /* 2 ln(v.v / v_z) = ln G                   */
+    BF_REAL lvxy2;          /* ln |v_xy|^2 (floored)                    */
+} bf_he_dir;
+
+BF_FN void bf_he_dir_make(const bf_geom *g, bf_he_dir *d)
+{
+    BF_HE_ANGLES(g, ci, si, co, so);
+    BF_REAL vx = g->ix + g->ox, vy = g->iy + g->oy, vz = ci + co;
+    BF_REAL vxy2 = vx * vx + vy * vy;
+    BF_REAL vv = vxy2 + vz * vz;
+    d->ci = ci;
+    d->si = si;
+    d->co = co;
+    d->so = so;
+    d->c = fmin(fmax(0.5 * sqrt(vv), BF_HE_COS_MIN), 1.0);
+    d->vz = vz;
+    d->vxy2 = vxy2;
+    d->lg2 = 2.0 * log(vv / vz);
+    d->lvxy2 = log(fmax(vxy2, BF_R(1e-300)));
+}
+
+/* What depends on (tau, sigma0) too: S(ti) / cos ti, S(to) / cos to (within
+ * [1e-3, 1e3]-ish) and the effective roughness sigma; with deriv, also what
+ * bf_he_rough_step needs to carry them to a nearby (tau, sigma0). */
+typedef struct bf_he_rough {
+    BF_REAL shi, sho, sigma;
+    BF_REAL ui, uo, ei, eo, xi, xo; /* u, erfc(u), exp(-u^2) of ti and to  */
+    BF_REAL dshi, dsho;             /* d(S(t) / cos t) / du                */
+    BF_REAL r, x;                   /* sigma's r and x                     */
+} bf_he_rough;
+
+BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int deriv,
+                            bf_he_rough *r)
+{
+    BF_REAL ui = bf_he_u(d->ci, d->si, tau, sigma0), uo = bf_he_u(d->co, d->so, tau, sigma0);
+    BF_REAL ei = erfc(ui), eo = erfc(uo);
+    BF_REAL xi = exp(-ui * ui), xo = exp(-uo * uo);
+    r->shi = bf_he_shadow1x(ui, ei, xi) / d->ci;
+    r->sho = bf_he_shadow1x(uo, eo, xo) / d->co;
+    BF_REAL rr = (d->si / d->ci * ei + d->so / d->co * eo) * (1.0 / sqrt(8.0 * BF_PI));
+    BF_REAL x = bf_he_newton_x(rr);
+    r->sigma = sigma0 / sqrt(1.0 + x * x);
+    if (deriv) {
+        r->ui = ui;
+        r->uo = uo;
+        r->ei = ei;
+        r->eo = eo;
+        r->xi = xi;
+        r->xo = xo;
+        r->dshi = bf_he_dshadow1(ui, ei, xi) / d->ci;
+        r->dsho = bf_he_dshadow1(uo, eo, xo) / d->co;
+        r->r = rr;
+        r->x = x;
+    }
+}
+
+/* r0 (made with deriv) carried to (tau, sigma0) nearby, to first order in
+ * the steps of u (exact: u is a product): S(t) / cos t by dS/du, erfc by
+ * -2 e^(-u^2) / sqrt(pi), x by one Newton step on ln x + x^2/2 = ln r from
+ * r0's root, ln(r / r0) ~ r / r0 - 1.  No exp, erfc or log. */
+BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double tau, double sigma0,
+                            bf_he_rough *r)
+{
+    BF_REAL dui = bf_he_u(d->ci, d->si, tau, sigma0) - r0->ui;
+    BF_REAL duo = bf_he_u(d->co, d->so, tau, sigma0) - r0->uo;
+    r->shi = r0->shi + r0->dshi * dui;
+    r->sho = r0->sho + r0->dsho * duo;
+    BF_REAL ei = r0->ei - (2.0 / BF_SQRT_PI) * r0->xi * dui;
+    BF_REAL eo = r0->eo - (2.0 / BF_SQRT_PI) * r0->xo * duo;
+    BF_REAL rr = (d->si / d->ci * ei + d->so / d->co * eo) * (1.0 / sqrt(8.0 * BF_PI));
+    BF_REAL x0 = r0->x;
+    BF_REAL x = x0 + x0 / (1.0 + x0 * x0) * ((rr - r0->r) / fmax(r0->r, BF_TINY));
+    r->sigma = sigma0 / sqrt(1.0 + x * x);
+}
+
+/* K per channel into K[0..2] at wavelengths lam[0..2]. */
+BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n, const double *lam,
+                 BF_REAL *K)
+{
+    bf_he_dir d;
+    bf_he_rough r;
+    bf_he_dir_make(g, &d);
+    bf_he_rough_make(&d, tau, sigma0, 0, &r);
+    /* S(ti) / cos ti and S(to) / cos to stay within [1e-3, 1e3]-ish, F in [0, 1] */
+    BF_REAL fs = bf_he_fresnel(d.c, n) * r.shi * r.sho * (1.0 / BF_PI);
+
+    /* ln(F G S / (pi cos ti cos to)) */
+    BF_REAL lc = log(fmax(fs, BF_TINY)) + d.lg2;
+    BF_REAL zero = BF_SEL(BF_R(0.0), BF_R(1.0), fs < BF_TINY);
+    BF_REAL sv = r.sigma * d.vz;             /* > 1e-106: g never underflows */
+    BF_REAL lsv2 = 2.0 * log(sv);
+    for (int ch = 0; ch < 3; ch++) {
+        double kl = 2.0 * BF_PI / lam[ch];   /* g = kl^2 sv^2             */
+        double kt = BF_PI * tau / (2.0 * lam[ch]);  /* a = 4 kt^2 |v_xy|^2, D = kt^2 ... */
+        double kl2 = kl * kl, kt2 = kt * kt;
+        BF_REAL k = bf_he_dscaled(kl2 * (sv * sv), log(kl2) + lsv2, (4.0 * kt2) * d.vxy2,
+                                  log(4.0 * kt2) + d.lvxy2, lc + log(kt2));
+        K[ch] = BF_SEL(k, BF_R(0.0), zero > 0.0);
+    }
+}
+
+/* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
+ * p[j] = (tau, sigma0, n), a small step from p[0]) for one data pass:
+ * K0[c] = bf_he(p[0]) bit for bit, Kj[j-1][c] = bf_he(p[j]) to second order
+ * in the step.
+ *
+ * All the transcendental work is done once, at p[0]: the series (most of
+ * it) with the partials of its log in g and a, the shadowing and sigma with
+ * theirs in u.  A neighbour is then a few dozen flops: u' exactly, S, erfc
+ * and x (hence sigma, g') to first order (bf_he_rough_step), F and a'
+ * exactly, the scale e^(lk' - lk) = (fs' / fs)(kt' / kt)^2 exactly, and
+ *     series  V' = e^(lk' - lk) V e^x,  x = dlnV/dg (g' - g) + dlnV/da (a' - a)
+ *             (e^x by its cubic: |x| is ~1e-4 at most where it matters),
+ *     limit   L' = L e^(lk' - lk) e^(a/g - a'/g') g / g'   (one exp, exact),
+ * blended by the weight t(g') as bf_he_dscaled does; a step in n alone
+ * scales K by F' / F.  The series is carried in its log because ln V is
+ * close to linear in g and a where V itself is not (d lnV / d ln tau reaches
+ * ~1e3 on smooth materials).  The remainder is O(h^2) in the relative step
+ * h ~ 1e-7: of the order of the forward difference's own truncation error
+ * (tests/test_he.c measures it: the difference quotients agree with those
+ * of exact evaluations to 1.4e-5 of their size).  A lane whose series is
+ * dead (0) at p[0] stays 0, and one with F S = 0 (n = 1) stays 0.  The
+ * series is also summed for g in [19, 19 m) and the limit made for g in
+ * (18 / m, 18], m = BF_HE_FD_MARGIN, where the value does not use them, so
+ * that a step across 19 or 18 is covered; a step of 1e-3 relative in g
+ * would not be.  np = 0 is bf_he. */
+#define BF_HE_FD_MARGIN 1.001
+BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
+                    BF_REAL *K0, BF_REAL (*Kj)[3])
+{
+    if (np <= 0) {
+        bf_he(g, p[0][0], p[0][1], p[0][2], lam, K0);
+        return;
+    }
+    const double tau = p[0][0], sigma0 = p[0][1], n = p[0][2];
+    bf_he_dir d;
+    bf_he_rough r;
+    bf_he_dir_make(g, &d);
+    bf_he_rough_make(&d, tau, sigma0, 1, &r);
+    BF_REAL F = bf_he_fresnel(d.c, n);
+    BF_REAL fs = F * r.shi * r.sho * (1.0 / BF_PI);
+
+    /* The value: bf_he's operations, with the partials of the series. */
+    BF_REAL lc = log(fmax(fs, BF_TINY)) + d.lg2;
+    BF_REAL zero = BF_SEL(BF_R(0.0), BF_R(1.0), fs < BF_TINY);
+    BF_REAL sv = r.sigma * d.vz;
+    BF_REAL lsv2 = 2.0 * log(sv);
+    /* per channel: the value before the zero flag, the series V (summed at
+     * min(g, 19)) and its partials, the limit L, g, a, max(g, 18), a / max(g, 18) */
+    BF_REAL Kr[3], V[3], Vg[3], Va[3], L[3], g0[3], a0[3], gl[3], agl[3];
+    for (int ch = 0; ch < 3; ch++) {
+        double kl = 2.0 * BF_PI / lam[ch];
+        double kt = BF_PI * tau / (2.0 * lam[ch]);
+        double kl2 = kl * kl, kt2 = kt * kt;
+        BF_REAL gg = kl2 * (sv * sv), lng = log(kl2) + lsv2, lk = lc + log(kt2);
+        BF_REAL aa = (4.0 * kt2) * d.vxy2, la = log(4.0 * kt2) + d.lvxy2;
+        BF_REAL t = bf_he_blend_t(gg);
+        BF_REAL lim = BF_R(0.0);
+        gl[ch] = fmax(gg, BF_HE_G_LO);
+        agl[ch] = BF_R(0.0);
+        if (BF_ANY(gg > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
+            lim = bf_he_limit(gg, lng, aa, lk);
+            agl[ch] = aa / gl[ch];
+        }
+        BF_REAL vg, va;
+        BF_REAL ser = bf_he_series_x(fmin(gg, BF_HE_G_HI), fmin(lng, BF_R(log(BF_HE_G_HI))), aa, la,
+                                     lk, BF_SEL(BF_R(0.0), BF_R(1.0),
+                                                gg < BF_HE_G_HI * BF_HE_FD_MARGIN),
+                                     1, &vg, &va);
+        Kr[ch] = bf_he_blend(t, ser, lim);
+        K0[ch] = BF_SEL(Kr[ch], BF_R(0.0), zero > 0.0);
+        V[ch] = ser;
+        Vg[ch] = vg;
+        Va[ch] = va;
+        L[ch] = lim;
+        g0[ch] = fmin(gg, BF_HE_G_HI);
+        a0[ch] = aa;
+    }
+
+    /* The neighbours. */
+    BF_REAL ifs = 1.0 / fmax(fs, BF_TINY);
+    for (int j = 0; j < np; j++) {
+        const double tj = p[1 + j][0], s0j = p[1 + j][1], nj = p[1 + j][2];
+        BF_REAL Fj = F;
+        if (nj != n)
+            Fj = bf_he_fresnel(d.c, nj);
+        if (tj == tau && s0j == sigma0) {
+            /* n alone: S, sigma, g, a unchanged; K scales with F */
+            BF_REAL fsj = Fj * r.shi * r.sho * (1.0 / BF_PI);
+            BF_REAL zj = BF_SEL(zero, BF_R(1.0), fsj < BF_TINY);
+            BF_REAL rat = fsj * ifs;
+            for (int ch = 0; ch < 3; ch++)
+                Kj[j][ch] = BF_SEL(rat * Kr[ch], BF_R(0.0), zj > 0.0);
+            continue;
+        }
+        bf_he_rough rj;
+        bf_he_rough_step(&d, &r, tj, s0j, &rj);
+        BF_REAL fsj = Fj * rj.shi * rj.sho * (1.0 / BF_PI);
+        BF_REAL zj = BF_SEL(zero, BF_R(1.0), fsj < BF_TINY);
+        BF_REAL rat = fsj * ifs;
+        BF_REAL svj = rj.sigma * d.vz;
+        for (int ch = 0; ch < 3; ch++) {
+            double kl = 2.0 * BF_PI / lam[ch];
+            double kt0 = BF_PI * tau / (2.0 * lam[ch]), kt = BF_PI * tj / (2.0 * lam[ch]);
+            double kl2 = kl * kl, kt2 = kt * kt;
+            BF_REAL gj = kl2 * (svj * svj), aj = (4.0 * kt2) * d.vxy2;
+            BF_REAL rc = rat * (kt2 / (kt0 * kt0));     /* e^(lk' - lk) */
+            BF_REAL x = Vg[ch] * (gj - g0[ch]) + Va[ch] * (aj - a0[ch]); /* ~ ln(V' / V) */
+            BF_REAL ser = (rc * V[ch]) * (1.0 + x * (1.0 + x * (0.5 + x * (1.0 / 6.0))));
+            BF_REAL t = bf_he_blend_t(gj);
+            BF_REAL lim = BF_R(0.0);
+            if (BF_ANY(t > 0.0)) {
+                BF_REAL iglj = 1.0 / fmax(gj, BF_HE_G_LO);
+                lim = (L[ch] * rc) * (exp(agl[ch] - aj * iglj) * (gl[ch] * iglj));
+            }
+            Kj[j][ch] = BF_SEL(bf_he_blend(t, ser, lim), BF_R(0.0), zj > 0.0);
+        }
+    }
 }
 
 #endif /* BF_HE_H */

@@ -12,7 +12,9 @@
  * host assembles J^T J from them (src/lib/fit.c).  G_j is a forward
  * difference in the fit's internal lobe coordinate u_j:
  *     G_j = (K(p_j) - K(p_0)) / h_j,  p_j = the lobe parameters at u + h_j e_j,
- * so the pass needs no knowledge of how the fit maps u to p.
+ * so the pass needs no knowledge of how the fit maps u to p.  (bf_lobe_fd
+ * gives K(p_0) and the K(p_j); for He the K(p_j) carry the series summed at
+ * p_0 to first order in its log: see bf_he_fd.)
  *
  * Layout of the moments (nk = 1 lobe, or 3 for a chromatic model; np lobe
  * coordinates, 0 for a value-only pass):
@@ -64,13 +66,11 @@ BF_FN int bf_nmom(int nk, int np)
 BF_FN void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp, const bf_geom *g,
                          const BF_REAL *rho, BF_REAL a2, BF_REAL *acc)
 {
-    BF_REAL K0[3], K[3], G[3][BF_MAX_NP];
-    bf_lobe(model, g, pp->p[0], pp->lam, K0);
-    for (int j = 0; j < np; j++) {
-        bf_lobe(model, g, pp->p[1 + j], pp->lam, K);
+    BF_REAL K0[3], K[BF_MAX_NP][3], G[3][BF_MAX_NP];
+    bf_lobe_fd(model, g, pp->p, np, pp->lam, K0, K);
+    for (int j = 0; j < np; j++)
         for (int k = 0; k < nk; k++)
-            G[k][j] = (K[k] - K0[k]) * pp->inv_h[j];
-    }
+            G[k][j] = (K[j][k] - K0[k]) * pp->inv_h[j];
     int kb = bf_kblk(np);
     acc[0] += a2;
     for (int k = 0; k < nk; k++) {

@@ -10,31 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The published row (ngan2005-fits.tsv) of a material and model; 0 if absent. */
-static int published(const char *material, brdffit_model model, brdffit_params *p)
-{
-    char path[1024], line[4096];
-    FILE *f = fopen(tu_shared("data/ngan2005-fits.tsv", path, sizeof path), "r");
-    ck_assert_msg(f != NULL, "cannot open %s", path);
-    char *fl[16];
-    int found = 0;
-    while (!found && tu_tsv_next(f, line, sizeof line, fl, 16) >= 8) {
-        brdffit_model m;
-        if (strcmp(fl[0], material) != 0 || brdffit_model_from_name(fl[1], &m) != BRDFFIT_OK || m != model)
-            continue;
-        memset(p, 0, sizeof *p);
-        for (int c = 0; c < 3; c++) {
-            p->d[c] = atof(fl[2 + c]);
-            p->s[c] = atof(fl[5 + c]);
-        }
-        for (int k = 0; k < 3; k++)
-            p->p[k] = fl[8 + k][0] ? atof(fl[8 + k]) : 0.0;
-        found = 1;
-    }
-    fclose(f);
-    return found;
-}
-
 static brdffit_context *make_context(void)
 {
     brdffit_error err;
@@ -67,6 +42,29 @@ static void assert_finite_result(const brdffit_fit_result *r)
     ck_assert_int_eq(brdffit_params_check(r->model, &r->params, NULL), BRDFFIT_OK);
 }
 
+/* The sample set of a table made by model m at truth (standard scale), and
+ * the data's RMS in the metric (the Error of d = s = 0).  The fit's Error of
+ * truth itself is checked to be ~0 (the table's round trip through 1/scale). */
+static brdffit_samples *model_samples(brdffit_context *ctx, brdffit_model m,
+                                      const brdffit_params *truth, double *rms)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    ck_assert_msg(brdffit_table_fill_model(t, m, truth, BRDFFIT_SCALE_STANDARD, &err) == BRDFFIT_OK,
+                  "%s", err.message);
+    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
+    brdffit_table_free(t);
+    brdffit_params zero = *truth;
+    memset(zero.d, 0, sizeof zero.d);
+    memset(zero.s, 0, sizeof zero.s);
+    double e_truth = 1;
+    ck_assert_int_eq(brdffit_error_of(ctx, s, m, &zero, rms, &err), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_error_of(ctx, s, m, truth, &e_truth, &err), BRDFFIT_OK);
+    ck_assert_msg(*rms > 0 && e_truth <= 1e-10 * *rms, "truth Error %g of rms %g", e_truth, *rms);
+    return s;
+}
+
 /* ---------------------------------------------------------------- recovery */
 
 static const brdffit_model closed_form[] = {
@@ -84,22 +82,11 @@ START_TEST(recovery)
     const char *material = recovery_materials[_i / 6];
     const brdffit_model_info *mi = brdffit_model_get(m);
     brdffit_params truth;
-    ck_assert(published(material, m, &truth));
+    ck_assert(tu_published(material, m, &truth));
     brdffit_error err;
-    brdffit_table *t = NULL;
-    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
-    ck_assert_msg(brdffit_table_fill_model(t, m, &truth, BRDFFIT_SCALE_STANDARD, &err) == BRDFFIT_OK,
-                  "%s", err.message);
-    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
     brdffit_context *ctx = make_context();
-
-    brdffit_params zero = truth;
-    memset(zero.d, 0, sizeof zero.d);
-    memset(zero.s, 0, sizeof zero.s);
-    double rms = 0, e_truth = 1;
-    ck_assert_int_eq(brdffit_error_of(ctx, s, m, &zero, &rms, &err), BRDFFIT_OK);
-    ck_assert_int_eq(brdffit_error_of(ctx, s, m, &truth, &e_truth, &err), BRDFFIT_OK);
-    ck_assert_msg(rms > 0 && e_truth <= 1e-10 * rms, "truth Error %g of rms %g", e_truth, rms);
+    double rms;
+    brdffit_samples *s = model_samples(ctx, m, &truth, &rms);
 
     brdffit_fit_result r;
     ck_assert_msg(brdffit_fit(ctx, s, m, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
@@ -126,7 +113,6 @@ START_TEST(recovery)
     ck_assert_int_eq(r.samples, brdffit_samples_count(s));
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
-    brdffit_table_free(t);
 }
 END_TEST
 
@@ -152,7 +138,7 @@ START_TEST(beats_published)
     for (int i = 0; i < 6; i++) {
         brdffit_model m = closed_form[i];
         brdffit_params pub;
-        ck_assert(published(material, m, &pub));
+        ck_assert(tu_published(material, m, &pub));
         double e_pub;
         ck_assert_msg(brdffit_error_of(ctx, s, m, &pub, &e_pub, &err) == BRDFFIT_OK, "%s", err.message);
         brdffit_fit_result r;
@@ -251,33 +237,45 @@ END_TEST
 
 /* ---------------------------------------------------------------- He */
 
-/* Recovery of tau, sigma0, n (and d, s) from a table the He model made: a
- * rough surface (blue-rubber's published fit) and a smooth one (alum-bronze's). */
+/* Recovery from a table the He model made.  Smooth surface (alum-bronze's
+ * published fit): tau, sigma0, n, d, s all come back.  Rough surface
+ * (blue-rubber's): where g >= 19 on every sample, the rough-surface limit makes
+ * K depend on tau and sigma0 only through tau/sigma0 (D ~ (tau/sigma)^2
+ * e^(-a/g) with a/g ~ (tau/sigma)^2; S and sigma/sigma0 depend on tau/sigma0),
+ * so only that ratio is identifiable: the test checks the ratio, n, d, s and
+ * the Error, and that scaling (tau, sigma0) leaves the Error at ~0. */
 START_TEST(he_recovery)
 {
     const char *material = _i == 0 ? "blue-rubber" : "alum-bronze";
     brdffit_params truth;
-    ck_assert(published(material, BRDFFIT_HE, &truth));
+    ck_assert(tu_published(material, BRDFFIT_HE, &truth));
     brdffit_error err;
-    brdffit_table *t = NULL;
-    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
-    ck_assert_msg(brdffit_table_fill_model(t, BRDFFIT_HE, &truth, BRDFFIT_SCALE_STANDARD, &err) == BRDFFIT_OK,
-                  "%s", err.message);
-    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
     brdffit_context *ctx = make_context();
-    brdffit_params zero = truth;
-    memset(zero.d, 0, sizeof zero.d);
-    memset(zero.s, 0, sizeof zero.s);
-    double rms = 0;
-    ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_HE, &zero, &rms, &err), BRDFFIT_OK);
+    double rms;
+    brdffit_samples *s = model_samples(ctx, BRDFFIT_HE, &truth, &rms);
     brdffit_fit_result r;
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     assert_finite_result(&r);
     ck_assert_msg(r.error < 1e-6 * rms, "he/%s: Error %g, rms %g", material, r.error, rms);
     static const char *const names[3] = { "tau", "sigma0", "n" };
-    for (int k = 0; k < 3; k++)
-        ck_assert_msg(tu_reldiff(r.params.p[k], truth.p[k]) < 1e-3, "he/%s %s %.6g vs %.6g", material,
-                      names[k], r.params.p[k], truth.p[k]);
+    if (_i == 1) {
+        for (int k = 0; k < 3; k++)
+            ck_assert_msg(tu_reldiff(r.params.p[k], truth.p[k]) < 1e-3, "he/%s %s %.6g vs %.6g", material,
+                          names[k], r.params.p[k], truth.p[k]);
+    } else {
+        ck_assert_msg(tu_reldiff(r.params.p[0] / r.params.p[1], truth.p[0] / truth.p[1]) < 1e-3,
+                      "he/%s tau/sigma0 %.6g vs %.6g", material, r.params.p[0] / r.params.p[1],
+                      truth.p[0] / truth.p[1]);
+        ck_assert_msg(tu_reldiff(r.params.p[2], truth.p[2]) < 1e-3, "he/%s n %.6g vs %.6g", material,
+                      r.params.p[2], truth.p[2]);
+        brdffit_params scaled = truth;
+        scaled.p[0] *= 0.5;
+        scaled.p[1] *= 0.5;
+        double e_scaled;
+        ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_HE, &scaled, &e_scaled, &err), BRDFFIT_OK);
+        ck_assert_msg(e_scaled < 1e-10 * rms, "rough he: (tau, sigma0)/2 gives Error %g of rms %g", e_scaled,
+                      rms);
+    }
     for (int c = 0; c < 3; c++) {
         ck_assert(tu_reldiff(r.params.d[c], truth.d[c]) < 1e-3);
         ck_assert(tu_reldiff(r.params.s[c], truth.s[c]) < 1e-3);
@@ -285,7 +283,6 @@ START_TEST(he_recovery)
     }
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
-    brdffit_table_free(t);
 }
 END_TEST
 
@@ -302,7 +299,7 @@ START_TEST(he_beats_published)
     brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_FLAT);
     brdffit_context *ctx = make_context();
     brdffit_params pub;
-    ck_assert(published(material, BRDFFIT_HE, &pub));
+    ck_assert(tu_published(material, BRDFFIT_HE, &pub));
     double e_pub;
     ck_assert_msg(brdffit_error_of(ctx, s, BRDFFIT_HE, &pub, &e_pub, &err) == BRDFFIT_OK, "%s", err.message);
     brdffit_fit_result r;
@@ -334,13 +331,7 @@ START_TEST(he_published_rows_finite)
         if (strcmp(fl[1], "he") != 0)
             continue;
         brdffit_params p;
-        memset(&p, 0, sizeof p);
-        for (int c = 0; c < 3; c++) {
-            p.d[c] = atof(fl[2 + c]);
-            p.s[c] = atof(fl[5 + c]);
-        }
-        for (int k = 0; k < 3; k++)
-            p.p[k] = atof(fl[8 + k]);
+        tu_params_from_row(fl, &p);
         double e = NAN;
         ck_assert_msg(brdffit_error_of(ctx, s, BRDFFIT_HE, &p, &e, &err) == BRDFFIT_OK, "%s: %s", fl[0],
                       err.message);

@@ -55,13 +55,7 @@ START_TEST(reference_values)
         brdffit_model m;
         ck_assert_int_eq(brdffit_model_from_name(fl[0], &m), BRDFFIT_OK);
         brdffit_params p;
-        memset(&p, 0, sizeof p);
-        for (int c = 0; c < 3; c++) {
-            p.d[c] = atof(fl[2 + c]);
-            p.s[c] = atof(fl[5 + c]);
-        }
-        for (int k = 0; k < 3; k++)
-            p.p[k] = fl[8 + k][0] ? atof(fl[8 + k]) : 0.0;
+        tu_params_from_row(fl, &p);
         double wi[3], wo[3], rgb[3];
         for (int k = 0; k < 3; k++) {
             wi[k] = atof(fl[11 + k]);

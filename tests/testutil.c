@@ -72,6 +72,37 @@ int tu_tsv_next(void *file, char *line, size_t len, char **fields, int maxfields
     return 0;
 }
 
+void tu_params_from_row(char **fields, brdffit_params *p)
+{
+    memset(p, 0, sizeof *p);
+    for (int c = 0; c < 3; c++) {
+        p->d[c] = atof(fields[2 + c]);
+        p->s[c] = atof(fields[5 + c]);
+    }
+    for (int k = 0; k < 3; k++)
+        p->p[k] = fields[8 + k][0] ? atof(fields[8 + k]) : 0.0;
+}
+
+int tu_published(const char *material, brdffit_model model, brdffit_params *p)
+{
+    char path[1024], line[4096];
+    FILE *f = fopen(tu_shared("data/ngan2005-fits.tsv", path, sizeof path), "r");
+    if (!f)
+        return 0;
+    char *fl[16];
+    int found = 0;
+    while (!found && tu_tsv_next(f, line, sizeof line, fl, 16) >= 11) {
+        brdffit_model m;
+        if (strcmp(fl[0], material) == 0 && brdffit_model_from_name(fl[1], &m) == BRDFFIT_OK &&
+            m == model) {
+            tu_params_from_row(fl, p);
+            found = 1;
+        }
+    }
+    fclose(f);
+    return found;
+}
+
 double tu_reldiff(double a, double b)
 {
     double m = fmax(fmax(fabs(a), fabs(b)), 1e-300);

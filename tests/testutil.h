@@ -19,6 +19,12 @@ int tu_write_bytes(const char *path, const void *data, size_t len);
  * Returns the number of fields, 0 at end of file.  fields point into line. */
 int tu_tsv_next(void *file, char *line, size_t len, char **fields, int maxfields);
 
+/* d, s and p of a row of ngan2005-fits.tsv or model-reference.tsv (fields 2..10:
+ * d_r d_g d_b s_r s_g s_b p0 p1 p2; an empty p is 0). */
+void tu_params_from_row(char **fields, brdffit_params *p);
+/* The published Ngan et al. parameters of a material and model; 0 if absent. */
+int tu_published(const char *material, brdffit_model model, brdffit_params *p);
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double tu_reldiff(double a, double b);
 

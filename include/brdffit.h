@@ -272,6 +272,9 @@ typedef struct brdffit_context_options {
 
 void brdffit_context_options_default(brdffit_context_options *opt);
 
+/* A context is used by one thread at a time (its kernels' arguments are set
+ * per pass); use one context per thread to fit in parallel.  Tables, sample
+ * sets and the evaluators are read-only once made and may be shared. */
 typedef struct brdffit_context brdffit_context;
 
 /* Create a context: picks the device, owns the OpenCL state and the per-model

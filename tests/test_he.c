@@ -478,22 +478,14 @@ static void check_finite(const brdffit_params *p, const char *what)
 /* 7. The published He fits give finite, non-negative f everywhere. */
 START_TEST(published_fits_finite)
 {
-    char path[1024], line[4096];
-    FILE *f = fopen(tu_shared("data/ngan2005-fits.tsv", path, sizeof path), "r");
-    ck_assert_msg(f != NULL, "cannot open %s", path);
-    char *fl[16];
-    int rows = 0;
-    while (tu_tsv_next(f, line, sizeof line, fl, 16) >= 11) {
-        if (strcmp(fl[1], "he") != 0)
-            continue;
-        brdffit_params p;
-        tu_params_from_row(fl, &p);
-        ck_assert_int_eq(brdffit_params_check(BRDFFIT_HE, &p, NULL), BRDFFIT_OK);
-        check_finite(&p, fl[0]);
-        rows++;
+    static brdffit_params rows[128];
+    static char names[128][64];
+    int n = tu_published_all(BRDFFIT_HE, rows, names, 128);
+    ck_assert_int_eq(n, 86);
+    for (int r = 0; r < n; r++) {
+        ck_assert_int_eq(brdffit_params_check(BRDFFIT_HE, &rows[r], NULL), BRDFFIT_OK);
+        check_finite(&rows[r], names[r]);
     }
-    fclose(f);
-    ck_assert_int_eq(rows, 86);
 }
 END_TEST
 

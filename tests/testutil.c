@@ -83,24 +83,38 @@ void tu_params_from_row(char **fields, brdffit_params *p)
         p->p[k] = fields[8 + k][0] ? atof(fields[8 + k]) : 0.0;
 }
 
-int tu_published(const char *material, brdffit_model model, brdffit_params *p)
+/* Walk ngan2005-fits.tsv: each row of model (and of material, when given). */
+static int published_rows(const char *material, brdffit_model model, brdffit_params *params,
+                          char (*names)[64], int max)
 {
     char path[1024], line[4096];
     FILE *f = fopen(tu_shared("data/ngan2005-fits.tsv", path, sizeof path), "r");
     if (!f)
         return 0;
     char *fl[16];
-    int found = 0;
-    while (!found && tu_tsv_next(f, line, sizeof line, fl, 16) >= 11) {
+    int n = 0;
+    while (n < max && tu_tsv_next(f, line, sizeof line, fl, 16) >= 11) {
         brdffit_model m;
-        if (strcmp(fl[0], material) == 0 && brdffit_model_from_name(fl[1], &m) == BRDFFIT_OK &&
-            m == model) {
-            tu_params_from_row(fl, p);
-            found = 1;
-        }
+        if ((material && strcmp(fl[0], material) != 0) ||
+            brdffit_model_from_name(fl[1], &m) != BRDFFIT_OK || m != model)
+            continue;
+        tu_params_from_row(fl, &params[n]);
+        if (names)
+            snprintf(names[n], 64, "%s", fl[0]);
+        n++;
     }
     fclose(f);
-    return found;
+    return n;
+}
+
+int tu_published(const char *material, brdffit_model model, brdffit_params *p)
+{
+    return published_rows(material, model, p, NULL, 1);
+}
+
+int tu_published_all(brdffit_model model, brdffit_params *params, char (*names)[64], int max)
+{
+    return published_rows(NULL, model, params, names, max);
 }
 
 double tu_reldiff(double a, double b)

@@ -25,6 +25,10 @@ void tu_params_from_row(char **fields, brdffit_params *p);
 /* The published Ngan et al. parameters of a material and model; 0 if absent. */
 int tu_published(const char *material, brdffit_model model, brdffit_params *p);
 
+/* All published rows of a model: up to max parameter sets and their material
+ * names (names may be NULL).  Returns the number of rows. */
+int tu_published_all(brdffit_model model, brdffit_params *params, char (*names)[64], int max);
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double tu_reldiff(double a, double b);
 

@@ -62,6 +62,18 @@ BF_FN int bf_nmom(int nk, int np)
     return 1 + nk * bf_kblk(np) + 3 * (3 + np);
 }
 
+/* Offset of lobe k's moments (SK, SKK, SG, SKG, SGG). */
+BF_FN int bf_mom_lobe(int k, int np)
+{
+    return 1 + k * bf_kblk(np);
+}
+
+/* Offset of channel c's residual moments (SE, SKE, SEE, SGE). */
+BF_FN int bf_mom_chan(int c, int nk, int np)
+{
+    return 1 + nk * bf_kblk(np) + c * (3 + np);
+}
+
 /* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)]. */
 BF_FN void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp, const bf_geom *g,
                          const BF_REAL *rho, BF_REAL a2, BF_REAL *acc)
@@ -71,10 +83,9 @@ BF_FN void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp, const
     for (int j = 0; j < np; j++)
         for (int k = 0; k < nk; k++)
             G[k][j] = (K[j][k] - K0[k]) * pp->inv_h[j];
-    int kb = bf_kblk(np);
     acc[0] += a2;
     for (int k = 0; k < nk; k++) {
-        BF_REAL *m = acc + 1 + k * kb;
+        BF_REAL *m = acc + bf_mom_lobe(k, np);
         BF_REAL aK = a2 * K0[k];
         m[0] += aK;
         m[1] += aK * K0[k];
@@ -91,7 +102,7 @@ BF_FN void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp, const
         int k = nk > 1 ? c : 0;
         BF_REAL e = rho[c] - (pp->d[c] * (1.0 / BF_PI) + pp->s[c] * K0[k]);
         BF_REAL ae = a2 * e;
-        BF_REAL *m = acc + 1 + nk * kb + c * (3 + np);
+        BF_REAL *m = acc + bf_mom_chan(c, nk, np);
         m[0] += ae;
         m[1] += ae * K0[k];
         m[2] += ae * e;

@@ -55,21 +55,28 @@ static void ensure_pocl_cache(void)
     const char *cur = getenv("POCL_CACHE_DIR");
     if (cur && *cur)
         return;
-    char dir[1024];
     const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME"), *tmp = getenv("TMPDIR");
-    if (xdg && *xdg && snprintf(dir, sizeof dir, "%s/brdffit/pocl", xdg) < (int)sizeof dir &&
-        make_dirs(dir) == 0) {
-        setenv("POCL_CACHE_DIR", dir, 0);
-        return;
+    char uid[32];
+    snprintf(uid, sizeof uid, "%ld", (long)getuid());
+    /* the first that can be made writable: $XDG_CACHE_HOME/brdffit/pocl,
+     * ~/.cache/brdffit/pocl, $TMPDIR (or /tmp)/brdffit-pocl-UID */
+    const struct { const char *base, *tail; } cand[3] = {
+        { xdg, "/brdffit/pocl" },
+        { home, "/.cache/brdffit/pocl" },
+        { tmp && *tmp ? tmp : "/tmp", "/brdffit-pocl-" },
+    };
+    for (int i = 0; i < 3; i++) {
+        char dir[1024];
+        if (!cand[i].base || !*cand[i].base)
+            continue;
+        if (snprintf(dir, sizeof dir, "%s%s%s", cand[i].base, cand[i].tail, i == 2 ? uid : "") >=
+            (int)sizeof dir)
+            continue;
+        if (make_dirs(dir) == 0) {
+            setenv("POCL_CACHE_DIR", dir, 0);
+            return;
+        }
     }
-    if (home && *home && snprintf(dir, sizeof dir, "%s/.cache/brdffit/pocl", home) < (int)sizeof dir &&
-        make_dirs(dir) == 0) {
-        setenv("POCL_CACHE_DIR", dir, 0);
-        return;
-    }
-    snprintf(dir, sizeof dir, "%s/brdffit-pocl-%ld", tmp && *tmp ? tmp : "/tmp", (long)getuid());
-    if (make_dirs(dir) == 0)
-        setenv("POCL_CACHE_DIR", dir, 0);
 }
 
 static void info_string(cl_platform_id p, cl_device_id d, cl_uint what, char *buf, size_t len)

@@ -143,15 +143,15 @@ static void make_pass_par(const lmstate *S, const double *x, int with_fd, bf_pas
 static void assemble(const lmstate *S, const double *x, const bf_pass_par *pp, const double *mom,
                      point *pt)
 {
-    const int nx = S->nx, np = S->fm.nl, nk = S->ps->nk, kb = bf_kblk(np), m = nx + 1;
+    const int nx = S->nx, np = S->fm.nl, nk = S->ps->nk, m = nx + 1;
     double H[NX_MAX][NX_MAX], g[NX_MAX], rr = 0.0;
     memset(H, 0, sizeof H);
     memset(g, 0, sizeof g);
     const double A = mom[0], ipi = 1.0 / M_PI;
     for (int c = 0; c < 3; c++) {
         int k = nk > 1 ? c : 0;
-        const double *mk = mom + 1 + k * kb;
-        const double *mc = mom + 1 + nk * kb + c * (3 + np);
+        const double *mk = mom + bf_mom_lobe(k, np);
+        const double *mc = mom + bf_mom_chan(c, nk, np);
         double jd = 2.0 * x[c], js = 2.0 * x[3 + c], s = pp->s[c];
         H[c][c] = jd * jd * A * ipi * ipi;
         H[c][3 + c] = jd * js * mk[0] * ipi;
@@ -354,11 +354,11 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *st)
     brdffit_status rc = bf_passer_run(S->ps, 0, &pp, mom, S->err);
     if (rc != BRDFFIT_OK)
         return rc;
-    const int nk = S->ps->nk, kb = bf_kblk(0);
+    const int nk = S->ps->nk;
     st->cost = 0.0;
     for (int c = 0; c < 3; c++) {
-        const double *mk = mom + 1 + (nk > 1 ? c : 0) * kb;
-        const double *mc = mom + 1 + nk * kb + c * 3;
+        const double *mk = mom + bf_mom_lobe(nk > 1 ? c : 0, 0);
+        const double *mc = mom + bf_mom_chan(c, nk, 0);
         double d, s, A = mom[0];
         st->cost += best_linear(A, mk[0], mk[1], mc[0], mc[1], mc[2], &d, &s);
         double mean_rho = A > 0 ? fmax(mc[0] / A, 0.0) : 0.0;
@@ -549,10 +549,9 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
         double mom[BF_NMOM_MAX];
         rc = bf_passer_run(&ps, 0, &pp, mom, err);
         if (rc == BRDFFIT_OK) {
-            int nk = ps.nk, kb = bf_kblk(0);
             double rr = 0.0;
             for (int c = 0; c < 3; c++)
-                rr += mom[1 + nk * kb + c * 3 + 2];
+                rr += mom[bf_mom_chan(c, ps.nk, 0) + 2]; /* SEE */
             *error = sqrt(fmax(rr, 0.0));
             bf_ok(err);
         }

@@ -11,6 +11,7 @@
  *              vector of BF_WIDTH doubles in the kernel (-DBF_WIDTH=4|8).
  *   BF_SEL(a, b, c)   c ? b : a, lane by lane (OpenCL select()).
  *   BF_ANY(c)         true when c holds in some lane.
+ *   BF_LAST(v)        the last lane of v, as a double.
  *
  * Code that uses BF_REAL is branch-free per lane: data-dependent choices go
  * through BF_SEL, loops that depend on the data run while BF_ANY(...).
@@ -26,8 +27,10 @@
 #  endif
 #  if BF_WIDTH == 4
 #    define BF_REAL double4
+#    define BF_LAST(v) ((v).s3)
 #  elif BF_WIDTH == 8
 #    define BF_REAL double8
+#    define BF_LAST(v) ((v).s7)
 #  else
 #    error "BF_WIDTH must be 4 or 8"
 #  endif
@@ -40,6 +43,7 @@
 #  define BF_FN static inline
 #  define BF_SEL(a, b, c) ((c) ? (b) : (a))
 #  define BF_ANY(c) (c)
+#  define BF_LAST(v) (v)
 #endif
 
 #define BF_PI 3.14159265358979323846

@@ -50,6 +50,8 @@
 #define BF_HE_MMAX 400       /* last term of the series             */
 #define BF_HE_COS_MIN 1e-100 /* floor of cos ti, cos to, cos theta_b */
 #define BF_HE_LN_DEAD (-760.0)
+#define BF_HE_U_FLAT 6.0     /* u >= 6: erfc(u) and e^(-u^2) taken as 0 */
+#define BF_HE_R_LIN 1e-9     /* r <= 1e-9: x = r                    */
 #define BF_HE_LN_SQRT_2PI 0.91893853320467274178
 
 /* bf_he_lkk[k] = ln(k k!) for k = 1..BF_HE_MMAX, correctly rounded (so that
@@ -192,6 +194,22 @@ BF_FN BF_REAL bf_he_u(BF_REAL c, BF_REAL s, double tau, double sigma0)
     return fmin(fmax(u, 1e-300), 1e10);
 }
 
+/* erfc(u) and e^(-u^2) of the shadowing, for u in [1e-300, 1e10], as 0 for
+ * u >= BF_HE_U_FLAT = 6 (erfc(6) = 2.2e-17, e^-36 = 2.3e-16): there S(t)
+ * rounds to 1 and sigma's r gains less than 1e-14 (sigma: relative 1e-14),
+ * so the rule changes no value measurably, and a vector with every u >= 6 (a
+ * smooth surface away from grazing) skips both. */
+BF_FN void bf_he_erfc2(BF_REAL u, BF_REAL *ec, BF_REAL *ex)
+{
+    *ec = BF_R(0.0);
+    *ex = BF_R(0.0);
+    if (BF_ANY(u < BF_HE_U_FLAT)) {
+        BF_REAL flat = BF_SEL(BF_R(0.0), BF_R(1.0), u >= BF_HE_U_FLAT);
+        *ec = BF_SEL(erfc(u), BF_R(0.0), flat > 0.0);
+        *ex = BF_SEL(exp(-u * u), BF_R(0.0), flat > 0.0);
+    }
+}
+
 /* One direction's shadowing S(theta) from u, erfc(u) and exp(-u^2). */
 BF_FN BF_REAL bf_he_shadow1x(BF_REAL u, BF_REAL ec, BF_REAL ex)
 {
@@ -209,11 +227,6 @@ BF_FN BF_REAL bf_he_dshadow1(BF_REAL u, BF_REAL ec, BF_REAL ex)
     return xs * (u * lu + 0.5 * (1.0 - 0.5 * ec)) / (lu * lu);
 }
 
-/* One direction's shadowing S(theta) from u and erfc(u). */
-BF_FN BF_REAL bf_he_shadow1(BF_REAL u, BF_REAL ec)
-{
-    return bf_he_shadow1x(u, ec, exp(-u * u));
-}
 
 /* The directions' cosines and sines (cosines floored at BF_HE_COS_MIN). */
 #define BF_HE_ANGLES(g, ci, si, co, so)                                           \
@@ -226,7 +239,10 @@ BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
 {
     BF_HE_ANGLES(g, ci, si, co, so);
     BF_REAL ui = bf_he_u(ci, si, tau, sigma0), uo = bf_he_u(co, so, tau, sigma0);
-    return bf_he_shadow1(ui, erfc(ui)) * bf_he_shadow1(uo, erfc(uo));
+    BF_REAL ei, eo, xi, xo;
+    bf_he_erfc2(ui, &ei, &xi);
+    bf_he_erfc2(uo, &eo, &xo);
+    return bf_he_shadow1x(ui, ei, xi) * bf_he_shadow1x(uo, eo, xo);
 }
 
 /* The effective roughness sigma = sigma0 / sqrt(1 + x^2), x e^(x^2/2) = r, from
@@ -237,6 +253,10 @@ BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
 BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
 {
     BF_REAL rs = fmax(r, BF_TINY);
+    /* r <= BF_HE_R_LIN: x = r (x = r (1 - r^2/2 + ...): the correction is
+     * below half an ulp, and Newton returns r itself there) */
+    if (!BF_ANY(rs > BF_HE_R_LIN))
+        return rs;
     BF_REAL lr = log(rs);
     BF_REAL x = BF_SEL(rs, fmax(sqrt(2.0 * fmax(lr, 0.0)), BF_R(0.75)), rs > 1.0);
     BF_REAL act = BF_R(1.0);
@@ -245,7 +265,7 @@ BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
         x = BF_SEL(x, fmax(x - dx, 0.5 * x), act > 0.0);
         act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-15 * x);
     }
-    return x;
+    return BF_SEL(x, rs, rs <= BF_HE_R_LIN);
 }
 
 BF_FN BF_REAL bf_he_sigma_r(BF_REAL r, double sigma0)
@@ -259,7 +279,10 @@ BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
 {
     BF_HE_ANGLES(g, ci, si, co, so);
     BF_REAL ui = bf_he_u(ci, si, tau, sigma0), uo = bf_he_u(co, so, tau, sigma0);
-    BF_REAL r = (si / ci * erfc(ui) + so / co * erfc(uo)) * (1.0 / sqrt(8.0 * BF_PI));
+    BF_REAL ei, eo, xi, xo;
+    bf_he_erfc2(ui, &ei, &xi);
+    bf_he_erfc2(uo, &eo, &xo);
+    BF_REAL r = (si / ci * ei + so / co * eo) * (1.0 / sqrt(8.0 * BF_PI));
     return bf_he_sigma_r(r, sigma0);
 }
 
@@ -278,14 +301,20 @@ BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
  *     *vg = d ln V / dg = sum m t_m / (g sum t_m) - 1
  *     *va = d ln V / da = -sum (t_m / m) / sum t_m
  * (of the truncated sum, from the same terms: no further exp; 0 where V is
- * 0).  The value is the same, bit for bit, with and without them. */
+ * 0), and the two factors of V: *lpko = lpk (of every lane active on entry
+ * whose peak was sought) and *sumo = sum t_m (0 where the lane was not
+ * summed: inactive, or dead, lpk + lk < BF_HE_LN_DEAD).  The value is the same, bit for bit, with and
+ * without them. */
 BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk,
-                             BF_REAL act, int deriv, BF_REAL *vg, BF_REAL *va)
+                             BF_REAL act, int deriv, BF_REAL *vg, BF_REAL *va, BF_REAL *lpko,
+                             BF_REAL *sumo)
 {
     const double mmax = (double)BF_HE_MMAX, lnmmax = log(mmax);
     if (deriv) {
         *vg = BF_R(0.0);
         *va = BF_R(0.0);
+        *lpko = BF_R(0.0);
+        *sumo = BF_R(0.0);
     }
     if (!BF_ANY(act > 0.0))
         return BF_R(0.0);
@@ -325,6 +354,8 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
     BF_REAL lpk = m * lng - ((x1 - 0.5) * log(x1) - x1 + BF_HE_LN_SQRT_2PI + 1.0 / (12.0 * x1))
                 - g - a / m - log(m);
     act = BF_SEL(act, BF_R(0.0), (conv > 0.0) && (lpk + lk < BF_HE_LN_DEAD));
+    if (deriv)
+        *lpko = lpk;
     if (!BF_ANY(act > 0.0))
         return BF_R(0.0);
 
@@ -366,6 +397,7 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
         BF_REAL is = BF_SEL(BF_R(0.0), 1.0 / fmax(sum, BF_R(1.0)), sum > 0.0);
         *vg = (s1 * is) / g - BF_SEL(BF_R(0.0), BF_R(1.0), sum > 0.0);
         *va = -(sinv * is);
+        *sumo = sum;
     }
     return sum * sc;
 }
@@ -373,7 +405,8 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
 BF_FN BF_REAL bf_he_series(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk,
                            BF_REAL act)
 {
-    return bf_he_series_x(g, lng, a, la, lk, act, 0, (BF_REAL *)0, (BF_REAL *)0);
+    return bf_he_series_x(g, lng, a, la, lk, act, 0, (BF_REAL *)0, (BF_REAL *)0, (BF_REAL *)0,
+                          (BF_REAL *)0);
 }
 
 /* The blend weight t of the rough limit (0 below g = 18, 1 above 19) and the
@@ -461,8 +494,9 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
                             bf_he_rough *r)
 {
     BF_REAL ui = bf_he_u(d->ci, d->si, tau, sigma0), uo = bf_he_u(d->co, d->so, tau, sigma0);
-    BF_REAL ei = erfc(ui), eo = erfc(uo);
-    BF_REAL xi = exp(-ui * ui), xo = exp(-uo * uo);
+    BF_REAL ei, eo, xi, xo;
+    bf_he_erfc2(ui, &ei, &xi);
+    bf_he_erfc2(uo, &eo, &xo);
     r->shi = bf_he_shadow1x(ui, ei, xi) / d->ci;
     r->sho = bf_he_shadow1x(uo, eo, xo) / d->co;
     BF_REAL rr = (d->si / d->ci * ei + d->so / d->co * eo) * (1.0 / sqrt(8.0 * BF_PI));
@@ -501,32 +535,6 @@ BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double ta
     r->sigma = sigma0 / sqrt(1.0 + x * x);
 }
 
-/* K per channel into K[0..2] at wavelengths lam[0..2]. */
-BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n, const double *lam,
-                 BF_REAL *K)
-{
-    bf_he_dir d;
-    bf_he_rough r;
-    bf_he_dir_make(g, &d);
-    bf_he_rough_make(&d, tau, sigma0, 0, &r);
-    /* S(ti) / cos ti and S(to) / cos to stay within [1e-3, 1e3]-ish, F in [0, 1] */
-    BF_REAL fs = bf_he_fresnel(d.c, n) * r.shi * r.sho * (1.0 / BF_PI);
-
-    /* ln(F G S / (pi cos ti cos to)) */
-    BF_REAL lc = log(fmax(fs, BF_TINY)) + d.lg2;
-    BF_REAL zero = BF_SEL(BF_R(0.0), BF_R(1.0), fs < BF_TINY);
-    BF_REAL sv = r.sigma * d.vz;             /* > 1e-106: g never underflows */
-    BF_REAL lsv2 = 2.0 * log(sv);
-    for (int ch = 0; ch < 3; ch++) {
-        double kl = 2.0 * BF_PI / lam[ch];   /* g = kl^2 sv^2             */
-        double kt = BF_PI * tau / (2.0 * lam[ch]);  /* a = 4 kt^2 |v_xy|^2, D = kt^2 ... */
-        double kl2 = kl * kl, kt2 = kt * kt;
-        BF_REAL k = bf_he_dscaled(kl2 * (sv * sv), log(kl2) + lsv2, (4.0 * kt2) * d.vxy2,
-                                  log(4.0 * kt2) + d.lvxy2, lc + log(kt2));
-        K[ch] = BF_SEL(k, BF_R(0.0), zero > 0.0);
-    }
-}
-
 /* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
  * p[j] = (tau, sigma0, n), a small step from p[0]) for one data pass:
  * K0[c] = bf_he(p[0]) bit for bit, Kj[j-1][c] = bf_he(p[j]) to second order
@@ -551,15 +559,37 @@ BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n, const do
  * series is also summed for g in [19, 19 m) and the limit made for g in
  * (18 / m, 18], m = BF_HE_FD_MARGIN, where the value does not use them, so
  * that a step across 19 or 18 is covered; a step of 1e-3 relative in g
- * would not be.  np = 0 is bf_he. */
+ * would not be.  np = 0 with no memo is bf_he.
+ *
+ * The memo.  A data pass walks the samples in table order, so consecutive
+ * vectors mostly share theta_h and theta_d and differ in phi_d alone; g and
+ * a depend on phi_d only through sigma, which is sigma0 exactly wherever
+ * r <= 1e-9 (a smooth surface away from grazing).  There every lane of a
+ * vector has the (g, a) of the previous vector's last lane to rounding.
+ * With memo != NULL (a pass keeps one per work-item, zeroed at its start,
+ * and gives it vector after vector), a channel whose g and a are, in every
+ * lane, within BF_HE_MEMO_TOL (relative) of the memo's does not sum its
+ * series: it takes the memo's lpk, sum and partials and carries them to
+ * its own g, a to first order in ln V, as the neighbours above are carried
+ * (the remainder is below (m* 1e-12)^2 ~ 1e-19 relative; the carry itself
+ * is ~1e-13).  Values then agree with bf_he to ~1e-13 relative, and depend
+ * on where a work-item's run of samples starts only at that level.  A
+ * channel that sums its series leaves its last lane in the memo; a memo
+ * whose lane was dead (too small to sum) serves only vectors dead as well. */
 #define BF_HE_FD_MARGIN 1.001
+#define BF_HE_MEMO_TOL 1e-12
+
+typedef struct bf_he_memo {
+    double g[3], a[3];          /* the (clamped) g and a of the stored lane */
+    double ok[3];               /* 1: a lane is stored (active, peak found) */
+    double lpk[3], sum[3];      /* its series e^lpk sum (sum 0: dead)       */
+    double vg[3], va[3];        /* the partials of ln V there               */
+    double hits;                /* channel-vectors served from the memo     */
+} bf_he_memo;
+
 BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
-                    BF_REAL *K0, BF_REAL (*Kj)[3])
+                    BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {
-    if (np <= 0) {
-        bf_he(g, p[0][0], p[0][1], p[0][2], lam, K0);
-        return;
-    }
     const double tau = p[0][0], sigma0 = p[0][1], n = p[0][2];
     bf_he_dir d;
     bf_he_rough r;
@@ -571,8 +601,21 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
     /* The value: bf_he's operations, with the partials of the series. */
     BF_REAL lc = log(fmax(fs, BF_TINY)) + d.lg2;
     BF_REAL zero = BF_SEL(BF_R(0.0), BF_R(1.0), fs < BF_TINY);
-    BF_REAL sv = r.sigma * d.vz;
+    BF_REAL sv = r.sigma * d.vz;             /* > 1e-106: g never underflows */
     BF_REAL lsv2 = 2.0 * log(sv);
+
+    /* The rough limit e^(lk - a/g) / g is the same in every channel where
+     * g >= 18: a/g = q0 = tau^2 |v_xy|^2 / (4 sv^2) and e^lk / g =
+     * e^lc (tau / 4)^2 / sv^2 do not depend on lam (one exp for the three). */
+    double klmax2 = 0.0;
+    for (int ch = 0; ch < 3; ch++)
+        klmax2 = fmax(klmax2, (2.0 * BF_PI / lam[ch]) * (2.0 * BF_PI / lam[ch]));
+    BF_REAL q0 = BF_R(0.0), lim0 = BF_R(0.0);
+    if (BF_ANY(klmax2 * (sv * sv) > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
+        q0 = (0.25 * tau * tau) * d.vxy2 / (sv * sv);
+        lim0 = exp(fmin(lc - q0 - lsv2 + log(tau * tau / 16.0), BF_R(700.0)));
+    }
+
     /* per channel: the value before the zero flag, the series V (summed at
      * min(g, 19)) and its partials, the limit L, g, a, max(g, 18), a / max(g, 18) */
     BF_REAL Kr[3], V[3], Vg[3], Va[3], L[3], g0[3], a0[3], gl[3], agl[3];
@@ -587,14 +630,48 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
         gl[ch] = fmax(gg, BF_HE_G_LO);
         agl[ch] = BF_R(0.0);
         if (BF_ANY(gg > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
-            lim = bf_he_limit(gg, lng, aa, lk);
-            agl[ch] = aa / gl[ch];
+            /* g in (18 / m, 18): the limit at the clamp g = 18 (for the neighbours) */
+            BF_REAL below = BF_SEL(BF_R(0.0), BF_R(1.0), gg < BF_HE_G_LO);
+            lim = lim0;
+            if (BF_ANY((below > 0.0) && (gg > BF_HE_G_LO / BF_HE_FD_MARGIN))) {
+                lim = BF_SEL(lim, bf_he_limit(gg, lng, aa, lk), below > 0.0);
+                agl[ch] = aa / gl[ch];
+            }
+            lim = BF_SEL(lim, BF_R(0.0), gg <= BF_HE_G_LO / BF_HE_FD_MARGIN);
         }
-        BF_REAL vg, va;
-        BF_REAL ser = bf_he_series_x(fmin(gg, BF_HE_G_HI), fmin(lng, BF_R(log(BF_HE_G_HI))), aa, la,
-                                     lk, BF_SEL(BF_R(0.0), BF_R(1.0),
-                                                gg < BF_HE_G_HI * BF_HE_FD_MARGIN),
-                                     1, &vg, &va);
+        BF_REAL vg, va, ser;
+        BF_REAL gs = fmin(gg, BF_HE_G_HI);
+        BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), gg < BF_HE_G_HI * BF_HE_FD_MARGIN);
+        int hit = 0;
+        BF_REAL x = BF_R(0.0);
+        if (memo && memo->ok[ch] > 0.0
+            && !BF_ANY((fabs(gs - memo->g[ch]) > BF_HE_MEMO_TOL * memo->g[ch])
+                       || (fabs(aa - memo->a[ch]) > BF_HE_MEMO_TOL * memo->a[ch]))) {
+            x = memo->vg[ch] * (gs - memo->g[ch]) + memo->va[ch] * (aa - memo->a[ch]);
+            /* a memo that was not summed (dead) serves lanes that are dead too */
+            hit = memo->sum[ch] > 0.0
+               || !BF_ANY((act > 0.0) && (memo->lpk[ch] + lk >= BF_HE_LN_DEAD));
+        }
+        if (hit) {
+            vg = BF_R(memo->vg[ch]);
+            va = BF_R(memo->va[ch]);
+            ser = memo->sum[ch] * exp(fmin(memo->lpk[ch] + lk + x, BF_R(700.0)));
+            ser = BF_SEL(BF_R(0.0), ser, act > 0.0);
+            memo->hits += 1.0;
+        } else {
+            BF_REAL lpk, sum;
+            ser = bf_he_series_x(gs, fmin(lng, BF_R(log(BF_HE_G_HI))), aa, la, lk, act, 1, &vg,
+                                 &va, &lpk, &sum);
+            if (memo) {
+                memo->ok[ch] = BF_LAST(act);
+                memo->g[ch] = BF_LAST(gs);
+                memo->a[ch] = BF_LAST(aa);
+                memo->lpk[ch] = BF_LAST(lpk);
+                memo->sum[ch] = BF_LAST(sum);
+                memo->vg[ch] = BF_LAST(vg);
+                memo->va[ch] = BF_LAST(va);
+            }
+        }
         Kr[ch] = bf_he_blend(t, ser, lim);
         K0[ch] = BF_SEL(Kr[ch], BF_R(0.0), zero > 0.0);
         V[ch] = ser;
@@ -627,6 +704,13 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
         BF_REAL zj = BF_SEL(zero, BF_R(1.0), fsj < BF_TINY);
         BF_REAL rat = fsj * ifs;
         BF_REAL svj = rj.sigma * d.vz;
+        /* e^(a/g - a'/g') g / g' of the limit, shared by the channels where
+         * g, g' >= 18 (see q0 above) */
+        BF_REAL ej = BF_R(0.0);
+        if (BF_ANY(klmax2 * (svj * svj) > BF_HE_G_LO)) {
+            BF_REAL qj = (0.25 * tj * tj) * d.vxy2 / (svj * svj);
+            ej = exp(fmin(q0 - qj, BF_R(700.0))) * ((sv * sv) / (svj * svj));
+        }
         for (int ch = 0; ch < 3; ch++) {
             double kl = 2.0 * BF_PI / lam[ch];
             double kt0 = BF_PI * tau / (2.0 * lam[ch]), kt = BF_PI * tj / (2.0 * lam[ch]);
@@ -638,12 +722,25 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
             BF_REAL t = bf_he_blend_t(gj);
             BF_REAL lim = BF_R(0.0);
             if (BF_ANY(t > 0.0)) {
-                BF_REAL iglj = 1.0 / fmax(gj, BF_HE_G_LO);
-                lim = (L[ch] * rc) * (exp(agl[ch] - aj * iglj) * (gl[ch] * iglj));
+                lim = (L[ch] * rc) * ej;
+                BF_REAL up = BF_SEL(BF_R(0.0), BF_R(1.0), (t > 0.0) && (g0[ch] < BF_HE_G_LO));
+                if (BF_ANY(up > 0.0)) { /* from below the clamp: the general form */
+                    BF_REAL iglj = 1.0 / fmax(gj, BF_HE_G_LO);
+                    lim = BF_SEL(lim, (L[ch] * rc) * (exp(agl[ch] - aj * iglj) * (gl[ch] * iglj)),
+                                 up > 0.0);
+                }
             }
             Kj[j][ch] = BF_SEL(bf_he_blend(t, ser, lim), BF_R(0.0), zj > 0.0);
         }
     }
+}
+
+/* K per channel into K[0..2] at wavelengths lam[0..2]: bf_he_fd's value. */
+BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n, const double *lam,
+                 BF_REAL *K)
+{
+    const double p[1][3] = { { tau, sigma0, n } };
+    bf_he_fd(g, p, 0, lam, K, (BF_REAL(*)[3])0, (bf_he_memo *)0);
 }
 
 #endif /* BF_HE_H */

@@ -35,12 +35,14 @@ BF_FN void bf_lobe(int model, const bf_geom *g, const double *p, const double *l
 /* K at p[0] and at the np forward-difference neighbours p[1..np] of a data
  * pass (see bf_pass.h): K0[c] = K(p[0]) as bf_lobe gives it, Kj[j][c] ~
  * K(p[1 + j]).  The closed-form lobes evaluate each point; He sums its series
- * once and carries it to the neighbours to first order in its log (bf_he_fd). */
+ * once and carries it to the neighbours to first order in its log, and with a
+ * memo (NULL: none) reuses the previous vector's series where g and a are
+ * unchanged (bf_he_fd; K0 is then bf_he's to ~1e-13). */
 BF_FN void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
-                      const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3])
+                      const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {
     if (model == BF_HE) {
-        bf_he_fd(g, p, np, lam, K0, Kj);
+        bf_he_fd(g, p, np, lam, K0, Kj, memo);
         return;
     }
     bf_lobe(model, g, p[0], lam, K0);

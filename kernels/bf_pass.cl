@@ -43,6 +43,7 @@ inline void bf_pass_run(const int np, __global const double *data, const ulong n
     for (int m = 0; m < nmom; m++)
         acc[m] = BF_R(0.0);
 
+    bf_he_memo memo = { { 0.0 } };
     const ulong nvec = npad / BF_WIDTH;
     ulong v0 = (ulong)gid * vec_per_item;
     ulong v1 = min(v0 + vec_per_item, nvec);
@@ -61,7 +62,7 @@ inline void bf_pass_run(const int np, __global const double *data, const ulong n
         rho[1] = BF_VLOAD(v, data + BF_F_G * npad);
         rho[2] = BF_VLOAD(v, data + BF_F_B * npad);
         BF_REAL a2 = BF_VLOAD(v, data + BF_F_A2 * npad);
-        bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc);
+        bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc, &memo);
     }
     for (int m = 0; m < nmom; m++)
         out[(ulong)gid * nmom + m] = BF_HSUM(acc[m]);

@@ -74,12 +74,14 @@ BF_FN int bf_mom_chan(int c, int nk, int np)
     return 1 + nk * bf_kblk(np) + c * (3 + np);
 }
 
-/* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)]. */
+/* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)].
+ * memo: the He memo of the run of samples being walked in table order
+ * (zeroed at its start; see bf_he_fd), or NULL. */
 BF_FN void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp, const bf_geom *g,
-                         const BF_REAL *rho, BF_REAL a2, BF_REAL *acc)
+                         const BF_REAL *rho, BF_REAL a2, BF_REAL *acc, bf_he_memo *memo)
 {
     BF_REAL K0[3], K[BF_MAX_NP][3], G[3][BF_MAX_NP];
-    bf_lobe_fd(model, g, pp->p, np, pp->lam, K0, K);
+    bf_lobe_fd(model, g, pp->p, np, pp->lam, K0, K, memo);
     for (int j = 0; j < np; j++)
         for (int k = 0; k < nk; k++)
             G[k][j] = (K[j][k] - K0[k]) * pp->inv_h[j];

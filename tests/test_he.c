@@ -610,7 +610,7 @@ START_TEST(fd_neighbours)
         for (int s = st; s < n_dirs; s += 2) { /* half the directions per step */
             bf_geom g = geom(dirs[s], dirs[s] + 3);
             double K0[3], Kj[3][3], Kb[3];
-            bf_he_fd(&g, (const double(*)[3])p, 3, default_lam, K0, Kj);
+            bf_he_fd(&g, (const double(*)[3])p, 3, default_lam, K0, Kj, NULL);
             bf_he(&g, P[0], P[1], P[2], default_lam, Kb);
             ck_assert_msg(memcmp(K0, Kb, sizeof K0) == 0,
                           "set %d dir %d: K0 (%.17g %.17g %.17g) is not bf_he (%.17g %.17g %.17g)",
@@ -669,7 +669,7 @@ START_TEST(fd_lobe_dispatch)
                 bf_geom g = geom(dirs[s], dirs[s] + 3);
                 double K0[3], Kj[3][3], K[3];
                 memset(Kj, 0, sizeof Kj);
-                bf_lobe_fd(model, &g, (const double(*)[3])p, np, default_lam, K0, Kj);
+                bf_lobe_fd(model, &g, (const double(*)[3])p, np, default_lam, K0, Kj, NULL);
                 bf_lobe(model, &g, p[0], default_lam, K);
                 ck_assert_msg(memcmp(K0, K, sizeof K) == 0, "model %d np %d dir %d: K0", model, np,
                               s);

@@ -15,12 +15,14 @@ void bf_pass_host(const brdffit_samples *samples, brdffit_model model, int nk, i
     int nmom = bf_nmom(nk, np);
     for (int m = 0; m < nmom; m++)
         mom[m] = 0.0;
+    bf_he_memo memo;
+    memset(&memo, 0, sizeof memo);
     for (size_t i = 0; i < samples->n; i++) {
         bf_geom g = { f[BF_F_IX * npad + i], f[BF_F_IY * npad + i], f[BF_F_IZ * npad + i],
                       f[BF_F_OX * npad + i], f[BF_F_OY * npad + i], f[BF_F_OZ * npad + i],
                       f[BF_F_NH * npad + i], f[BF_F_VH * npad + i] };
         double rho[3] = { f[BF_F_R * npad + i], f[BF_F_G * npad + i], f[BF_F_B * npad + i] };
-        bf_accumulate((int)model, nk, np, pp, &g, rho, f[BF_F_A2 * npad + i], mom);
+        bf_accumulate((int)model, nk, np, pp, &g, rho, f[BF_F_A2 * npad + i], mom, &memo);
     }
 }
 

@@ -321,7 +321,14 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
                            brdffit_model model, const brdffit_fit_options *opt,
                            brdffit_fit_result *result, brdffit_error *err);
 
-/* The "ngan-l2" Error of given parameters on a sample set. */
+/* The "ngan-l2" Error of given parameters on a sample set.
+ *
+ * Fits and Errors come from data passes over the sample set (OpenCL kernel
+ * or host loop).  For He a pass walks the samples in table order and, where
+ * a sample's g and a agree with the previous one's to 1e-12 (relative: the
+ * same theta_h, theta_d bin on a surface smooth enough that sigma = sigma0),
+ * reuses that series carried to first order; its K then agrees with
+ * brdffit_eval's to ~1e-13 relative (tested), not bit for bit. */
 brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *samples,
                                 brdffit_model model, const brdffit_params *params,
                                 double *error, brdffit_error *err);

@@ -567,15 +567,18 @@ BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double ta
  * r <= 1e-9 (a smooth surface away from grazing).  There every lane of a
  * vector has the (g, a) of the previous vector's last lane to rounding.
  * With memo != NULL (a pass keeps one per work-item, zeroed at its start,
- * and gives it vector after vector), a channel whose g and a are, in every
- * lane, within BF_HE_MEMO_TOL (relative) of the memo's does not sum its
- * series: it takes the memo's lpk, sum and partials and carries them to
- * its own g, a to first order in ln V, as the neighbours above are carried
+ * and gives it vector after vector), the lanes of a channel whose g and a
+ * are within BF_HE_MEMO_TOL (relative) of the memo's do not sum the series
+ * (only the other lanes do, if any): they take the memo's lpk, sum and
+ * partials and carry them to their own g, a to first order in ln V, as the
+ * neighbours above are carried
  * (the remainder is below (m* 1e-12)^2 ~ 1e-19 relative; the carry itself
  * is ~1e-13).  Values then agree with bf_he to ~1e-13 relative, and depend
  * on where a work-item's run of samples starts only at that level.  A
- * channel that sums its series leaves its last lane in the memo; a memo
- * whose lane was dead (too small to sum) serves only vectors dead as well. */
+ * channel whose last lane sums its series leaves that lane in the memo; a
+ * memo whose lane was dead (too small to sum) serves only lanes dead as
+ * well.  (A vector that straddles two bins thus sums one bin's window, not
+ * the union of both.) */
 #define BF_HE_FD_MARGIN 1.001
 #define BF_HE_MEMO_TOL 1e-12
 
@@ -642,28 +645,36 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
         BF_REAL vg, va, ser;
         BF_REAL gs = fmin(gg, BF_HE_G_HI);
         BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), gg < BF_HE_G_HI * BF_HE_FD_MARGIN);
-        int hit = 0;
-        BF_REAL x = BF_R(0.0);
-        if (memo && memo->ok[ch] > 0.0
-            && !BF_ANY((fabs(gs - memo->g[ch]) > BF_HE_MEMO_TOL * memo->g[ch])
-                       || (fabs(aa - memo->a[ch]) > BF_HE_MEMO_TOL * memo->a[ch]))) {
+        /* hl: the lanes the memo serves; the others (that need it) sum */
+        BF_REAL hl = BF_R(0.0), x = BF_R(0.0);
+        if (memo && memo->ok[ch] > 0.0) {
             x = memo->vg[ch] * (gs - memo->g[ch]) + memo->va[ch] * (aa - memo->a[ch]);
-            /* a memo that was not summed (dead) serves lanes that are dead too */
-            hit = memo->sum[ch] > 0.0
-               || !BF_ANY((act > 0.0) && (memo->lpk[ch] + lk >= BF_HE_LN_DEAD));
+            /* a memo that was not summed (dead) serves only lanes dead as well */
+            hl = BF_SEL(BF_R(0.0), BF_R(1.0),
+                        (fabs(gs - memo->g[ch]) <= BF_HE_MEMO_TOL * memo->g[ch])
+                            && (fabs(aa - memo->a[ch]) <= BF_HE_MEMO_TOL * memo->a[ch])
+                            && ((memo->sum[ch] > 0.0)
+                                || (memo->lpk[ch] + lk < BF_HE_LN_DEAD)));
         }
-        if (hit) {
-            vg = BF_R(memo->vg[ch]);
-            va = BF_R(memo->va[ch]);
-            ser = memo->sum[ch] * exp(fmin(memo->lpk[ch] + lk + x, BF_R(700.0)));
-            ser = BF_SEL(BF_R(0.0), ser, act > 0.0);
-            memo->hits += 1.0;
-        } else {
+        BF_REAL need = BF_SEL(act, BF_R(0.0), hl > 0.0);
+        /* the served lanes' values, before the memo takes a new lane */
+        BF_REAL hser = BF_R(0.0);
+        double hvg = 0.0, hva = 0.0;
+        if (BF_ANY(hl > 0.0)) {
+            hser = memo->sum[ch] * exp(fmin(memo->lpk[ch] + lk + x, BF_R(700.0)));
+            hser = BF_SEL(BF_R(0.0), hser, act > 0.0);
+            hvg = memo->vg[ch];
+            hva = memo->va[ch];
+        }
+        ser = BF_R(0.0);
+        vg = BF_R(0.0);
+        va = BF_R(0.0);
+        if (BF_ANY(need > 0.0)) {
             BF_REAL lpk, sum;
-            ser = bf_he_series_x(gs, fmin(lng, BF_R(log(BF_HE_G_HI))), aa, la, lk, act, 1, &vg,
+            ser = bf_he_series_x(gs, fmin(lng, BF_R(log(BF_HE_G_HI))), aa, la, lk, need, 1, &vg,
                                  &va, &lpk, &sum);
-            if (memo) {
-                memo->ok[ch] = BF_LAST(act);
+            if (memo && BF_LAST(need) > 0.0) {
+                memo->ok[ch] = 1.0;
                 memo->g[ch] = BF_LAST(gs);
                 memo->a[ch] = BF_LAST(aa);
                 memo->lpk[ch] = BF_LAST(lpk);
@@ -671,6 +682,13 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
                 memo->vg[ch] = BF_LAST(vg);
                 memo->va[ch] = BF_LAST(va);
             }
+        } else if (BF_ANY(act > 0.0)) {
+            memo->hits += 1.0; /* (need = act here only when memo != NULL) */
+        }
+        if (BF_ANY(hl > 0.0)) {
+            ser = BF_SEL(ser, hser, hl > 0.0);
+            vg = BF_SEL(vg, BF_R(hvg), hl > 0.0);
+            va = BF_SEL(va, BF_R(hva), hl > 0.0);
         }
         Kr[ch] = bf_he_blend(t, ser, lim);
         K0[ch] = BF_SEL(Kr[ch], BF_R(0.0), zero > 0.0);

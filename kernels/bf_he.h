@@ -587,7 +587,7 @@ typedef struct bf_he_memo {
     double ok[3];               /* 1: a lane is stored (active, peak found) */
     double lpk[3], sum[3];      /* its series e^lpk sum (sum 0: dead)       */
     double vg[3], va[3];        /* the partials of ln V there               */
-    double hits;                /* channel-vectors served from the memo     */
+    double hits;                /* channel-vectors served wholly by the memo */
 } bf_he_memo;
 
 BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,

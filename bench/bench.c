@@ -93,6 +93,27 @@ static int model_selected(const char *list, brdffit_model m)
     return 0;
 }
 
+/* Fit model `runs` times (the fit is deterministic) and keep in *best the
+ * fastest so far (fit_seconds[m] > 0 once there is one): the fastest run is
+ * the least disturbed by the machine's other load. */
+static int fit_fastest(brdffit_context *ctx, const brdffit_samples *s, brdffit_model m, int runs,
+                       brdffit_fit_result *best, double *fit_seconds)
+{
+    for (int rep = 0; rep < runs; rep++) {
+        brdffit_fit_result r;
+        brdffit_error err;
+        if (brdffit_fit(ctx, s, m, NULL, &r, &err) != BRDFFIT_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            return 0;
+        }
+        if (fit_seconds[m] <= 0 || r.seconds < fit_seconds[m]) {
+            *best = r;
+            fit_seconds[m] = r.seconds;
+        }
+    }
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     int quick = 0, nmat = 10;
@@ -180,20 +201,9 @@ int main(int argc, char **argv)
             return 1;
         }
         bf_passer_close(&warm);
-        /* the same fit (deterministic) freps times: the fastest is the
-         * least disturbed by the machine's other load */
         brdffit_fit_result r;
-        int freps = quick ? 1 : 3;
-        for (int rep = 0; rep < freps; rep++) {
-            brdffit_fit_result ri;
-            if (brdffit_fit(ctx, s, (brdffit_model)m, NULL, &ri, &err) != BRDFFIT_OK) {
-                fprintf(stderr, "bench: %s\n", err.message);
-                return 1;
-            }
-            if (rep == 0 || ri.seconds < r.seconds)
-                r = ri;
-        }
-        fit_seconds[m] = r.seconds;
+        if (!fit_fastest(ctx, s, (brdffit_model)m, quick ? 1 : 3, &r, fit_seconds))
+            return 1;
         printf("%-18s %10.3e %7d %7d %10.3f %10.3f %11.3f%%\n", brdffit_model_get((brdffit_model)m)->name,
                r.error, r.evaluations, r.iterations, r.seconds, r.seconds_passes,
                100.0 * r.seconds_solver / r.seconds);
@@ -203,16 +213,11 @@ int main(int argc, char **argv)
      * of load on the shared machine hits both), the fastest of each. */
     if (fit_seconds[BRDFFIT_COOK_TORRANCE] > 0 && fit_seconds[BRDFFIT_HE] > 0) {
         int pairs = quick ? 1 : 3;
+        brdffit_fit_result r;
         for (int rep = 0; rep < pairs; rep++)
-            for (int k = 0; k < 2; k++) {
-                brdffit_model m = k ? BRDFFIT_HE : BRDFFIT_COOK_TORRANCE;
-                brdffit_fit_result ri;
-                if (brdffit_fit(ctx, s, m, NULL, &ri, &err) != BRDFFIT_OK) {
-                    fprintf(stderr, "bench: %s\n", err.message);
-                    return 1;
-                }
-                fit_seconds[m] = fmin(fit_seconds[m], ri.seconds);
-            }
+            if (!fit_fastest(ctx, s, BRDFFIT_COOK_TORRANCE, 1, &r, fit_seconds) ||
+                !fit_fastest(ctx, s, BRDFFIT_HE, 1, &r, fit_seconds))
+                return 1;
         printf("he fit / cook-torrance fit: %.1fx (%.3f s / %.3f s, the fastest of %d more runs\n"
                "  each, alternating, and the above)\n",
                fit_seconds[BRDFFIT_HE] / fit_seconds[BRDFFIT_COOK_TORRANCE],

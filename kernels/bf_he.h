@@ -177,15 +177,6 @@ BF_FN BF_REAL bf_he_fresnel(BF_REAL c, double n)
     return 0.5 * (q * q) * (1.0 + r * r);
 }
 
-/* The geometrical factor G = (v.v / v_z)^2, v = wi + wo (see the header comment). */
-BF_FN BF_REAL bf_he_geometry(const bf_geom *g)
-{
-    BF_REAL vx = g->ix + g->ox, vy = g->iy + g->oy;
-    BF_REAL vz = fmax(g->iz, BF_HE_COS_MIN) + fmax(g->oz, BF_HE_COS_MIN);
-    BF_REAL q = (vx * vx + vy * vy + vz * vz) / vz;
-    return q * q;
-}
-
 /* u = tau cot(theta) / (2 sigma0) from cos and sin, kept in [1e-300, 1e10]
  * (u = 1e10 is the normal: every use below is exactly its u -> inf value there). */
 BF_FN BF_REAL bf_he_u(BF_REAL c, BF_REAL s, double tau, double sigma0)
@@ -228,22 +219,6 @@ BF_FN BF_REAL bf_he_dshadow1(BF_REAL u, BF_REAL ec, BF_REAL ex)
 }
 
 
-/* The directions' cosines and sines (cosines floored at BF_HE_COS_MIN). */
-#define BF_HE_ANGLES(g, ci, si, co, so)                                           \
-    BF_REAL ci = fmax((g)->iz, BF_HE_COS_MIN), co = fmax((g)->oz, BF_HE_COS_MIN); \
-    BF_REAL si = sqrt((g)->ix * (g)->ix + (g)->iy * (g)->iy);                     \
-    BF_REAL so = sqrt((g)->ox * (g)->ox + (g)->oy * (g)->oy)
-
-/* The shadowing S = S(theta_i) S(theta_o). */
-BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
-{
-    BF_HE_ANGLES(g, ci, si, co, so);
-    BF_REAL ui = bf_he_u(ci, si, tau, sigma0), uo = bf_he_u(co, so, tau, sigma0);
-    BF_REAL ei, eo, xi, xo;
-    bf_he_erfc2(ui, &ei, &xi);
-    bf_he_erfc2(uo, &eo, &xo);
-    return bf_he_shadow1x(ui, ei, xi) * bf_he_shadow1x(uo, eo, xo);
-}
 
 /* The effective roughness sigma = sigma0 / sqrt(1 + x^2), x e^(x^2/2) = r, from
  * r = (K(ti) + K(to)) / sqrt(8 pi) >= 0.  Newton on ln x + x^2/2 - ln r (no
@@ -266,24 +241,6 @@ BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
         act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-15 * x);
     }
     return BF_SEL(x, rs, rs <= BF_HE_R_LIN);
-}
-
-BF_FN BF_REAL bf_he_sigma_r(BF_REAL r, double sigma0)
-{
-    BF_REAL x = bf_he_newton_x(r);
-    return sigma0 / sqrt(1.0 + x * x);
-}
-
-/* The effective roughness sigma of a direction pair. */
-BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
-{
-    BF_HE_ANGLES(g, ci, si, co, so);
-    BF_REAL ui = bf_he_u(ci, si, tau, sigma0), uo = bf_he_u(co, so, tau, sigma0);
-    BF_REAL ei, eo, xi, xo;
-    bf_he_erfc2(ui, &ei, &xi);
-    bf_he_erfc2(uo, &eo, &xo);
-    BF_REAL r = (si / ci * ei + so / co * eo) * (1.0 / sqrt(8.0 * BF_PI));
-    return bf_he_sigma_r(r, sigma0);
 }
 
 /* d(m) = ln(T_{m+1} / T_m), T_m = g^m e^-g / (m! m) e^(-a/m): decreasing in m. */
@@ -465,7 +422,9 @@ typedef struct bf_he_dir {
 
 BF_FN void bf_he_dir_make(const bf_geom *g, bf_he_dir *d)
 {
-    BF_HE_ANGLES(g, ci, si, co, so);
+    BF_REAL ci = fmax(g->iz, BF_HE_COS_MIN), co = fmax(g->oz, BF_HE_COS_MIN);
+    BF_REAL si = sqrt(g->ix * g->ix + g->iy * g->iy);
+    BF_REAL so = sqrt(g->ox * g->ox + g->oy * g->oy);
     BF_REAL vx = g->ix + g->ox, vy = g->iy + g->oy, vz = ci + co;
     BF_REAL vxy2 = vx * vx + vy * vy;
     BF_REAL vv = vxy2 + vz * vz;
@@ -480,10 +439,20 @@ BF_FN void bf_he_dir_make(const bf_geom *g, bf_he_dir *d)
     d->lvxy2 = log(fmax(vxy2, BF_R(1e-300)));
 }
 
-/* What depends on (tau, sigma0) too: S(ti) / cos ti, S(to) / cos to (within
- * [1e-3, 1e3]-ish) and the effective roughness sigma; with deriv, also what
+/* The geometrical factor G = (v.v / v_z)^2, v = wi + wo (see the header
+ * comment), as K uses it: e^(ln G) of bf_he_dir_make. */
+BF_FN BF_REAL bf_he_geometry(const bf_geom *g)
+{
+    bf_he_dir d;
+    bf_he_dir_make(g, &d);
+    return exp(d.lg2);
+}
+
+/* What depends on (tau, sigma0) too: S(ti), S(to), S(ti) / cos ti, S(to) / cos to
+ * (within [1e-3, 1e3]-ish) and the effective roughness sigma; with deriv, also what
  * bf_he_rough_step needs to carry them to a nearby (tau, sigma0). */
 typedef struct bf_he_rough {
+    BF_REAL Si, So;                 /* S(ti), S(to)                        */
     BF_REAL shi, sho, sigma;
     BF_REAL ui, uo, ei, eo, xi, xo; /* u, erfc(u), exp(-u^2) of ti and to  */
     BF_REAL dshi, dsho;             /* d(S(t) / cos t) / du                */
@@ -497,8 +466,10 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
     BF_REAL ei, eo, xi, xo;
     bf_he_erfc2(ui, &ei, &xi);
     bf_he_erfc2(uo, &eo, &xo);
-    r->shi = bf_he_shadow1x(ui, ei, xi) / d->ci;
-    r->sho = bf_he_shadow1x(uo, eo, xo) / d->co;
+    r->Si = bf_he_shadow1x(ui, ei, xi);
+    r->So = bf_he_shadow1x(uo, eo, xo);
+    r->shi = r->Si / d->ci;
+    r->sho = r->So / d->co;
     BF_REAL rr = (d->si / d->ci * ei + d->so / d->co * eo) * (1.0 / sqrt(8.0 * BF_PI));
     BF_REAL x = bf_he_newton_x(rr);
     r->sigma = sigma0 / sqrt(1.0 + x * x);
@@ -516,10 +487,31 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
     }
 }
 
+/* The shadowing S = S(theta_i) S(theta_o) of a direction pair, as K uses it. */
+BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
+{
+    bf_he_dir d;
+    bf_he_rough r;
+    bf_he_dir_make(g, &d);
+    bf_he_rough_make(&d, tau, sigma0, 0, &r);
+    return r.Si * r.So;
+}
+
+/* The effective roughness sigma of a direction pair, as K uses it. */
+BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
+{
+    bf_he_dir d;
+    bf_he_rough r;
+    bf_he_dir_make(g, &d);
+    bf_he_rough_make(&d, tau, sigma0, 0, &r);
+    return r.sigma;
+}
+
 /* r0 (made with deriv) carried to (tau, sigma0) nearby, to first order in
  * the steps of u (exact: u is a product): S(t) / cos t by dS/du, erfc by
  * -2 e^(-u^2) / sqrt(pi), x by one Newton step on ln x + x^2/2 = ln r from
- * r0's root, ln(r / r0) ~ r / r0 - 1.  No exp, erfc or log. */
+ * r0's root, ln(r / r0) ~ r / r0 - 1.  No exp, erfc or log.  (It sets shi,
+ * sho and sigma: all that a neighbour uses.) */
 BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double tau, double sigma0,
                             bf_he_rough *r)
 {

@@ -40,6 +40,8 @@ KERNELS  = kernels/bf_common.h kernels/bf_models.h kernels/bf_he.h kernels/bf_lo
            kernels/bf_pass.h kernels/bf_pass.cl
 HEADERS  = include/brdffit.h $(wildcard src/lib/*.h) $(wildcard src/cli/*.h) $(wildcard kernels/*.h)
 CLI_SRC  = $(wildcard src/cli/*.c)
+# The program's files but its main: the tests link them to test svg.c etc.
+CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
 BENCH_SRC = $(wildcard bench/*.c)
 
@@ -83,10 +85,11 @@ $(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/tests/%.o: tests/%.c $(HEADERS) tests/suites.def | $(BUILD)/tests
-	$(CC) $(CPPFLAGS) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
+	$(CC) $(CPPFLAGS) -Isrc/cli $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
 
-$(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(BUILD)/libbrdffit.a
-	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) $(LDLIBS)
+# expat: the tests' independent XML parser
+$(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) -lexpat $(LDLIBS)
 
 $(BUILD)/bench/%.o: bench/%.c $(HEADERS) | $(BUILD)/bench
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<

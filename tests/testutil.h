@@ -29,6 +29,26 @@ int tu_published(const char *material, brdffit_model model, brdffit_params *p);
  * names (names may be NULL).  Returns the number of rows. */
 int tu_published_all(brdffit_model model, brdffit_params *params, char (*names)[64], int max);
 
+/* An XML file parsed (expat) into its elements in document order. */
+typedef struct tu_xml_elem {
+    char *name;
+    char **attrs;  /* name, value, name, value, ..., NULL */
+    char *text;    /* the character data directly inside it, concatenated */
+    int depth;     /* 0 for the root */
+} tu_xml_elem;
+typedef struct tu_xml_doc {
+    tu_xml_elem *e;
+    int n;
+    char error[512]; /* "path: line L column C: message" when not well-formed */
+} tu_xml_doc;
+/* 0 when path is well-formed XML (doc filled; free with tu_xml_free), else -1. */
+int tu_xml_load(const char *path, tu_xml_doc *doc);
+/* The value of an attribute of e, or NULL. */
+const char *tu_xml_attr(const tu_xml_elem *e, const char *name);
+/* How many elements are called name. */
+int tu_xml_count(const tu_xml_doc *doc, const char *name);
+void tu_xml_free(tu_xml_doc *doc);
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double tu_reldiff(double a, double b);
 

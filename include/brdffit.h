@@ -71,6 +71,10 @@ extern "C" {
 #define BRDFFIT_VERSION_PATCH 0
 const char *brdffit_version(void);
 
+/* Seconds on the monotonic clock that times fits (brdffit_fit_result.seconds):
+ * the difference of two calls is wall time. */
+double brdffit_seconds(void);
+
 /* ------------------------------------------------------------------ status */
 
 typedef enum brdffit_status {

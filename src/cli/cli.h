@@ -1,10 +1,16 @@
 /* cli.h -- what the source files of the brdffit program share.
  *
- *   brdffit.c  main: the subcommands, --help, --version, `models`, `eval`
- *   args.c     strict number parsing and the options of `fit` and `demo`
- *   run.c      `fit` and `demo`: tables, sample sets, one context, the fits
- *   report.c   the paper-style table and the JSON Lines records
- *   json.c     JSON text: escaped strings, round-tripping numbers
+ *   brdffit.c     main: the table of subcommands, --help, --version
+ *   usage.c       the --help text, from the table of subcommands
+ *   cmd_fit.c     `fit` and `demo`: tables, sample sets, one context, the fits
+ *   cmd_models.c  `models`: the models and their lobe parameters
+ *   cmd_eval.c    `eval`: one BRDF value
+ *   args.c        strict number parsing, usage errors, the list of model names
+ *   options.c     the options of `fit` and `demo`, and their help text
+ *   material.c    what a fit report is about: a material's name from its path
+ *   report.c      the paper-style table and the JSON Lines records
+ *   json.c        JSON text: escaped strings, round-tripping numbers
+ *   text.c        text for the terminal: control characters made harmless
  *
  * The library never prints or exits; this program does both. */
 #ifndef BRDFFIT_CLI_H
@@ -23,16 +29,47 @@ enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
 #define CLI_PRINTF(a, b)
 #endif
 
+/* ---- brdffit.c ---- */
+
+/* A subcommand: `brdffit NAME ARGS...` calls run(argc, argv) with the
+ * arguments after NAME and exits with what it returns (CLI_OK, CLI_FAILED,
+ * CLI_USAGE). */
+typedef struct cli_command {
+    const char *name;
+    int (*run)(int argc, char **argv);
+    const char *synopsis; /* the arguments, for --help: "FILE.binary... [OPTIONS]" */
+    const char *summary;  /* what it does, for --help; lines separated by '\n'    */
+} cli_command;
+
+extern const cli_command cli_commands[];
+extern const int cli_ncommands;
+
+/* ---- usage.c ---- */
+
+/* The --help text. */
+void cli_usage(FILE *f);
+
+/* ---- cmd_*.c: the subcommands ---- */
+
+int cmd_fit(int argc, char **argv);
+int cmd_demo(int argc, char **argv);
+int cmd_models(int argc, char **argv);
+int cmd_eval(int argc, char **argv);
+
 /* ---- args.c ---- */
 
 /* A finite double, the whole string (strtod with an end check). 0 on success. */
 int cli_parse_double(const char *s, double *out);
 /* A decimal int in [lo, hi], the whole string. 0 on success. */
 int cli_parse_int(const char *s, int lo, int hi, int *out);
+/* 1 when a is --help or -h. */
+int cli_is_help(const char *a);
 /* "brdffit: <message>" and a pointer to --help on stderr; returns CLI_USAGE. */
 int cli_usage_error(const char *fmt, ...) CLI_PRINTF(1, 2);
 /* The valid model names, comma-separated, into buf. */
 const char *cli_model_names(char *buf, size_t len);
+
+/* ---- options.c ---- */
 
 typedef struct cli_options {
     brdffit_model models[BRDFFIT_MODEL_COUNT]; /* in the order asked, no repeats */
@@ -46,17 +83,14 @@ typedef struct cli_options {
 } cli_options;
 
 /* Parse the arguments after `fit` / `demo` into o (defaults first).  Returns
- * CLI_OK, CLI_USAGE (message printed), or -1 when --help was asked (usage
- * printed by the caller).  Free with cli_options_free. */
+ * CLI_OK, CLI_USAGE or CLI_FAILED (message printed), or -1 when --help was
+ * asked (usage printed by the caller).  Free with cli_options_free. */
 int cli_parse_options(int argc, char **argv, cli_options *o);
 void cli_options_free(cli_options *o);
+/* The "Options of fit and demo" block of --help. */
+void cli_options_help(FILE *f);
 
-/* ---- run.c ---- */
-
-int cli_run_fit(const cli_options *o);
-int cli_run_demo(const cli_options *o);
-
-/* ---- report.c ---- */
+/* ---- material.c ---- */
 
 /* What a fit report is about: a material and the settings of its samples. */
 typedef struct cli_material {
@@ -68,6 +102,8 @@ typedef struct cli_material {
 
 /* The material's name from a path: the base name without ".binary", into buf. */
 const char *cli_material_name(const char *path, char *buf, size_t len);
+
+/* ---- report.c ---- */
 
 /* Table mode. */
 void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
@@ -93,6 +129,8 @@ void json_string(FILE *f, const char *s);
 void json_number(FILE *f, double x);
 /* "[x0,x1,...]" of n numbers. */
 void json_numbers(FILE *f, const double *x, int n);
+
+/* ---- text.c ---- */
 
 /* s with control characters replaced by '?', for the terminal. */
 void plain_string(FILE *f, const char *s);

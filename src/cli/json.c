@@ -85,9 +85,3 @@ void json_numbers(FILE *f, const double *x, int n)
     }
     putc(']', f);
 }
-
-void plain_string(FILE *f, const char *s)
-{
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++)
-        putc(*p < 0x20 || *p == 0x7F ? '?' : *p, f);
-}

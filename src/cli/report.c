@@ -4,22 +4,6 @@
 #include <math.h>
 #include <string.h>
 
-const char *cli_material_name(const char *path, char *buf, size_t len)
-{
-    const char *base = strrchr(path, '/');
-    base = base && base[1] ? base + 1 : path;
-    size_t n = strlen(base);
-    static const char ext[] = ".binary";
-    const size_t ne = sizeof ext - 1;
-    if (n > ne && strcmp(base + n - ne, ext) == 0)
-        n -= ne;
-    if (n >= len)
-        n = len - 1;
-    memcpy(buf, base, n);
-    buf[n] = '\0';
-    return buf;
-}
-
 static const char *backend_name(const brdffit_context *ctx)
 {
     return brdffit_context_backend(ctx) == BRDFFIT_BACKEND_OPENCL ? "opencl" : "host";
@@ -118,10 +102,10 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels)
             fprintf(f, " %s%s", mi->param_names[k],
                     models[i] == BRDFFIT_HE && k < 2 ? "[um]" : "");
     }
-    fputs("\n  d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s;"
-          " Error = ngan-l2 (1/sr);\n  iter = Jacobian evaluations of the LM run kept,"
-          " seconds = wall time of the fit\n",
-          f);
+    fprintf(f, "\n  d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s;"
+               " Error = %s (1/sr);\n  iter = Jacobian evaluations of the LM run kept,"
+               " seconds = wall time of the fit\n",
+            brdffit_metric_name());
 }
 
 /* ------------------------------------------------------------------ JSON */

@@ -69,6 +69,11 @@ double bf_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+double brdffit_seconds(void)
+{
+    return bf_now();
+}
+
 void *bf_alloc_aligned(size_t bytes)
 {
     void *p = NULL;

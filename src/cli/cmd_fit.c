@@ -1,19 +1,10 @@
-/* run.c -- `brdffit fit` and `brdffit demo`: read (or synthesise) each table,
- * make its sample set, and fit the requested models with ONE context. */
-#define _POSIX_C_SOURCE 200809L
+/* cmd_fit.c -- `brdffit fit` and `brdffit demo`: read (or synthesise) each
+ * table, make its sample set, and fit the requested models with ONE context. */
 #include "cli.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct runner {
     const cli_options *o;
@@ -105,52 +96,67 @@ static void print_best(const best_fit *b, int nmodels, double seconds)
 
 /* ------------------------------------------------------------------ fit */
 
-int cli_run_fit(const cli_options *o)
+/* The sample set of one MERL file, or NULL (failure reported). */
+static brdffit_samples *file_samples(runner *R, const cli_material *m)
+{
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    brdffit_table *table = NULL;
+    brdffit_status st = brdffit_table_read(m->file, &table, &err);
+    if (st != BRDFFIT_OK) {
+        err.status = st;
+        material_failed(R, m, &err);
+        return NULL;
+    }
+    brdffit_samples *samples = NULL;
+    st = brdffit_samples_create(table, &R->o->sample, &samples, &err);
+    brdffit_table_free(table); /* 35 MB; the sample set holds what the fits need */
+    if (st != BRDFFIT_OK) {
+        err.status = st;
+        /* the library's sample messages do not name the file: add it */
+        char msg[BRDFFIT_MESSAGE_MAX];
+        snprintf(msg, sizeof msg, "%.1000s: %.1000s", m->file, err.message);
+        memcpy(err.message, msg, sizeof msg);
+        material_failed(R, m, &err);
+        return NULL;
+    }
+    return samples;
+}
+
+/* Fit and report one file; -1 when no backend can be set up (nothing else can be fitted). */
+static int fit_file(runner *R, const char *path, int first)
+{
+    const cli_options *o = R->o;
+    char name[1024];
+    cli_material m = { cli_material_name(path, name, sizeof name), path, NULL, o->sample };
+    double t0 = brdffit_seconds();
+    brdffit_samples *samples = file_samples(R, &m);
+    if (!samples)
+        return 0;
+    if (ensure_context(R, &m) != 0) {
+        brdffit_samples_free(samples);
+        return -1;
+    }
+    if (!o->json) {
+        if (!first)
+            putchar('\n');
+        report_header(stdout, &m, samples, R->ctx, &o->fit);
+    }
+    best_fit best = fit_models(R, &m, samples);
+    if (!o->json) {
+        report_legend(stdout, o->models, o->nmodels);
+        print_best(&best, o->nmodels, brdffit_seconds() - t0);
+    }
+    brdffit_samples_free(samples);
+    return 0;
+}
+
+static int run_fit(const cli_options *o)
 {
     runner R = { o, NULL, 0, 0 };
-    for (int fi = 0; fi < o->nfiles; fi++) {
-        const char *path = o->files[fi];
-        char name[1024];
-        cli_material m = { cli_material_name(path, name, sizeof name), path, NULL, o->sample };
-        brdffit_error err;
-        memset(&err, 0, sizeof err);
-        double t0 = now();
-
-        brdffit_table *table = NULL;
-        brdffit_status st = brdffit_table_read(path, &table, &err);
-        if (st != BRDFFIT_OK) {
-            err.status = st;
-            material_failed(&R, &m, &err);
-            continue;
-        }
-        brdffit_samples *samples = NULL;
-        st = brdffit_samples_create(table, &o->sample, &samples, &err);
-        brdffit_table_free(table); /* 35 MB; the sample set holds what the fits need */
-        if (st != BRDFFIT_OK) {
-            err.status = st;
-            /* the library's sample messages do not name the file: add it */
-            char msg[BRDFFIT_MESSAGE_MAX];
-            snprintf(msg, sizeof msg, "%.1000s: %.1000s", path, err.message);
-            memcpy(err.message, msg, sizeof msg);
-            material_failed(&R, &m, &err);
-            continue;
-        }
-        if (ensure_context(&R, &m) != 0) {
-            brdffit_samples_free(samples);
-            break; /* no backend: nothing else can be fitted */
-        }
-        if (!o->json) {
-            if (fi > 0)
-                putchar('\n');
-            report_header(stdout, &m, samples, R.ctx, &o->fit);
-        }
-        best_fit best = fit_models(&R, &m, samples);
-        if (!o->json) {
-            report_legend(stdout, o->models, o->nmodels);
-            print_best(&best, o->nmodels, now() - t0);
-        }
-        brdffit_samples_free(samples);
-    }
+    for (int fi = 0; fi < o->nfiles; fi++)
+        if (fit_file(&R, o->files[fi], fi == 0) != 0)
+            break;
     brdffit_context_free(R.ctx);
     if (R.failures)
         fprintf(stderr, "brdffit: %d failure%s (see above); %d fit%s done\n", R.failures,
@@ -169,10 +175,10 @@ static const brdffit_params demo_truth = {
 };
 static const brdffit_model demo_model = BRDFFIT_COOK_TORRANCE;
 
-int cli_run_demo(const cli_options *o)
+static int run_demo(const cli_options *o)
 {
     runner R = { o, NULL, 0, 0 };
-    double t0 = now();
+    double t0 = brdffit_seconds();
     const brdffit_model_info *gi = brdffit_model_get(demo_model);
     char about[512];
     snprintf(about, sizeof about,
@@ -213,7 +219,7 @@ int cli_run_demo(const cli_options *o)
         report_row(stdout, "truth", gi, &demo_truth, e0, NULL);
     }
     best_fit best = fit_models(&R, &m, samples);
-    double total = now() - t0;
+    double total = brdffit_seconds() - t0;
     if (!o->json) {
         report_legend(stdout, o->models, o->nmodels);
         printf("\nsummary: %d of %d models fitted in %.1f s on %s",
@@ -230,4 +236,35 @@ int cli_run_demo(const cli_options *o)
     brdffit_samples_free(samples);
     brdffit_context_free(R.ctx);
     return R.failures ? CLI_FAILED : CLI_OK;
+}
+
+/* ------------------------------------------------------------------ the subcommands */
+
+static int fit_or_demo(int argc, char **argv, int demo)
+{
+    cli_options o;
+    int rc = cli_parse_options(argc, argv, &o);
+    if (rc == -1) {
+        cli_usage(stdout);
+        rc = CLI_OK;
+    } else if (rc == CLI_OK) {
+        if (demo && o.nfiles > 0)
+            rc = cli_usage_error("demo takes no files (got '%s')", o.files[0]);
+        else if (!demo && o.nfiles == 0)
+            rc = cli_usage_error("fit needs at least one MERL .binary file");
+        else
+            rc = demo ? run_demo(&o) : run_fit(&o);
+    }
+    cli_options_free(&o);
+    return rc;
+}
+
+int cmd_fit(int argc, char **argv)
+{
+    return fit_or_demo(argc, argv, 0);
+}
+
+int cmd_demo(int argc, char **argv)
+{
+    return fit_or_demo(argc, argv, 1);
 }

@@ -1,0 +1,111 @@
+/* cmd_eval.c -- `brdffit eval MODEL d_r d_g d_b s_r s_g s_b p... --wi X Y Z --wo X Y Z`:
+ * one BRDF value per channel (1/sr, no cosine factor). */
+#include "cli.h"
+
+#include <string.h>
+
+/* What the arguments of eval say. */
+typedef struct eval_args {
+    const char *model_name;
+    double nums[6 + BRDFFIT_MAX_LOBE_PARAMS]; /* d_rgb, s_rgb, lobe parameters */
+    int nnum;
+    int have_wi, have_wo;
+    double wi[3], wo[3];
+} eval_args;
+
+static int parse_vec3(int argc, char **argv, int *i, const char *name, double v[3])
+{
+    if (*i + 3 >= argc)
+        return cli_usage_error("%s needs three numbers X Y Z", name);
+    for (int c = 0; c < 3; c++) {
+        const char *a = argv[++*i];
+        if (cli_parse_double(a, &v[c]) != 0)
+            return cli_usage_error("%s: '%s' is not a finite number", name, a);
+    }
+    return CLI_OK;
+}
+
+/* CLI_OK, CLI_USAGE (message printed), or -1 for --help. */
+static int parse_eval_args(int argc, char **argv, eval_args *e)
+{
+    memset(e, 0, sizeof *e);
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (cli_is_help(a))
+            return -1;
+        if (strcmp(a, "--wi") == 0 || strcmp(a, "--wo") == 0) {
+            int rc = parse_vec3(argc, argv, &i, a, a[3] == 'i' ? e->wi : e->wo);
+            if (rc != CLI_OK)
+                return rc;
+            *(a[3] == 'i' ? &e->have_wi : &e->have_wo) = 1;
+            continue;
+        }
+        if (a[0] == '-' && a[1] == '-')
+            return cli_usage_error("eval: unknown option '%s'", a);
+        if (!e->model_name) {
+            e->model_name = a;
+            continue;
+        }
+        if (e->nnum >= (int)(sizeof e->nums / sizeof e->nums[0]))
+            return cli_usage_error("eval: too many numbers (at '%s')", a);
+        if (cli_parse_double(a, &e->nums[e->nnum]) != 0)
+            return cli_usage_error("eval: '%s' is not a finite number", a);
+        e->nnum++;
+    }
+    return CLI_OK;
+}
+
+/* The model and its parameters from the arguments, checked against its bounds. */
+static int eval_params(const eval_args *e, brdffit_model *model, brdffit_params *p)
+{
+    char names[512];
+    if (!e->model_name)
+        return cli_usage_error("eval needs MODEL d_r d_g d_b s_r s_g s_b p... --wi X Y Z --wo X Y Z");
+    if (brdffit_model_from_name(e->model_name, model) != BRDFFIT_OK)
+        return cli_usage_error("unknown model '%s' (valid: %s)", e->model_name,
+                               cli_model_names(names, sizeof names));
+    const brdffit_model_info *mi = brdffit_model_get(*model);
+    if (e->nnum != 6 + mi->nparams) {
+        char pn[128] = "";
+        for (int k = 0; k < mi->nparams; k++) {
+            strcat(pn, " ");
+            strncat(pn, mi->param_names[k], 32);
+        }
+        return cli_usage_error("eval %s needs %d numbers (d_r d_g d_b s_r s_g s_b%s), got %d",
+                               mi->name, 6 + mi->nparams, pn, e->nnum);
+    }
+    if (!e->have_wi || !e->have_wo)
+        return cli_usage_error("eval needs --wi X Y Z and --wo X Y Z");
+    memset(p, 0, sizeof *p);
+    memcpy(p->d, e->nums, sizeof p->d);
+    memcpy(p->s, e->nums + 3, sizeof p->s);
+    memcpy(p->p, e->nums + 6, (size_t)mi->nparams * sizeof p->p[0]);
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    if (brdffit_params_check(*model, p, &err) != BRDFFIT_OK)
+        return cli_usage_error("eval: %s", err.message);
+    return CLI_OK;
+}
+
+int cmd_eval(int argc, char **argv)
+{
+    eval_args e;
+    int rc = parse_eval_args(argc, argv, &e);
+    if (rc == -1) {
+        cli_usage(stdout);
+        return CLI_OK;
+    }
+    brdffit_model model;
+    brdffit_params p;
+    if (rc == CLI_OK)
+        rc = eval_params(&e, &model, &p);
+    if (rc != CLI_OK)
+        return rc;
+    double rgb[3];
+    brdffit_status st = brdffit_eval(model, &p, e.wi, e.wo, rgb);
+    if (st != BRDFFIT_OK)
+        return cli_usage_error("eval: %s (directions must be finite and non-zero)",
+                               brdffit_strerror(st));
+    printf("%.17g %.17g %.17g\n", rgb[0], rgb[1], rgb[2]);
+    return CLI_OK;
+}

@@ -1,0 +1,198 @@
+/* options.c -- the options of `fit` and `demo`: parsing them into a
+ * cli_options, and their block of the --help text. */
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void cli_options_help(FILE *f)
+{
+    char names[512];
+    fprintf(f,
+            "Options of fit and demo:\n"
+            "  --model NAME[,NAME...]|all    models to fit (repeatable; default all):\n"
+            "                                %s\n"
+            "  --scale standard|flat         channel scale of the stored values (default standard,\n"
+            "                                (1, 1.15, 1.66)/1500; flat = 1/1500, as Ngan et al.)\n"
+            "  --cutoff DEG                  fit directions with theta_i, theta_o <= DEG, in (0, 90]\n"
+            "                                (default 80)\n"
+            "  --starts N                    starting points screened per model, 1..1000 (default 8; He 7)\n"
+            "  --backend auto|opencl|host    where the data passes run (default auto: OpenCL when a\n"
+            "                                device is found, else C on the host)\n"
+            "  --device SPEC                 OpenCL device, PLATFORM:DEVICE by index or name\n"
+            "                                substring (default $BRDFFIT_DEVICE, else PoCL's CPU)\n"
+            "  --json                        one JSON object per fit per line (JSON Lines)\n",
+            cli_model_names(names, sizeof names));
+}
+
+/* ------------------------------------------------------------------ one option each */
+
+static void add_model(cli_options *o, brdffit_model m)
+{
+    for (int i = 0; i < o->nmodels; i++)
+        if (o->models[i] == m)
+            return;
+    o->models[o->nmodels++] = m;
+}
+
+static int add_model_named(cli_options *o, const char *one)
+{
+    char names[512];
+    brdffit_model m;
+    if (strcmp(one, "all") == 0) {
+        for (int k = 0; k < BRDFFIT_MODEL_COUNT; k++)
+            add_model(o, (brdffit_model)k);
+    } else if (brdffit_model_from_name(one, &m) == BRDFFIT_OK) {
+        add_model(o, m);
+    } else {
+        return cli_usage_error("unknown model '%s' (valid: all, %s)", one,
+                               cli_model_names(names, sizeof names));
+    }
+    return CLI_OK;
+}
+
+/* --model "ward,cook-torrance" or "all". */
+static int set_models(cli_options *o, const char *value)
+{
+    char names[512];
+    if (!*value)
+        return cli_usage_error("--model needs a model name (one of: all, %s)",
+                               cli_model_names(names, sizeof names));
+    const char *p = value;
+    for (;;) {
+        size_t n = strcspn(p, ",");
+        char one[64];
+        if (n == 0 || n >= sizeof one)
+            return cli_usage_error("unknown model '%.*s' in --model %s (valid: all, %s)",
+                                   (int)(n < 200 ? n : 200), p, value,
+                                   cli_model_names(names, sizeof names));
+        memcpy(one, p, n);
+        one[n] = '\0';
+        int rc = add_model_named(o, one);
+        if (rc != CLI_OK)
+            return rc;
+        if (p[n] == '\0')
+            return CLI_OK;
+        p += n + 1;
+    }
+}
+
+static int set_scale(cli_options *o, const char *v)
+{
+    if (brdffit_scale_from_name(v, &o->sample.scale) != BRDFFIT_OK)
+        return cli_usage_error("--scale '%s': expected standard or flat", v);
+    return CLI_OK;
+}
+
+static int set_cutoff(cli_options *o, const char *v)
+{
+    double c;
+    if (cli_parse_double(v, &c) != 0 || !(c > 0) || !(c <= 90))
+        return cli_usage_error("--cutoff '%s': expected a number of degrees in (0, 90]", v);
+    o->sample.cutoff_deg = c;
+    return CLI_OK;
+}
+
+static int set_starts(cli_options *o, const char *v)
+{
+    if (cli_parse_int(v, 1, 1000, &o->fit.starts) != 0)
+        return cli_usage_error("--starts '%s': expected an integer in [1, 1000]", v);
+    return CLI_OK;
+}
+
+static int set_backend(cli_options *o, const char *v)
+{
+    static const struct { const char *name; brdffit_backend backend; } backends[] = {
+        { "auto", BRDFFIT_BACKEND_AUTO },
+        { "opencl", BRDFFIT_BACKEND_OPENCL },
+        { "host", BRDFFIT_BACKEND_HOST },
+    };
+    for (size_t k = 0; k < sizeof backends / sizeof backends[0]; k++)
+        if (strcmp(v, backends[k].name) == 0) {
+            o->context.backend = backends[k].backend;
+            return CLI_OK;
+        }
+    return cli_usage_error("--backend '%s': expected auto, opencl or host", v);
+}
+
+static int set_device(cli_options *o, const char *v)
+{
+    if (!*v)
+        return cli_usage_error("--device needs a PLATFORM:DEVICE specification");
+    o->context.device = v;
+    return CLI_OK;
+}
+
+/* The options that take a value. */
+static const struct {
+    const char *name;
+    int (*set)(cli_options *o, const char *value);
+} with_value[] = {
+    { "--model", set_models },   { "--scale", set_scale },     { "--cutoff", set_cutoff },
+    { "--starts", set_starts },  { "--backend", set_backend }, { "--device", set_device },
+};
+
+/* ------------------------------------------------------------------ the parser */
+
+static int options_init(cli_options *o, int argc)
+{
+    memset(o, 0, sizeof *o);
+    brdffit_sample_options_default(&o->sample);
+    brdffit_fit_options_default(&o->fit);
+    brdffit_context_options_default(&o->context);
+    o->files = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *o->files);
+    if (!o->files) {
+        fputs("brdffit: out of memory\n", stderr);
+        return CLI_FAILED;
+    }
+    return CLI_OK;
+}
+
+/* argv[*i] is --name VALUE or --name=VALUE: set it (and step over VALUE). */
+static int parse_valued(cli_options *o, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i];
+    const char *eq = strchr(a, '=');
+    size_t nlen = eq ? (size_t)(eq - a) : strlen(a);
+    for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++) {
+        const char *name = with_value[k].name;
+        if (strlen(name) != nlen || strncmp(a, name, nlen) != 0)
+            continue;
+        if (eq)
+            return with_value[k].set(o, eq + 1);
+        if (*i + 1 >= argc)
+            return cli_usage_error("%s needs a value", name);
+        return with_value[k].set(o, argv[++*i]);
+    }
+    return cli_usage_error("unknown option '%s'", a);
+}
+
+int cli_parse_options(int argc, char **argv, cli_options *o)
+{
+    int rc = options_init(o, argc);
+    int only_files = 0;
+    for (int i = 0; i < argc && rc == CLI_OK; i++) {
+        const char *a = argv[i];
+        if (only_files || a[0] != '-' || a[1] == '\0')
+            o->files[o->nfiles++] = a;
+        else if (strcmp(a, "--") == 0)
+            only_files = 1;
+        else if (cli_is_help(a))
+            return -1;
+        else if (strcmp(a, "--json") == 0)
+            o->json = 1;
+        else
+            rc = parse_valued(o, argc, argv, &i);
+    }
+    if (rc == CLI_OK && o->nmodels == 0)
+        for (int k = 0; k < BRDFFIT_MODEL_COUNT; k++)
+            o->models[o->nmodels++] = (brdffit_model)k;
+    return rc;
+}
+
+void cli_options_free(cli_options *o)
+{
+    free(o->files);
+    o->files = NULL;
+    o->nfiles = 0;
+}

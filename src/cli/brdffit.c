@@ -1,12 +1,12 @@
 /* brdffit.c -- the brdffit program: the table of subcommands and main.
  * Exit status 0 success, 1 a file or fit failed, 2 a usage error.
- * A new subcommand is one line in cli_commands (and its cmd_NAME.c). */
+ * A new subcommand is one line in commands[] (and its cmd_NAME.c). */
 #include "cli.h"
 
 #include <errno.h>
 #include <string.h>
 
-const cli_command cli_commands[] = {
+static const cli_command commands[] = {
     { "fit", cmd_fit, "FILE.binary... [OPTIONS]",
       "fit the models to each table and print the fitted\nparameters (paper units) and their Error" },
     { "demo", cmd_demo, "[OPTIONS]",
@@ -16,28 +16,27 @@ const cli_command cli_commands[] = {
     { "eval", cmd_eval, "MODEL d_r d_g d_b s_r s_g s_b p0 [p1 [p2]] --wi X Y Z --wo X Y Z",
       "print f(wi, wo) per channel (1/sr, no cosine factor)" },
 };
-const int cli_ncommands = (int)(sizeof cli_commands / sizeof cli_commands[0]);
+static const int ncommands = (int)(sizeof commands / sizeof commands[0]);
 
 static const cli_command *find_command(const char *name)
 {
-    for (int i = 0; i < cli_ncommands; i++)
-        if (strcmp(cli_commands[i].name, name) == 0)
-            return &cli_commands[i];
+    for (int i = 0; i < ncommands; i++)
+        if (strcmp(commands[i].name, name) == 0)
+            return &commands[i];
     return NULL;
 }
 
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        cli_usage(stderr);
+        cli_usage(stderr, commands, ncommands);
         return CLI_USAGE;
     }
     const char *name = argv[1];
     const cli_command *cmd = find_command(name);
     int rc;
     if (cli_is_help(name) || strcmp(name, "help") == 0) {
-        cli_usage(stdout);
-        rc = CLI_OK;
+        rc = CLI_HELP;
     } else if (strcmp(name, "--version") == 0 || strcmp(name, "version") == 0) {
         printf("brdffit %s\n", brdffit_version());
         rc = CLI_OK;
@@ -45,8 +44,12 @@ int main(int argc, char **argv)
         rc = cmd->run(argc - 2, argv + 2);
     } else {
         fprintf(stderr, "brdffit: unknown command '%s'\n\n", name);
-        cli_usage(stderr);
+        cli_usage(stderr, commands, ncommands);
         return CLI_USAGE;
+    }
+    if (rc == CLI_HELP) {
+        cli_usage(stdout, commands, ncommands);
+        rc = CLI_OK;
     }
     /* output that could not be written (a full disk, a closed pipe) is a failure */
     if (fflush(stdout) != 0 || ferror(stdout)) {

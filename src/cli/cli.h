@@ -22,6 +22,8 @@
 
 /* Exit statuses. */
 enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
+/* What a subcommand returns when --help was asked: main prints the usage. */
+#define CLI_HELP (-1)
 
 #if defined(__GNUC__)
 #define CLI_PRINTF(a, b) __attribute__((format(printf, a, b)))
@@ -33,7 +35,7 @@ enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
 
 /* A subcommand: `brdffit NAME ARGS...` calls run(argc, argv) with the
  * arguments after NAME and exits with what it returns (CLI_OK, CLI_FAILED,
- * CLI_USAGE). */
+ * CLI_USAGE), or prints the usage and exits 0 when it returns CLI_HELP. */
 typedef struct cli_command {
     const char *name;
     int (*run)(int argc, char **argv);
@@ -41,13 +43,10 @@ typedef struct cli_command {
     const char *summary;  /* what it does, for --help; lines separated by '\n'    */
 } cli_command;
 
-extern const cli_command cli_commands[];
-extern const int cli_ncommands;
-
 /* ---- usage.c ---- */
 
-/* The --help text. */
-void cli_usage(FILE *f);
+/* The --help text, listing the n subcommands of commands. */
+void cli_usage(FILE *f, const cli_command *commands, int n);
 
 /* ---- cmd_*.c: the subcommands ---- */
 
@@ -83,8 +82,8 @@ typedef struct cli_options {
 } cli_options;
 
 /* Parse the arguments after `fit` / `demo` into o (defaults first).  Returns
- * CLI_OK, CLI_USAGE or CLI_FAILED (message printed), or -1 when --help was
- * asked (usage printed by the caller).  Free with cli_options_free. */
+ * CLI_OK, CLI_USAGE or CLI_FAILED (message printed), or CLI_HELP when --help
+ * was asked.  Free with cli_options_free. */
 int cli_parse_options(int argc, char **argv, cli_options *o);
 void cli_options_free(cli_options *o);
 /* The "Options of fit and demo" block of --help. */

@@ -25,14 +25,14 @@ static int parse_vec3(int argc, char **argv, int *i, const char *name, double v[
     return CLI_OK;
 }
 
-/* CLI_OK, CLI_USAGE (message printed), or -1 for --help. */
+/* CLI_OK, CLI_USAGE (message printed), or CLI_HELP. */
 static int parse_eval_args(int argc, char **argv, eval_args *e)
 {
     memset(e, 0, sizeof *e);
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (cli_is_help(a))
-            return -1;
+            return CLI_HELP;
         if (strcmp(a, "--wi") == 0 || strcmp(a, "--wo") == 0) {
             int rc = parse_vec3(argc, argv, &i, a, a[3] == 'i' ? e->wi : e->wo);
             if (rc != CLI_OK)
@@ -91,10 +91,6 @@ int cmd_eval(int argc, char **argv)
 {
     eval_args e;
     int rc = parse_eval_args(argc, argv, &e);
-    if (rc == -1) {
-        cli_usage(stdout);
-        return CLI_OK;
-    }
     brdffit_model model;
     brdffit_params p;
     if (rc == CLI_OK)

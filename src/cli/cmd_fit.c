@@ -244,10 +244,7 @@ static int fit_or_demo(int argc, char **argv, int demo)
 {
     cli_options o;
     int rc = cli_parse_options(argc, argv, &o);
-    if (rc == -1) {
-        cli_usage(stdout);
-        rc = CLI_OK;
-    } else if (rc == CLI_OK) {
+    if (rc == CLI_OK) {
         if (demo && o.nfiles > 0)
             rc = cli_usage_error("demo takes no files (got '%s')", o.files[0]);
         else if (!demo && o.nfiles == 0)

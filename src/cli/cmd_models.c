@@ -4,10 +4,8 @@
 int cmd_models(int argc, char **argv)
 {
     if (argc > 0) {
-        if (cli_is_help(argv[0])) {
-            cli_usage(stdout);
-            return CLI_OK;
-        }
+        if (cli_is_help(argv[0]))
+            return CLI_HELP;
         return cli_usage_error("models takes no arguments (got '%s')", argv[0]);
     }
     printf("%-18s %-18s %s\n", "model", "title", "lobe parameters: name [lower, upper] (start)");

@@ -178,7 +178,7 @@ int cli_parse_options(int argc, char **argv, cli_options *o)
         else if (strcmp(a, "--") == 0)
             only_files = 1;
         else if (cli_is_help(a))
-            return -1;
+            return CLI_HELP;
         else if (strcmp(a, "--json") == 0)
             o->json = 1;
         else

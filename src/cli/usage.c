@@ -1,4 +1,4 @@
-/* usage.c -- the --help text: the subcommands of cli_commands, the options
+/* usage.c -- the --help text: the subcommands, the options
  * of fit and demo, the exit statuses. */
 #include "cli.h"
 
@@ -26,7 +26,7 @@ static void command_help(FILE *f, const cli_command *c)
     }
 }
 
-void cli_usage(FILE *f)
+void cli_usage(FILE *f, const cli_command *commands, int n)
 {
     fprintf(f,
             "Usage: brdffit COMMAND [ARGUMENTS]\n"
@@ -36,8 +36,8 @@ void cli_usage(FILE *f)
             "\n"
             "Commands:\n",
             brdffit_metric_name());
-    for (int i = 0; i < cli_ncommands; i++)
-        command_help(f, &cli_commands[i]);
+    for (int i = 0; i < n; i++)
+        command_help(f, &commands[i]);
     fputc('\n', f);
     cli_options_help(f);
     fputs("\n"

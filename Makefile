@@ -28,17 +28,25 @@ PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lcminpack)
 CHECK_CFLAGS := $(shell pkg-config --cflags check 2>/dev/null)
 CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck -lsubunit -lrt -lpthread -lm)
 
-CPPFLAGS += -Iinclude -Ikernels -Isrc/lib -DCL_TARGET_OPENCL_VERSION=120 \
-            -DCL_USE_DEPRECATED_OPENCL_1_2_APIS $(PKG_CFLAGS)
-CFLAGS   += -std=c11 $(OPT) -g -Wall -Wextra -fPIC $(SAN)
+# Include paths: the library sees its own internals and the kernel headers;
+# the program sees the public header and its own; the tests, which reach
+# into both on purpose, see all; the benchmark sees the library's.
+CPPFLAGS += -Iinclude -DCL_TARGET_OPENCL_VERSION=120 -DCL_USE_DEPRECATED_OPENCL_1_2_APIS
+LIB_INC   = -Isrc/lib -Ikernels $(PKG_CFLAGS)
+CLI_INC   = -Isrc/cli
+TEST_INC  = $(LIB_INC) $(CLI_INC) -Itests
+# -MMD -MP: each object's header dependencies, written beside it (.d)
+CFLAGS   += -std=c11 $(OPT) -g -Wall -Wextra -fPIC -MMD -MP $(SAN)
 LDLIBS   += $(PKG_LIBS) -lOpenCL -lm
 LDFLAGS  += $(SAN)
 
 LIB_SRC  = $(wildcard src/lib/*.c)
 LIB_OBJ  = $(LIB_SRC:src/lib/%.c=$(BUILD)/lib/%.o) $(BUILD)/lib/kernel_source.o
-KERNELS  = kernels/bf_common.h kernels/bf_models.h kernels/bf_he.h kernels/bf_lobe.h \
-           kernels/bf_pass.h kernels/bf_pass.cl
-HEADERS  = include/brdffit.h $(wildcard src/lib/*.h) $(wildcard src/cli/*.h) $(wildcard kernels/*.h)
+# The kernel sources in the order they are concatenated for
+# clCreateProgramWithSource (each after what it uses).  The one place that
+# order is written.
+KERNEL_SOURCES = kernels/bf_common.h kernels/bf_models.h kernels/bf_he.h kernels/bf_lobe.h \
+                 kernels/bf_layout.h kernels/bf_pass.h kernels/bf_pass.cl
 CLI_SRC  = $(wildcard src/cli/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
@@ -50,13 +58,12 @@ all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
 $(BUILD)/lib $(BUILD)/cli $(BUILD)/tests $(BUILD)/bench:
 	mkdir -p $@
 
-# The kernel sources, embedded at build time as C strings, in the order they
-# are concatenated for clCreateProgramWithSource.
-$(BUILD)/lib/kernel_source.c: $(KERNELS) | $(BUILD)/lib
+# The kernel sources, embedded at build time as C strings, in KERNEL_SOURCES order.
+$(BUILD)/lib/kernel_source.c: $(KERNEL_SOURCES) | $(BUILD)/lib
 	{ echo '/* generated from kernels/ by the Makefile: do not edit */'; \
 	  echo '#include <stddef.h>'; \
 	  echo 'const char *const bf_kernel_sources[] = {'; \
-	  for f in $(KERNELS); do \
+	  for f in $(KERNEL_SOURCES); do \
 	    echo "/* $$f */"; \
 	    sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/^/"/' -e 's/$$/\\n"/' $$f; \
 	    echo ','; \
@@ -65,8 +72,8 @@ $(BUILD)/lib/kernel_source.c: $(KERNELS) | $(BUILD)/lib
 	  echo 'const size_t bf_kernel_source_count = sizeof bf_kernel_sources / sizeof bf_kernel_sources[0];'; \
 	} > $@.tmp && mv $@.tmp $@
 
-$(BUILD)/lib/%.o: src/lib/%.c $(HEADERS) | $(BUILD)/lib
-	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/lib/%.o: src/lib/%.c | $(BUILD)/lib
+	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) -c -o $@ $<
 
 $(BUILD)/lib/kernel_source.o: $(BUILD)/lib/kernel_source.c
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
@@ -78,21 +85,21 @@ $(BUILD)/libbrdffit.so: $(LIB_OBJ)
 	$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) -o $(BUILD)/$(SONAME) $^ $(LDLIBS)
 	ln -sf $(SONAME) $@
 
-$(BUILD)/cli/%.o: src/cli/%.c $(HEADERS) | $(BUILD)/cli
-	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/cli/%.o: src/cli/%.c | $(BUILD)/cli
+	$(CC) $(CPPFLAGS) $(CLI_INC) $(CFLAGS) -c -o $@ $<
 
 $(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/tests/%.o: tests/%.c $(HEADERS) tests/suites.def | $(BUILD)/tests
-	$(CC) $(CPPFLAGS) -Isrc/cli $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
+	$(CC) $(CPPFLAGS) $(TEST_INC) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
 
 # expat: the tests' independent XML parser
 $(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) -lexpat $(LDLIBS)
 
-$(BUILD)/bench/%.o: bench/%.c $(HEADERS) | $(BUILD)/bench
-	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+$(BUILD)/bench/%.o: bench/%.c | $(BUILD)/bench
+	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) -c -o $@ $<
 
 $(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
@@ -135,7 +142,10 @@ install: all
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/brdffit.pc
 
 clean:
-	rm -rf build build-san
+	rm -rf $(BUILD) build-san
+
+# The header dependencies the compiler recorded (-MMD -MP).
+-include $(wildcard $(BUILD)/*/*.d)
 
 .PHONY: all demo test sanitize bench install clean
 .DELETE_ON_ERROR:

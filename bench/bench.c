@@ -12,7 +12,7 @@
  * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N]
  */
 #define _POSIX_C_SOURCE 200809L
-#include "context.h"
+#include "pass.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -152,20 +152,20 @@ int main(int argc, char **argv)
     for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
         if (!model_selected(models, (brdffit_model)m))
             continue;
-        bf_passer ps;
-        if (bf_passer_open(&ps, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK) {
+        bf_pass_driver dr;
+        if (bf_driver_open(&dr, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK) {
             fprintf(stderr, "bench: %s\n", err.message);
             return 1;
         }
         bf_pass_par pp;
         point_of((brdffit_model)m, &pp);
         double mom[BF_NMOM_MAX], ref[BF_NMOM_MAX];
-        bf_passer_run(&ps, 1, &pp, mom, &err); /* warm-up (build, first touch) */
+        bf_driver_run(&dr, 1, &pp, mom, &err); /* warm-up (build, first touch) */
         int reps = quick ? 2 : 5, creps = quick ? 1 : 2;
         double tk = 1e30, tc = 1e30;
         for (int r = 0; r < reps; r++) {
             double t0 = bf_now();
-            if (bf_passer_run(&ps, 1, &pp, mom, &err) != BRDFFIT_OK) {
+            if (bf_driver_run(&dr, 1, &pp, mom, &err) != BRDFFIT_OK) {
                 fprintf(stderr, "bench: %s\n", err.message);
                 return 1;
             }
@@ -173,12 +173,12 @@ int main(int argc, char **argv)
         }
         for (int r = 0; r < creps; r++) {
             double t0 = bf_now();
-            bf_pass_host(s, (brdffit_model)m, ps.nk, ps.np, &pp, ref);
+            bf_host_loop(s, (brdffit_model)m, dr.nk, dr.np, &pp, ref);
             tc = fmin(tc, bf_now() - t0);
         }
         printf("%-18s %12.1f %12.1f %7.1fx\n", brdffit_model_get((brdffit_model)m)->name, tc * 1e3,
                tk * 1e3, tc / tk);
-        bf_passer_close(&ps);
+        bf_driver_close(&dr);
     }
 
     /* 2. one full fit per model (its kernels already built: a build is once per
@@ -190,17 +190,17 @@ int main(int argc, char **argv)
     for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
         if (!model_selected(models, (brdffit_model)m))
             continue;
-        bf_passer warm;
+        bf_pass_driver warm;
         bf_pass_par wp;
         double wmom[BF_NMOM_MAX];
         point_of((brdffit_model)m, &wp);
-        if (bf_passer_open(&warm, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK ||
-            bf_passer_run(&warm, 1, &wp, wmom, &err) != BRDFFIT_OK ||
-            bf_passer_run(&warm, 0, &wp, wmom, &err) != BRDFFIT_OK) {
+        if (bf_driver_open(&warm, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK ||
+            bf_driver_run(&warm, 1, &wp, wmom, &err) != BRDFFIT_OK ||
+            bf_driver_run(&warm, 0, &wp, wmom, &err) != BRDFFIT_OK) {
             fprintf(stderr, "bench: %s\n", err.message);
             return 1;
         }
-        bf_passer_close(&warm);
+        bf_driver_close(&warm);
         brdffit_fit_result r;
         if (!fit_fastest(ctx, s, (brdffit_model)m, quick ? 1 : 3, &r, fit_seconds))
             return 1;

@@ -4,8 +4,9 @@
  * The files in kernels/ are written once, in the common subset of C99 and
  * OpenCL C, and compiled twice: into the C library (the files in src/lib include them)
  * and into the OpenCL fitting kernel (the library passes them, concatenated
- * in order, to clCreateProgramWithSource: bf_common.h, bf_models.h, bf_he.h,
- * bf_pass.h, bf_pass.cl).  Nothing in them is repeated anywhere else.
+ * in the order of the Makefile's KERNEL_SOURCES, to clCreateProgramWithSource;
+ * in the kernel they do not include each other).  Nothing in them is
+ * repeated anywhere else.
  *
  *   BF_REAL    the type of one "lane" of samples: double on the host, a
  *              vector of BF_WIDTH doubles in the kernel (-DBF_WIDTH=4|8).

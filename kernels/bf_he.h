@@ -582,6 +582,15 @@ typedef struct bf_he_memo {
     double hits;                /* channel-vectors served wholly by the memo */
 } bf_he_memo;
 
+BF_FN void bf_he_memo_clear(bf_he_memo *m)
+{
+    for (int c = 0; c < 3; c++) {
+        m->g[c] = m->a[c] = m->ok[c] = 0.0;
+        m->lpk[c] = m->sum[c] = m->vg[c] = m->va[c] = 0.0;
+    }
+    m->hits = 0.0;
+}
+
 BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                     BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {

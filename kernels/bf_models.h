@@ -1,13 +1,15 @@
 /*
- * bf_models.h -- the BRDF lobes K(wi, wo; p) of the seven models, written once
+ * bf_models.h -- the closed-form BRDF lobes K(wi, wo; p) (He's lobe is
+ * bf_he.h), the model ids and the geometry of a direction pair, written once
  * for the C library and the OpenCL kernel (see bf_common.h).
  *
  * Frame: z is the normal; wi (i*) points toward the light, wo (o*) toward the
  * viewer; both unit vectors strictly above the horizon.  H = normalize(wi+wo),
  * delta = angle(N, H).  f_c = d_c/pi + s_c K_c, no cosine factor.
  *
- * A renderer may include this header (with bf_common.h and bf_he.h) and call
- * bf_geom_make + bf_lobe directly: nothing here allocates or has state.
+ * A renderer may include bf_lobe.h (it includes this header and bf_he.h),
+ * fill a bf_geom's two directions, call bf_geom_derive and then bf_lobe:
+ * nothing here allocates or has state.
  */
 #ifndef BF_MODELS_H
 #define BF_MODELS_H

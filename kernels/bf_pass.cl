@@ -1,6 +1,7 @@
 /*
- * bf_pass.cl -- the OpenCL data pass.  The library prepends bf_common.h,
- * bf_models.h, bf_he.h, bf_lobe.h and bf_pass.h and builds it once per model
+ * bf_pass.cl -- the OpenCL data pass: the kernel side (src/lib/pass.c is the
+ * host side that enqueues it).  The library prepends the kernel headers, in
+ * the order the Makefile's KERNEL_SOURCES lists, and builds it once per model
  * and context with
  *     -DBF_MODEL=<id> -DBF_NP=<lobe coordinates> -DBF_NK=<1|3> -DBF_WIDTH=<4|8>
  *
@@ -11,8 +12,8 @@
  * Global size = number of work-items (a multiple of the work-group size the
  * host picks); items past the data write zeros.
  *
- * Two kernels: bf_pass_full (value + forward-difference Jacobian moments,
- * np = BF_NP) and bf_pass_value (np = 0: value moments only).
+ * Two kernels: bf_kernel_full (value + forward-difference Jacobian moments,
+ * np = BF_NP) and bf_kernel_value (np = 0: value moments only).
  */
 #ifndef BF_MODEL
 #error "build with -DBF_MODEL=<model id>"
@@ -28,9 +29,10 @@
 #error "BF_WIDTH must be 4 or 8"
 #endif
 
-inline void bf_pass_run(const int np, __global const double *data, const ulong npad,
-                        const uint vec_per_item, __constant const double *ppar,
-                        __global double *out)
+/* One work-item's run of vectors: the body of both kernels. */
+inline void bf_kernel_pass(const int np, __global const double *data, const ulong npad,
+                           const uint vec_per_item, __constant const double *ppar,
+                           __global double *out)
 {
     const uint gid = get_global_id(0);
     const int nmom = bf_nmom(BF_NK, np);
@@ -43,7 +45,8 @@ inline void bf_pass_run(const int np, __global const double *data, const ulong n
     for (int m = 0; m < nmom; m++)
         acc[m] = BF_R(0.0);
 
-    bf_he_memo memo = { { 0.0 } };
+    bf_lobe_state state;
+    bf_lobe_state_clear(&state);
     const ulong nvec = npad / BF_WIDTH;
     ulong v0 = (ulong)gid * vec_per_item;
     ulong v1 = min(v0 + vec_per_item, nvec);
@@ -62,20 +65,20 @@ inline void bf_pass_run(const int np, __global const double *data, const ulong n
         rho[1] = BF_VLOAD(v, data + BF_F_G * npad);
         rho[2] = BF_VLOAD(v, data + BF_F_B * npad);
         BF_REAL a2 = BF_VLOAD(v, data + BF_F_A2 * npad);
-        bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc, &memo);
+        bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc, &state);
     }
     for (int m = 0; m < nmom; m++)
         out[(ulong)gid * nmom + m] = BF_HSUM(acc[m]);
 }
 
-__kernel void bf_pass_full(__global const double *data, const ulong npad, const uint vec_per_item,
-                           __constant const double *ppar, __global double *out)
+__kernel void bf_kernel_full(__global const double *data, const ulong npad, const uint vec_per_item,
+                             __constant const double *ppar, __global double *out)
 {
-    bf_pass_run(BF_NP, data, npad, vec_per_item, ppar, out);
+    bf_kernel_pass(BF_NP, data, npad, vec_per_item, ppar, out);
 }
 
-__kernel void bf_pass_value(__global const double *data, const ulong npad, const uint vec_per_item,
-                            __constant const double *ppar, __global double *out)
+__kernel void bf_kernel_value(__global const double *data, const ulong npad, const uint vec_per_item,
+                              __constant const double *ppar, __global double *out)
 {
-    bf_pass_run(0, data, npad, vec_per_item, ppar, out);
+    bf_kernel_pass(0, data, npad, vec_per_item, ppar, out);
 }

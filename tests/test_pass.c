@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
 #include "context.h"
+#include "pass.h"
 
 #include <check.h>
 #include <math.h>
@@ -57,15 +58,15 @@ START_TEST(kernel_equals_host)
     co.backend = BRDFFIT_BACKEND_OPENCL;
     brdffit_context *ctx = NULL;
     ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
-    bf_passer ps;
-    ck_assert_msg(bf_passer_open(&ps, ctx, s, m, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_driver dr;
+    ck_assert_msg(bf_driver_open(&dr, ctx, s, m, &err) == BRDFFIT_OK, "%s", err.message);
     bf_pass_par pp;
     some_point(m, &pp);
     for (int full = 0; full <= 1; full++) {
-        int np = full ? ps.np : 0, nmom = bf_nmom(ps.nk, np);
+        int np = full ? dr.np : 0, nmom = bf_nmom(dr.nk, np);
         double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
-        ck_assert_msg(bf_passer_run(&ps, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
-        bf_pass_host(s, m, ps.nk, np, &pp, h);
+        ck_assert_msg(bf_driver_run(&dr, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
+        bf_host_loop(s, m, dr.nk, np, &pp, h);
         for (int i = 0; i < nmom; i++) {
             ck_assert_msg(isfinite(k[i]) && isfinite(h[i]), "moment %d not finite", i);
             ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "%s full=%d moment %d: kernel %.17g host %.17g",
@@ -74,7 +75,7 @@ START_TEST(kernel_equals_host)
         if (!full)
             ck_assert(h[0] > 0); /* A = sum of the weights: the pass saw the data */
     }
-    bf_passer_close(&ps);
+    bf_driver_close(&dr);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
 }
@@ -87,10 +88,49 @@ START_TEST(weights_normalised)
     bf_pass_par pp;
     some_point(BRDFFIT_WARD, &pp);
     double h[BF_NMOM_MAX];
-    bf_pass_host(s, BRDFFIT_WARD, 1, 0, &pp, h);
+    bf_host_loop(s, BRDFFIT_WARD, 1, 0, &pp, h);
     /* a2 = w cos^2 / (3 sum w) so 3 A = sum w cos^2 / sum w, in (0, 1] */
     ck_assert(3 * h[0] > 0.1 && 3 * h[0] <= 1.0);
     brdffit_samples_free(s);
+}
+END_TEST
+
+/* The named moment offsets of kernels/bf_layout.h (used by the kernel, the
+ * host loop and the fit alike) tile [0, bf_nmom(nk, np)) exactly: every
+ * moment has one name and no two names share a slot, for every nk and np. */
+START_TEST(moment_layout)
+{
+    for (int nk = 1; nk <= 3; nk += 2)
+        for (int np = 0; np <= BF_MAX_NP; np++) {
+            int nmom = bf_nmom(nk, np), seen[BF_NMOM_MAX];
+            ck_assert_int_le(nmom, BF_NMOM_MAX);
+            memset(seen, 0, sizeof seen);
+            seen[BF_MOM_A]++;
+            for (int k = 0; k < nk; k++) {
+                int b = bf_mom_lobe(k, np);
+                seen[b + BF_MK_SK]++;
+                seen[b + BF_MK_SKK]++;
+                for (int j = 0; j < np; j++) {
+                    seen[b + bf_mk_sg(j)]++;
+                    seen[b + bf_mk_skg(np, j)]++;
+                    for (int l = j; l < np; l++)
+                        seen[b + bf_mk_sgg(np, j, l)]++;
+                }
+                ck_assert_int_le(bf_mk_sgg(np, np - 1, np - 1), bf_kblk(np) - 1);
+            }
+            for (int c = 0; c < 3; c++) {
+                int b = bf_mom_chan(c, nk, np);
+                seen[b + BF_MC_SE]++;
+                seen[b + BF_MC_SKE]++;
+                seen[b + BF_MC_SEE]++;
+                for (int j = 0; j < np; j++)
+                    seen[b + bf_mc_sge(j)]++;
+            }
+            for (int m = 0; m < BF_NMOM_MAX; m++)
+                ck_assert_msg(seen[m] == (m < nmom), "nk %d np %d: moment %d named %d times", nk,
+                              np, m, seen[m]);
+        }
+    ck_assert_int_eq(bf_nmom(3, BF_MAX_NP), BF_NMOM_MAX);
 }
 END_TEST
 
@@ -236,6 +276,7 @@ Suite *pass_suite(void)
     tcase_set_timeout(tc, 300);
     tcase_add_loop_test(tc, kernel_equals_host, 0, BRDFFIT_MODEL_COUNT);
     tcase_add_test(tc, weights_normalised);
+    tcase_add_test(tc, moment_layout);
     tcase_add_test(tc, device_selection);
     tcase_add_test(tc, no_platform_falls_back_to_host);
     tcase_add_test(tc, pocl_cache_out_of_the_box);

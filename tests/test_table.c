@@ -2,7 +2,8 @@
  * lookup) and sample sets. */
 #define _POSIX_C_SOURCE 200809L
 #include "brdffit.h"
-#include "internal.h" /* struct brdffit_samples: the prepared fields */
+#include "internal.h" /* bf_scale_factors */
+#include "samples.h"  /* struct brdffit_samples: the prepared fields */
 #include "testutil.h"
 
 #include <check.h>

@@ -21,14 +21,6 @@ void brdffit_context_options_default(brdffit_context_options *opt)
     opt->device = NULL;
 }
 
-int bf_model_ncoords(brdffit_model model)
-{
-    const brdffit_model_info *mi = brdffit_model_get(model);
-    if (!mi)
-        return 0;
-    return model == BRDFFIT_LAFORTUNE ? 2 : mi->nparams;
-}
-
 /* mkdir -p for a short path; 0 when dir exists and is writable afterwards. */
 static int make_dirs(const char *dir)
 {
@@ -323,8 +315,8 @@ brdffit_status bf_context_kernels(brdffit_context *ctx, brdffit_model model, cl_
             free(log);
             return BRDFFIT_E_KERNEL_BUILD;
         }
-        cl_kernel kf = clCreateKernel(prog, "bf_pass_full", &rc);
-        cl_kernel kv = kf ? clCreateKernel(prog, "bf_pass_value", &rc) : NULL;
+        cl_kernel kf = clCreateKernel(prog, "bf_kernel_full", &rc);
+        cl_kernel kv = kf ? clCreateKernel(prog, "bf_kernel_value", &rc) : NULL;
         if (!kf || !kv) {
             if (kf)
                 clReleaseKernel(kf);

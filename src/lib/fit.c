@@ -1,8 +1,8 @@
 /* fit.c -- brdffit_fit: start screening and Levenberg-Marquardt (cminpack).
  *
- * Unknowns x (internal coordinates, nx = 6 + nl):
- *   x[0..2] = sqrt(d_c), x[3..5] = sqrt(s_c)      (d, s >= 0)
- *   x[6..]  = lobe coordinates u: bounded parameters v = lo + (hi-lo)(1+sin u)/2,
+ * Unknowns x (internal coordinates, nx = X_LOBE + nl), offsets named X_*:
+ *   x[X_D + c] = sqrt(d_c), x[X_S + c] = sqrt(s_c)      (d, s >= 0)
+ *   x[X_LOBE + j] = lobe coordinates u: bounded parameters v = lo + (hi-lo)(1+sin u)/2,
  *             on a log scale for widths and exponents; Lafortune's direction is
  *             an angle phi with (Cxy, Cz) = (cos phi / sqrt 2, sin phi).
  *
@@ -17,13 +17,15 @@
  * Jacobian it asks for next).
  */
 #define _DEFAULT_SOURCE /* M_PI, M_SQRT2, M_SQRT1_2 */
-#include "context.h"
+#include "pass.h"
+#include "samples.h"
 
 #include <cminpack.h>
 #include <math.h>
 #include <string.h>
 
-#define NX_MAX (6 + BF_MAX_NP)
+enum { X_D = 0, X_S = 3, X_LOBE = 6 }; /* offsets of the unknowns */
+#define NX_MAX (X_LOBE + BF_MAX_NP)
 #define NM_MAX (NX_MAX + 1)
 #define FD_STEP 1e-7
 
@@ -106,7 +108,7 @@ typedef struct point {
 } point;
 
 typedef struct lmstate {
-    bf_passer *ps;
+    bf_pass_driver *ps;
     fitmap fm;
     int nx;
     double lam[3];
@@ -121,19 +123,19 @@ static void make_pass_par(const lmstate *S, const double *x, int with_fd, bf_pas
 {
     memset(pp, 0, sizeof *pp);
     for (int c = 0; c < 3; c++) {
-        pp->d[c] = x[c] * x[c];
-        pp->s[c] = x[3 + c] * x[3 + c];
+        pp->d[c] = x[X_D + c] * x[X_D + c];
+        pp->s[c] = x[X_S + c] * x[X_S + c];
         pp->lam[c] = S->lam[c];
     }
-    coords_to_params(&S->fm, x + 6, pp->p[0]);
+    coords_to_params(&S->fm, x + X_LOBE, pp->p[0]);
     if (!with_fd)
         return;
     for (int j = 0; j < S->fm.nl; j++) {
         double u[BF_MAX_NP];
-        memcpy(u, x + 6, sizeof u);
+        memcpy(u, x + X_LOBE, sizeof u);
         double h = FD_STEP * fmax(1.0, fabs(u[j]));
         u[j] += h;
-        h = u[j] - x[6 + j]; /* the step actually representable */
+        h = u[j] - x[X_LOBE + j]; /* the step actually representable */
         coords_to_params(&S->fm, u, pp->p[1 + j]);
         pp->inv_h[j] = 1.0 / h;
     }
@@ -147,25 +149,25 @@ static void assemble(const lmstate *S, const double *x, const bf_pass_par *pp, c
     double H[NX_MAX][NX_MAX], g[NX_MAX], rr = 0.0;
     memset(H, 0, sizeof H);
     memset(g, 0, sizeof g);
-    const double A = mom[0], ipi = 1.0 / M_PI;
+    const double A = mom[BF_MOM_A], ipi = 1.0 / M_PI;
     for (int c = 0; c < 3; c++) {
         int k = nk > 1 ? c : 0;
         const double *mk = mom + bf_mom_lobe(k, np);
         const double *mc = mom + bf_mom_chan(c, nk, np);
-        double jd = 2.0 * x[c], js = 2.0 * x[3 + c], s = pp->s[c];
-        H[c][c] = jd * jd * A * ipi * ipi;
-        H[c][3 + c] = jd * js * mk[0] * ipi;
-        H[3 + c][3 + c] = js * js * mk[1];
-        g[c] = -jd * ipi * mc[0];
-        g[3 + c] = -js * mc[1];
-        rr += mc[2];
-        int t = 2 + 2 * np;
+        const int xd = X_D + c, xs = X_S + c;
+        double jd = 2.0 * x[xd], js = 2.0 * x[xs], s = pp->s[c];
+        H[xd][xd] = jd * jd * A * ipi * ipi;
+        H[xd][xs] = jd * js * mk[BF_MK_SK] * ipi;
+        H[xs][xs] = js * js * mk[BF_MK_SKK];
+        g[xd] = -jd * ipi * mc[BF_MC_SE];
+        g[xs] = -js * mc[BF_MC_SKE];
+        rr += mc[BF_MC_SEE];
         for (int j = 0; j < np; j++) {
-            H[c][6 + j] = jd * ipi * s * mk[2 + j];
-            H[3 + c][6 + j] = js * s * mk[2 + np + j];
-            g[6 + j] -= s * mc[3 + j];
+            H[xd][X_LOBE + j] = jd * ipi * s * mk[bf_mk_sg(j)];
+            H[xs][X_LOBE + j] = js * s * mk[bf_mk_skg(np, j)];
+            g[X_LOBE + j] -= s * mc[bf_mc_sge(j)];
             for (int l = j; l < np; l++)
-                H[6 + j][6 + l] += s * s * mk[t++];
+                H[X_LOBE + j][X_LOBE + l] += s * s * mk[bf_mk_sgg(np, j, l)];
         }
     }
     /* Cholesky H = R^T R (upper R); a pivot that vanishes (a direction the
@@ -225,7 +227,7 @@ static const point *evaluate(lmstate *S, const double *x)
     bf_pass_par pp;
     make_pass_par(S, x, 1, &pp);
     double mom[BF_NMOM_MAX];
-    S->st = bf_passer_run(S->ps, 1, &pp, mom, S->err);
+    S->st = bf_driver_run(S->ps, 1, &pp, mom, S->err);
     if (S->st != BRDFFIT_OK)
         return NULL;
     point *pt = &S->cache[S->next];
@@ -351,7 +353,7 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *st)
     memcpy(pp.lam, S->lam, sizeof pp.lam);
     memcpy(pp.p[0], p, 3 * sizeof *p);
     double mom[BF_NMOM_MAX];
-    brdffit_status rc = bf_passer_run(S->ps, 0, &pp, mom, S->err);
+    brdffit_status rc = bf_driver_run(S->ps, 0, &pp, mom, S->err);
     if (rc != BRDFFIT_OK)
         return rc;
     const int nk = S->ps->nk;
@@ -359,16 +361,17 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *st)
     for (int c = 0; c < 3; c++) {
         const double *mk = mom + bf_mom_lobe(nk > 1 ? c : 0, 0);
         const double *mc = mom + bf_mom_chan(c, nk, 0);
-        double d, s, A = mom[0];
-        st->cost += best_linear(A, mk[0], mk[1], mc[0], mc[1], mc[2], &d, &s);
-        double mean_rho = A > 0 ? fmax(mc[0] / A, 0.0) : 0.0;
-        double mean_k = A > 0 ? mk[0] / A : 0.0;
+        double d, s, A = mom[BF_MOM_A];
+        st->cost += best_linear(A, mk[BF_MK_SK], mk[BF_MK_SKK], mc[BF_MC_SE], mc[BF_MC_SKE],
+                                mc[BF_MC_SEE], &d, &s);
+        double mean_rho = A > 0 ? fmax(mc[BF_MC_SE] / A, 0.0) : 0.0;
+        double mean_k = A > 0 ? mk[BF_MK_SK] / A : 0.0;
         double dfloor = 1e-4 * M_PI * mean_rho + 1e-12;
         double sfloor = (mean_k > 0 ? 1e-4 * mean_rho / mean_k : 0.0) + 1e-12;
-        st->x[c] = sqrt(fmax(d, dfloor));
-        st->x[3 + c] = sqrt(fmax(s, sfloor));
+        st->x[X_D + c] = sqrt(fmax(d, dfloor));
+        st->x[X_S + c] = sqrt(fmax(s, sfloor));
     }
-    params_to_coords(&S->fm, p, st->x + 6);
+    params_to_coords(&S->fm, p, st->x + X_LOBE);
     return BRDFFIT_OK;
 }
 
@@ -426,10 +429,10 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (rc != BRDFFIT_OK)
         return rc;
 
-    bf_passer ps;
-    rc = bf_passer_open(&ps, ctx, samples, model, err);
+    bf_pass_driver ps;
+    rc = bf_driver_open(&ps, ctx, samples, model, err);
     if (rc != BRDFFIT_OK) {
-        bf_passer_close(&ps);
+        bf_driver_close(&ps);
         return rc;
     }
     lmstate S;
@@ -437,7 +440,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     S.ps = &ps;
     S.err = err;
     fitmap_init(&S.fm, model);
-    S.nx = 6 + S.fm.nl;
+    S.nx = X_LOBE + S.fm.nl;
     brdffit_params lp;
     memset(&lp, 0, sizeof lp);
     memcpy(lp.lambda_um, o.lambda_um, sizeof lp.lambda_um);
@@ -454,7 +457,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
         start_params(model, i, nstarts, p);
         rc = screen_start(&S, p, &st);
         if (rc != BRDFFIT_OK) {
-            bf_passer_close(&ps);
+            bf_driver_close(&ps);
             return rc;
         }
         int pos = nkeep;
@@ -485,12 +488,12 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
                          o.max_evals, diag, 1, 100.0, 0, &nfev, &njev, ipvt, qtf, wa1, wa2, wa3, wa4);
         solver_seconds += (bf_now() - t0) - (S.seconds_cb - cb0);
         if (S.st != BRDFFIT_OK) { /* a pass failed: lmder was stopped (info < 0) */
-            bf_passer_close(&ps);
+            bf_driver_close(&ps);
             return S.st;
         }
         const point *pt = evaluate(&S, x); /* cached: the point lmder returned */
         if (!pt) {
-            bf_passer_close(&ps);
+            bf_driver_close(&ps);
             return S.st;
         }
         if (pt->rr < best_rr) {
@@ -501,17 +504,17 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
         }
     }
     if (!isfinite(best_rr)) {
-        bf_passer_close(&ps);
+        bf_driver_close(&ps);
         return bf_fail(err, BRDFFIT_E_FIT_FAILED, "no start gave a finite Error");
     }
 
     memset(result, 0, sizeof *result);
     result->model = model;
     for (int c = 0; c < 3; c++) {
-        result->params.d[c] = best_x[c] * best_x[c];
-        result->params.s[c] = best_x[3 + c] * best_x[3 + c];
+        result->params.d[c] = best_x[X_D + c] * best_x[X_D + c];
+        result->params.s[c] = best_x[X_S + c] * best_x[X_S + c];
     }
-    coords_to_params(&S.fm, best_x + 6, result->params.p);
+    coords_to_params(&S.fm, best_x + X_LOBE, result->params.p);
     if (model == BRDFFIT_HE)
         memcpy(result->params.lambda_um, S.lam, sizeof S.lam);
     result->error = sqrt(best_rr);
@@ -519,10 +522,10 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     result->iterations = best_njev;
     result->evaluations = ps.passes;
     result->samples = samples->n;
-    result->backend = ctx->backend;
+    result->backend = brdffit_context_backend(ctx);
     result->seconds_passes = ps.seconds;
     result->seconds_solver = solver_seconds;
-    bf_passer_close(&ps);
+    bf_driver_close(&ps);
     result->seconds = bf_now() - t_start;
     bf_ok(err);
     return BRDFFIT_OK;
@@ -537,8 +540,8 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
     brdffit_status rc = brdffit_params_check(model, params, err);
     if (rc != BRDFFIT_OK)
         return rc;
-    bf_passer ps;
-    rc = bf_passer_open(&ps, ctx, samples, model, err);
+    bf_pass_driver ps;
+    rc = bf_driver_open(&ps, ctx, samples, model, err);
     if (rc == BRDFFIT_OK) {
         bf_pass_par pp;
         memset(&pp, 0, sizeof pp);
@@ -547,15 +550,15 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
         bf_lambdas(params, pp.lam);
         memcpy(pp.p[0], params->p, sizeof pp.p[0]);
         double mom[BF_NMOM_MAX];
-        rc = bf_passer_run(&ps, 0, &pp, mom, err);
+        rc = bf_driver_run(&ps, 0, &pp, mom, err);
         if (rc == BRDFFIT_OK) {
             double rr = 0.0;
             for (int c = 0; c < 3; c++)
-                rr += mom[bf_mom_chan(c, ps.nk, 0) + 2]; /* SEE */
+                rr += mom[bf_mom_chan(c, ps.nk, 0) + BF_MC_SEE];
             *error = sqrt(fmax(rr, 0.0));
             bf_ok(err);
         }
     }
-    bf_passer_close(&ps);
+    bf_driver_close(&ps);
     return rc;
 }

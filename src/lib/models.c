@@ -35,6 +35,14 @@ const brdffit_model_info *brdffit_model_get(brdffit_model model)
     return &model_table[model];
 }
 
+int bf_model_ncoords(brdffit_model model)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    if (!mi)
+        return 0;
+    return model == BRDFFIT_LAFORTUNE ? 2 : mi->nparams;
+}
+
 brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out)
 {
     if (!name || !out)

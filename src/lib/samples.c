@@ -1,16 +1,14 @@
 /* samples.c -- the valid samples of a MERL table, prepared for a data pass
- * (struct brdffit_samples in internal.h). */
+ * (struct brdffit_samples in samples.h). */
 #include "internal.h"
+#include "grid.h"
+#include "samples.h"
 
 #include "bf_models.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#define NBINS ((size_t)BRDFFIT_MERL_BINS)
-#define NTD BRDFFIT_MERL_NTD
-#define NPD BRDFFIT_MERL_NPD
 
 /* cos(theta) >= cos(cutoff) - COS_TOL counts as within the cutoff */
 #define COS_TOL 1e-12
@@ -31,13 +29,6 @@ void brdffit_samples_free(brdffit_samples *samples)
     free(samples->w);
     free(samples->bin);
     free(samples);
-}
-
-static void bin_ijk(int b, int *i, int *j, int *k)
-{
-    *k = b % NPD;
-    *j = (b / NPD) % NTD;
-    *i = b / (NPD * NTD);
 }
 
 brdffit_status brdffit_samples_create(const brdffit_table *table,
@@ -65,7 +56,7 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
     static const char ch[3] = { 'R', 'G', 'B' };
 
     brdffit_samples *s = calloc(1, sizeof *s);
-    int *bins = malloc(NBINS * sizeof *bins);
+    int *bins = malloc(BF_NBINS * sizeof *bins);
     if (!s || !bins) {
         free(s);
         free(bins);
@@ -75,11 +66,11 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
 
     /* pass 1: classify every bin */
     size_t n = 0;
-    for (size_t b = 0; b < NBINS; b++) {
-        double r = v[b], g = v[NBINS + b], bl = v[2 * NBINS + b];
+    for (size_t b = 0; b < BF_NBINS; b++) {
+        double r = v[b], g = v[BF_NBINS + b], bl = v[2 * BF_NBINS + b];
         if (!isfinite(r) || !isfinite(g) || !isfinite(bl)) {
             int c = !isfinite(r) ? 0 : !isfinite(g) ? 1 : 2, i, j, k;
-            bin_ijk((int)b, &i, &j, &k);
+            bf_bin_ijk(b, &i, &j, &k);
             free(s);
             free(bins);
             return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
@@ -92,7 +83,7 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
         }
         int i, j, k;
         double wi[3], wo[3];
-        bin_ijk((int)b, &i, &j, &k);
+        bf_bin_ijk(b, &i, &j, &k);
         brdffit_bin_directions(i, j, k, wi, wo);
         if (wi[2] > 0 && wo[2] > 0 && wi[2] >= cosc && wo[2] >= cosc)
             bins[n++] = (int)b;
@@ -132,7 +123,7 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
     double sum_w = 0;
     for (size_t m = 0; m < n; m++) {
         int b = s->bin[m], i, j, k;
-        bin_ijk(b, &i, &j, &k);
+        bf_bin_ijk((size_t)b, &i, &j, &k);
         double wi[3], wo[3];
         brdffit_bin_directions(i, j, k, wi, wo);
         bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
@@ -146,8 +137,8 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
         F[BF_F_NH][m] = g.nh;
         F[BF_F_VH][m] = g.vh;
         F[BF_F_R][m] = v[(size_t)b] * f[0];
-        F[BF_F_G][m] = v[NBINS + (size_t)b] * f[1];
-        F[BF_F_B][m] = v[2 * NBINS + (size_t)b] * f[2];
+        F[BF_F_G][m] = v[BF_NBINS + (size_t)b] * f[1];
+        F[BF_F_B][m] = v[2 * BF_NBINS + (size_t)b] * f[2];
         s->w[m] = brdffit_bin_weight(i, j);
         sum_w += s->w[m];
     }
@@ -206,7 +197,7 @@ brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
         out->rgb[c] = d[(size_t)(BF_F_R + c) * np + index];
     }
     out->weight = samples->w[index];
-    bin_ijk(samples->bin[index], &out->i, &out->j, &out->k);
+    bf_bin_ijk((size_t)samples->bin[index], &out->i, &out->j, &out->k);
     return BRDFFIT_OK;
 }
 

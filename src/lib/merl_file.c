@@ -1,0 +1,235 @@
+/* merl_file.c -- reading and writing MERL .binary files.
+ *
+ * Format: three int32 (90, 90, 180), then 3 x 1,458,000 float64, R plane,
+ * G plane, B plane, value index k + 180*(j + 90*i).  The file is
+ * little-endian (as MERL's files and readers are); the reader and the writer
+ * convert on a big-endian host, though only little-endian hosts are tested. */
+#define _POSIX_C_SOURCE 200809L
+#include "internal.h"
+#include "grid.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define HEADER_BYTES ((size_t)12)
+#define DATA_BYTES (BF_NVALUES * sizeof(double))
+#define FILE_BYTES (HEADER_BYTES + DATA_BYTES) /* 34,992,012 */
+
+/* ------------------------------------------------------------------ byte order */
+
+static int host_little_endian(void)
+{
+    const uint16_t one = 1;
+    unsigned char b;
+    memcpy(&b, &one, 1);
+    return b == 1;
+}
+
+static void swap8(void *p, size_t n)
+{
+    unsigned char *b = p;
+    for (size_t s = 0; s < n; s++, b += 8) {
+        for (int k = 0; k < 4; k++) {
+            unsigned char t = b[k];
+            b[k] = b[7 - k];
+            b[7 - k] = t;
+        }
+    }
+}
+
+static int32_t get_le32(const unsigned char *b)
+{
+    uint32_t u = (uint32_t)b[0] | ((uint32_t)b[1] << 8) | ((uint32_t)b[2] << 16) |
+                 ((uint32_t)b[3] << 24);
+    int32_t v;
+    memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+static void put_le32(unsigned char *b, int32_t v)
+{
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    b[0] = (unsigned char)(u & 0xff);
+    b[1] = (unsigned char)((u >> 8) & 0xff);
+    b[2] = (unsigned char)((u >> 16) & 0xff);
+    b[3] = (unsigned char)((u >> 24) & 0xff);
+}
+
+/* ------------------------------------------------------------------ read */
+
+/* Read up to len bytes; returns the count read (< len only at end of file)
+ * or -1 with errno set. */
+static long long read_full(int fd, void *buf, size_t len)
+{
+    unsigned char *p = buf;
+    size_t got = 0;
+    while (got < len) {
+        size_t chunk = len - got;
+        if (chunk > ((size_t)1 << 30))
+            chunk = (size_t)1 << 30;
+        ssize_t r = read(fd, p + got, chunk);
+        if (r < 0) {
+            if (errno == EINTR)
+                continue;
+            return -1;
+        }
+        if (r == 0)
+            break;
+        got += (size_t)r;
+    }
+    return (long long)got;
+}
+
+static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brdffit_error *err)
+{
+    struct stat st;
+    if (fstat(fd, &st) != 0)
+        return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: cannot stat: %s", path, strerror(errno));
+    if (S_ISDIR(st.st_mode))
+        return bf_fail(err, BRDFFIT_E_FILE_NOT_REGULAR, "%s: is a directory, not a MERL table",
+                       path);
+    if (!S_ISREG(st.st_mode))
+        return bf_fail(err, BRDFFIT_E_FILE_NOT_REGULAR, "%s: not a regular file", path);
+    unsigned long long size = (unsigned long long)st.st_size;
+    if (size == 0)
+        return bf_fail(err, BRDFFIT_E_FILE_EMPTY, "%s: empty file (0 bytes, %zu expected)", path,
+                       FILE_BYTES);
+    if (size < HEADER_BYTES)
+        return bf_fail(err, BRDFFIT_E_FILE_TRUNCATED,
+                       "%s: truncated at byte %llu of %zu expected (shorter than the 12-byte header)",
+                       path, size, FILE_BYTES);
+
+    unsigned char hdr[HEADER_BYTES];
+    long long r = read_full(fd, hdr, sizeof hdr);
+    if (r < 0)
+        return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: read error: %s", path, strerror(errno));
+    if ((size_t)r < sizeof hdr)
+        return bf_fail(err, BRDFFIT_E_FILE_TRUNCATED, "%s: truncated at byte %lld of %zu expected",
+                       path, r, FILE_BYTES);
+    int32_t dims[3] = { get_le32(hdr), get_le32(hdr + 4), get_le32(hdr + 8) };
+    if (dims[0] != BF_NTH || dims[1] != BF_NTD || dims[2] != BF_NPD)
+        return bf_fail(err, BRDFFIT_E_FILE_DIMS, "%s: dims %ldx%ldx%ld, expected %dx%dx%d", path,
+                       (long)dims[0], (long)dims[1], (long)dims[2], BF_NTH, BF_NTD, BF_NPD);
+    if (size < FILE_BYTES)
+        return bf_fail(err, BRDFFIT_E_FILE_TRUNCATED, "%s: truncated at byte %llu of %zu expected",
+                       path, size, FILE_BYTES);
+    if (size > FILE_BYTES)
+        return bf_fail(err, BRDFFIT_E_FILE_TRAILING,
+                       "%s: %llu trailing bytes after the table (%llu bytes, %zu expected)", path,
+                       size - FILE_BYTES, size, FILE_BYTES);
+
+    brdffit_table *t = malloc(sizeof *t);
+    if (!t)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "%s: cannot allocate %zu bytes for the table",
+                       path, sizeof *t);
+    r = read_full(fd, t->v, DATA_BYTES);
+    if (r < 0) {
+        int e = errno;
+        free(t);
+        return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: read error: %s", path, strerror(e));
+    }
+    if ((size_t)r < DATA_BYTES) { /* the file shrank since fstat */
+        free(t);
+        return bf_fail(err, BRDFFIT_E_FILE_TRUNCATED, "%s: truncated at byte %llu of %zu expected",
+                       path, (unsigned long long)HEADER_BYTES + (unsigned long long)r, FILE_BYTES);
+    }
+    unsigned char extra;
+    r = read_full(fd, &extra, 1);
+    if (r != 0) { /* grew since fstat, or failed */
+        int e = errno;
+        free(t);
+        if (r < 0)
+            return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: read error: %s", path, strerror(e));
+        return bf_fail(err, BRDFFIT_E_FILE_TRAILING, "%s: trailing bytes after byte %zu", path,
+                       FILE_BYTES);
+    }
+    if (!host_little_endian())
+        swap8(t->v, BF_NVALUES);
+
+    for (size_t n = 0; n < BF_NVALUES; n++) {
+        double x = t->v[n];
+        if (!isfinite(x)) {
+            size_t c = n / BF_NBINS;
+            int i, j, k;
+            bf_bin_ijk(n % BF_NBINS, &i, &j, &k);
+            free(t);
+            return bf_fail(err, BRDFFIT_E_FILE_NONFINITE,
+                           "%s: %s at index %zu (channel %c, bin %d,%d,%d)", path,
+                           isnan(x) ? "NaN" : (x > 0 ? "+inf" : "-inf"), n, bf_channel_name[c], i, j,
+                           k);
+        }
+    }
+    *out = t;
+    bf_ok(err);
+    return BRDFFIT_OK;
+}
+
+brdffit_status brdffit_table_read(const char *path, brdffit_table **out, brdffit_error *err)
+{
+    if (out)
+        *out = NULL;
+    if (!path || !out)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_table_read: %s is NULL",
+                       !path ? "path" : "out");
+    /* O_NONBLOCK: opening a FIFO must not hang before fstat rejects it. */
+    int fd;
+    do
+        fd = open(path, O_RDONLY | O_NONBLOCK);
+    while (fd < 0 && errno == EINTR);
+    if (fd < 0)
+        return bf_fail(err, BRDFFIT_E_FILE_OPEN, "%s: cannot open: %s", path, strerror(errno));
+    brdffit_status s = read_fd(fd, path, out, err);
+    close(fd);
+    return s;
+}
+
+/* ------------------------------------------------------------------ write */
+
+brdffit_status brdffit_table_write(const brdffit_table *table, const char *path,
+                                   brdffit_error *err)
+{
+    if (!table || !path)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_table_write: %s is NULL",
+                       !table ? "table" : "path");
+    FILE *f = fopen(path, "wb");
+    if (!f)
+        return bf_fail(err, BRDFFIT_E_FILE_WRITE, "%s: cannot open for writing: %s", path,
+                       strerror(errno));
+    unsigned char hdr[HEADER_BYTES];
+    put_le32(hdr, BF_NTH);
+    put_le32(hdr + 4, BF_NTD);
+    put_le32(hdr + 8, BF_NPD);
+    int ok = fwrite(hdr, 1, sizeof hdr, f) == sizeof hdr;
+    int e = ok ? 0 : errno;
+    if (ok && host_little_endian()) {
+        ok = fwrite(table->v, sizeof(double), BF_NVALUES, f) == BF_NVALUES;
+    } else if (ok) {
+        double buf[1024];
+        for (size_t n = 0; ok && n < BF_NVALUES; n += 1024) {
+            size_t m = BF_NVALUES - n < 1024 ? BF_NVALUES - n : 1024;
+            memcpy(buf, table->v + n, m * sizeof(double));
+            swap8(buf, m);
+            ok = fwrite(buf, sizeof(double), m, f) == m;
+        }
+    }
+    if (!ok && !e)
+        e = errno;
+    if (fclose(f) != 0 && ok) {
+        ok = 0;
+        e = errno;
+    }
+    if (!ok)
+        return bf_fail(err, BRDFFIT_E_FILE_WRITE, "%s: write failed: %s", path,
+                       e ? strerror(e) : "short write");
+    bf_ok(err);
+    return BRDFFIT_OK;
+}
+

@@ -1,0 +1,31 @@
+/* samples.h -- the inside of a sample set: the prepared geometry and
+ * values a data pass reads (samples.c makes it). */
+#ifndef BRDFFIT_SAMPLES_H
+#define BRDFFIT_SAMPLES_H
+
+#include "brdffit.h"
+
+#include <stddef.h>
+
+#include "bf_layout.h"
+
+/* A sample set: one 64-byte-aligned block of BF_NFIELDS x npad doubles, field f at
+ * data + f * npad (structure of arrays, so the kernel loads vectors); the
+ * fields BF_F_* are listed in kernels/bf_layout.h.
+ * Padding samples (index >= n) are harmless: wi = wo = (0, 0, 1), rgb = 0,
+ * a2 = 0, so they add exactly 0 to every sum. */
+#define BF_PAD 64  /* npad is a multiple of this */
+
+struct brdffit_samples {
+    size_t n;                    /* valid samples */
+    size_t npad;                 /* n rounded up to a multiple of BF_PAD (>= BF_PAD) */
+    size_t masked;               /* bins with a negative value in some channel */
+    size_t beyond_cutoff;        /* valid bins outside the cutoff (or below the horizon) */
+    brdffit_sample_options opt;
+    double sum_w;                /* sum of the solid-angle weights of the n samples */
+    double *data;                /* BF_NFIELDS * npad doubles, aligned */
+    double *w;                   /* n solid-angle weights */
+    int *bin;                    /* n bin indices k + 180*(j + 90*i) */
+};
+
+#endif /* BRDFFIT_SAMPLES_H */

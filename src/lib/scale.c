@@ -1,0 +1,54 @@
+/* scale.c -- the channel scales: stored value x factor = BRDF value (1/sr). */
+#include "internal.h"
+
+#include <string.h>
+
+int bf_scale_known(brdffit_scale scale)
+{
+    return scale == BRDFFIT_SCALE_STANDARD || scale == BRDFFIT_SCALE_FLAT;
+}
+
+void bf_scale_factors(brdffit_scale scale, double factors[3])
+{
+    /* Anything but FLAT gives the standard factors; public callers validate. */
+    if (scale == BRDFFIT_SCALE_FLAT) {
+        factors[0] = factors[1] = factors[2] = 1.0 / 1500.0;
+    } else {
+        factors[0] = 1.0 / 1500.0;
+        factors[1] = 1.15 / 1500.0;
+        factors[2] = 1.66 / 1500.0;
+    }
+}
+
+brdffit_status brdffit_scale_factors(brdffit_scale scale, double factors[3])
+{
+    if (!factors || !bf_scale_known(scale))
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    bf_scale_factors(scale, factors);
+    return BRDFFIT_OK;
+}
+
+const char *brdffit_scale_name(brdffit_scale scale)
+{
+    switch (scale) {
+    case BRDFFIT_SCALE_STANDARD: return "standard";
+    case BRDFFIT_SCALE_FLAT: return "flat";
+    }
+    return "unknown";
+}
+
+brdffit_status brdffit_scale_from_name(const char *name, brdffit_scale *out)
+{
+    if (!name || !out)
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    if (strcmp(name, "standard") == 0) {
+        *out = BRDFFIT_SCALE_STANDARD;
+        return BRDFFIT_OK;
+    }
+    if (strcmp(name, "flat") == 0) {
+        *out = BRDFFIT_SCALE_FLAT;
+        return BRDFFIT_OK;
+    }
+    return BRDFFIT_E_INVALID_ARGUMENT;
+}
+

@@ -2,10 +2,13 @@
 #
 #   make             build/libbrdffit.a build/libbrdffit.so build/brdffit
 #   make demo        build, then fit every model to the embedded synthetic material
-#   make test        build and run the Check suite (uses ../shared when present)
+#   make test        build and run the Check suite and the Python package's tests
+#                    (python/tests, pytest; uses ../shared when present)
 #   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make bench       the benchmark (bench/), figures as in README.md
-#   make install PREFIX=/usr/local   header, libraries, brdffit.pc, program
+#   make bench-python  only its Python part (eval from NumPy against C)
+#   make install PREFIX=/usr/local   header, libraries, brdffit.pc, program, and
+#                    the Python package (python/brdffit) beside the library
 #   make clean
 
 PREFIX   ?= /usr/local
@@ -111,9 +114,11 @@ demo: all
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/brdffit demo
 
-test: $(BUILD)/test_brdffit $(BUILD)/brdffit
+test: $(BUILD)/test_brdffit $(BUILD)/brdffit $(BUILD)/libbrdffit.so
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit ./$(BUILD)/test_brdffit
+	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
+	    sh python/tests/run -q
 
 # The same suite built with ASan + UBSan in its own build directory.  LLVM
 # (inside PoCL) keeps allocations until exit: tests/lsan.supp names them.
@@ -127,9 +132,17 @@ sanitize:
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	./build-san/test_brdffit
 
-bench: $(BUILD)/bench_brdffit
+bench: $(BUILD)/bench_brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/bench_brdffit
+
+# The Python package's eval on 1,000,000 pairs against the same call from C.
+$(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdffit.so
+	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $< -L$(BUILD) -lbrdffit -Wl,-rpath,$(CURDIR)/$(BUILD) $(LDFLAGS)
+
+bench-python: $(BUILD)/bench_eval_c $(BUILD)/libbrdffit.so
+	BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
+	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
@@ -140,6 +153,25 @@ install: all
 	install -m 755 $(BUILD)/brdffit $(DESTDIR)$(PREFIX)/bin/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' brdffit.pc.in \
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/brdffit.pc
+	$(MAKE) --no-print-directory install-python
+
+# The Python package into $(PYTHONDIR) (default: $(PREFIX)/lib/pythonX.Y/dist-packages
+# of the python3 on PATH, where Debian's python3 looks for /usr/local and /usr),
+# with a relative link to the installed library next to it (where it looks first
+# after $$BRDFFIT_LIBRARY).  Skipped, with a note, when there is no python3.
+PY_SRC = $(wildcard python/brdffit/*.py)
+install-python:
+	@dir='$(PYTHONDIR)'; \
+	if [ -z "$$dir" ]; then \
+	    v=$$(python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null) || \
+	    { echo "install: no python3, the Python package (python/) is not installed"; exit 0; }; \
+	    dir='$(PREFIX)'/lib/python$$v/dist-packages; \
+	fi; \
+	set -x; \
+	install -d "$(DESTDIR)$$dir/brdffit" && \
+	install -m 644 $(PY_SRC) "$(DESTDIR)$$dir/brdffit/" && \
+	ln -sf "$$(realpath -m --relative-to="$$dir/brdffit" '$(PREFIX)/lib/$(SONAME)')" \
+	    "$(DESTDIR)$$dir/brdffit/$(SONAME)"
 
 clean:
 	rm -rf $(BUILD) build-san
@@ -147,5 +179,5 @@ clean:
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize bench install clean
+.PHONY: all demo test sanitize bench bench-python install install-python clean
 .DELETE_ON_ERROR:

@@ -225,6 +225,14 @@ typedef enum brdffit_interp {
 brdffit_status brdffit_table_lookup(const brdffit_table *table, const double wi[3],
                                     const double wo[3], brdffit_scale scale,
                                     brdffit_interp interp, double rgb[3]);
+/* The values of n (wi, wo) pairs as brdffit_table_lookup gives them, in one
+ * call: wi, wo are 3n doubles (x, y, z per pair), rgb 3n.  Every pair is
+ * looked up; a pair with a non-finite or zero direction gets rgb = -1 (no
+ * value) and the call then returns BRDFFIT_E_INVALID_ARGUMENT. */
+brdffit_status brdffit_table_lookup_batch(const brdffit_table *table, size_t n,
+                                          const double *wi, const double *wo,
+                                          brdffit_scale scale, brdffit_interp interp,
+                                          double *rgb);
 
 /* ------------------------------------------------------------------ sample sets */
 
@@ -339,6 +347,31 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
 
 /* "ngan-l2" */
 const char *brdffit_metric_name(void);
+
+/* ------------------------------------------------------------------ ABI introspection */
+
+/* For callers that mirror the public structs through FFI (the Python package
+ * in python/ does): the size and the member offsets of each struct as this
+ * library was compiled, so that a mirror written for another layout is
+ * refused instead of read as garbage.  Kinds are only appended.  A member
+ * added to a public struct is added to the list in src/lib/abi.c too. */
+typedef enum brdffit_struct_kind {
+    BRDFFIT_STRUCT_ERROR = 0,           /* brdffit_error          */
+    BRDFFIT_STRUCT_MODEL_INFO = 1,      /* brdffit_model_info     */
+    BRDFFIT_STRUCT_PARAMS = 2,          /* brdffit_params         */
+    BRDFFIT_STRUCT_SAMPLE_OPTIONS = 3,  /* brdffit_sample_options */
+    BRDFFIT_STRUCT_SAMPLE = 4,          /* brdffit_sample         */
+    BRDFFIT_STRUCT_CONTEXT_OPTIONS = 5, /* brdffit_context_options */
+    BRDFFIT_STRUCT_FIT_OPTIONS = 6,     /* brdffit_fit_options    */
+    BRDFFIT_STRUCT_FIT_RESULT = 7       /* brdffit_fit_result     */
+} brdffit_struct_kind;
+
+/* sizeof the struct of that kind, or 0 for a kind this library does not know. */
+size_t brdffit_struct_size(brdffit_struct_kind kind);
+/* offsetof the named member ("params", "message", "d", ...; an array member by
+ * its name), or (size_t)-1 when the struct has no such member or the kind is
+ * unknown. */
+size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member);
 
 #ifdef __cplusplus
 }

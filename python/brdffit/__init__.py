@@ -1,0 +1,68 @@
+"""brdffit: fit analytic BRDF models to measured MERL reflectance tables.
+
+A NumPy interface to libbrdffit (ctypes; no compiler needed).  The library is
+found at first use (see load_library) and checked against the version and
+struct layouts this package was written for.
+
+    import brdffit
+    t = brdffit.Table.read("alum-bronze.binary")
+    s = brdffit.Samples(t, cutoff=80, scale="standard")
+    with brdffit.Context() as ctx:
+        r = brdffit.fit(ctx, s, "cook-torrance")
+    rgb = brdffit.eval("cook-torrance", r.params, wi, wo)   # (n, 3) arrays
+
+Conventions (frame, units, scales, the Error metric) are those of
+include/brdffit.h: wi toward the light, wo toward the viewer, z the normal,
+BRDF values in 1/sr without the cosine factor.
+"""
+
+from ._lib import Library, load_library
+from ._version import __version__
+from .errors import (
+    BrdffitError,
+    FileDimsError,
+    FileEmptyError,
+    FileError,
+    FileNonfiniteError,
+    FileNotRegularError,
+    FileOpenError,
+    FileReadError,
+    FileTrailingError,
+    FileTruncatedError,
+    FileWriteError,
+    FitFailedError,
+    InvalidArgumentError,
+    KernelBuildError,
+    LibraryError,
+    NoDeviceError,
+    NoSamplesError,
+    OpenCLError,
+    OutOfMemoryError,
+    ParamRangeError,
+    Status,
+    UnknownModelError,
+)
+from .evaluate import eval  # noqa: A004 (the C API's name)
+from .fitting import Context, FitResult, error_of, fit
+from .models import Model, Param, Params, metric_name, model, models
+from .samples import Sample, Samples
+from .table import Table, scale_factors
+
+
+def library_version():
+    """The loaded library's version string ("0.1.0")."""
+    from ._lib import library
+
+    return library().version
+
+
+__all__ = [
+    "BrdffitError", "Context", "FileDimsError", "FileEmptyError", "FileError",
+    "FileNonfiniteError", "FileNotRegularError", "FileOpenError", "FileReadError",
+    "FileTrailingError", "FileTruncatedError", "FileWriteError", "FitFailedError", "FitResult",
+    "InvalidArgumentError", "KernelBuildError", "Library", "LibraryError", "Model",
+    "NoDeviceError", "NoSamplesError", "OpenCLError", "OutOfMemoryError", "Param", "ParamRangeError",
+    "Params", "Sample", "Samples", "Status", "Table", "UnknownModelError", "__version__",
+    "error_of", "eval", "fit", "library_version", "load_library", "metric_name", "model",
+    "models", "scale_factors",
+]

@@ -1,0 +1,161 @@
+"""The C ABI of libbrdffit, written once: struct mirrors, enums, signatures.
+
+Every ctypes struct here mirrors one struct of include/brdffit.h member by
+member.  At load time brdffit._lib compares each mirror's size and every
+member's offset with what the library reports (brdffit_struct_size and
+brdffit_struct_offset) and refuses the library on any difference, so a
+mirror that drifted from the header is an error, never garbage.
+"""
+
+import ctypes as C
+
+MAX_LOBE_PARAMS = 3
+MESSAGE_MAX = 2048
+MERL_NTH, MERL_NTD, MERL_NPD = 90, 90, 180
+MERL_BINS = MERL_NTH * MERL_NTD * MERL_NPD
+MERL_SHAPE = (3, MERL_NTH, MERL_NTD, MERL_NPD)
+
+c_enum = C.c_int  # every brdffit_* enum is an int-sized C enum
+_d3 = C.c_double * 3
+_dp = C.c_double * MAX_LOBE_PARAMS
+
+
+class Error(C.Structure):
+    _fields_ = [("status", c_enum), ("message", C.c_char * MESSAGE_MAX)]
+
+
+class ModelInfo(C.Structure):
+    _fields_ = [
+        ("id", c_enum),
+        ("name", C.c_char_p),
+        ("title", C.c_char_p),
+        ("nparams", C.c_int),
+        ("param_names", C.c_char_p * MAX_LOBE_PARAMS),
+        ("lower", _dp),
+        ("upper", _dp),
+        ("start", _dp),
+        ("chromatic", C.c_int),
+    ]
+
+
+class Params(C.Structure):
+    _fields_ = [("d", _d3), ("s", _d3), ("p", _dp), ("lambda_um", _d3)]
+
+
+class SampleOptions(C.Structure):
+    _fields_ = [("cutoff_deg", C.c_double), ("scale", c_enum)]
+
+
+class Sample(C.Structure):
+    _fields_ = [
+        ("wi", _d3),
+        ("wo", _d3),
+        ("rgb", _d3),
+        ("weight", C.c_double),
+        ("i", C.c_int),
+        ("j", C.c_int),
+        ("k", C.c_int),
+    ]
+
+
+class ContextOptions(C.Structure):
+    _fields_ = [("backend", c_enum), ("device", C.c_char_p)]
+
+
+class FitOptions(C.Structure):
+    _fields_ = [
+        ("starts", C.c_int),
+        ("refine", C.c_int),
+        ("ftol", C.c_double),
+        ("xtol", C.c_double),
+        ("gtol", C.c_double),
+        ("max_evals", C.c_int),
+        ("lambda_um", _d3),
+    ]
+
+
+class FitResult(C.Structure):
+    _fields_ = [
+        ("model", c_enum),
+        ("params", Params),
+        ("error", C.c_double),
+        ("cminpack_info", C.c_int),
+        ("iterations", C.c_int),
+        ("evaluations", C.c_int),
+        ("seconds", C.c_double),
+        ("seconds_solver", C.c_double),
+        ("seconds_passes", C.c_double),
+        ("samples", C.c_size_t),
+        ("backend", c_enum),
+    ]
+
+
+# brdffit_struct_kind of each mirror (the values of the C enum).
+STRUCT_KINDS = {
+    Error: 0,
+    ModelInfo: 1,
+    Params: 2,
+    SampleOptions: 3,
+    Sample: 4,
+    ContextOptions: 5,
+    FitOptions: 6,
+    FitResult: 7,
+}
+
+# brdffit_scale, brdffit_interp, brdffit_backend (pinned values).
+SCALES = {"standard": 0, "flat": 1}
+INTERPS = {"nearest": 0, "trilinear": 1}
+BACKENDS = {"auto": 0, "opencl": 1, "host": 2}
+
+_P = C.c_void_p  # opaque handles and array data (passed as addresses)
+_status = c_enum
+_err = C.POINTER(Error)
+
+# name: (restype, argtypes), every function the package calls.
+FUNCTIONS = {
+    "brdffit_version": (C.c_char_p, []),
+    "brdffit_struct_size": (C.c_size_t, [c_enum]),
+    "brdffit_struct_offset": (C.c_size_t, [c_enum, C.c_char_p]),
+    "brdffit_strerror": (C.c_char_p, [_status]),
+    "brdffit_metric_name": (C.c_char_p, []),
+    # models
+    "brdffit_model_get": (C.POINTER(ModelInfo), [c_enum]),
+    "brdffit_model_from_name": (_status, [C.c_char_p, C.POINTER(c_enum)]),
+    "brdffit_params_check": (_status, [c_enum, C.POINTER(Params), _err]),
+    "brdffit_eval": (_status, [c_enum, C.POINTER(Params), _P, _P, _P]),
+    "brdffit_eval_batch": (_status, [c_enum, C.POINTER(Params), C.c_size_t, _P, _P, _P]),
+    # tables
+    "brdffit_scale_factors": (_status, [c_enum, _P]),
+    "brdffit_scale_name": (C.c_char_p, [c_enum]),
+    "brdffit_table_create": (_status, [C.POINTER(_P), _err]),
+    "brdffit_table_read": (_status, [C.c_char_p, C.POINTER(_P), _err]),
+    "brdffit_table_write": (_status, [_P, C.c_char_p, _err]),
+    "brdffit_table_free": (None, [_P]),
+    "brdffit_table_values": (C.POINTER(C.c_double), [_P]),
+    "brdffit_table_fill_model": (_status, [_P, c_enum, C.POINTER(Params), c_enum, _err]),
+    "brdffit_table_lookup_batch": (_status, [_P, C.c_size_t, _P, _P, c_enum, c_enum, _P]),
+    # samples
+    "brdffit_sample_options_default": (None, [C.POINTER(SampleOptions)]),
+    "brdffit_samples_create": (_status, [_P, C.POINTER(SampleOptions), C.POINTER(_P), _err]),
+    "brdffit_samples_free": (None, [_P]),
+    "brdffit_samples_count": (C.c_size_t, [_P]),
+    "brdffit_samples_masked": (C.c_size_t, [_P]),
+    "brdffit_samples_beyond_cutoff": (C.c_size_t, [_P]),
+    "brdffit_samples_get": (_status, [_P, C.c_size_t, C.POINTER(Sample)]),
+    "brdffit_samples_options": (None, [_P, C.POINTER(SampleOptions)]),
+    # contexts and fits
+    "brdffit_context_options_default": (None, [C.POINTER(ContextOptions)]),
+    "brdffit_context_create": (_status, [C.POINTER(ContextOptions), C.POINTER(_P), _err]),
+    "brdffit_context_free": (None, [_P]),
+    "brdffit_context_backend": (c_enum, [_P]),
+    "brdffit_context_describe": (C.c_char_p, [_P]),
+    "brdffit_fit_options_default": (None, [C.POINTER(FitOptions)]),
+    "brdffit_fit": (
+        _status,
+        [_P, _P, c_enum, C.POINTER(FitOptions), C.POINTER(FitResult), _err],
+    ),
+    "brdffit_error_of": (
+        _status,
+        [_P, _P, c_enum, C.POINTER(Params), C.POINTER(C.c_double), _err],
+    ),
+}

@@ -1,0 +1,178 @@
+"""Contexts (device and kernels), fits and Errors."""
+
+import ctypes
+import operator
+from dataclasses import dataclass
+
+
+from . import _abi, _arrays, _lib
+from .errors import InvalidArgumentError, Status
+from .models import Model, Params, model as _model, resolve
+from .samples import Samples
+
+_BAD = Status.INVALID_ARGUMENT
+_BACKEND_NAMES = {v: k for k, v in _abi.BACKENDS.items()}
+
+
+class Context:
+    """The OpenCL device (or the host C path) and its per-model kernels.
+
+    backend: "auto" (OpenCL when a device is found, else host C), "opencl"
+    (or NoDeviceError) or "host"; device: "PLATFORM:DEVICE" by index or name
+    substring (None: $BRDFFIT_DEVICE, else the first PoCL CPU device).  Use
+    one context per thread.  close() (or a with block) frees it at once."""
+
+    __slots__ = ("_h", "__weakref__")
+
+    def __init__(self, backend="auto", device=None):
+        if backend not in _abi.BACKENDS:
+            raise InvalidArgumentError(
+                _BAD, f"unknown backend {backend!r} (backends: auto, opencl, host)"
+            )
+        lib = _lib.cdll()
+        opt = _abi.ContextOptions()
+        lib.brdffit_context_options_default(ctypes.byref(opt))
+        opt.backend = _abi.BACKENDS[backend]
+        if device is not None:
+            opt.device = str(device).encode("utf-8")
+        ptr = ctypes.c_void_p()
+        _lib.call("brdffit_context_create", ctypes.byref(opt), ctypes.byref(ptr))
+        self._h = _arrays.Handle(ptr.value, lib.brdffit_context_free)
+
+    def _ptr(self):
+        if not self._h.ptr:
+            raise InvalidArgumentError(_BAD, "the context is closed")
+        return self._h.ptr
+
+    @property
+    def backend(self):
+        """"opencl" or "host": the path fits take."""
+        return _BACKEND_NAMES.get(_lib.cdll().brdffit_context_backend(self._ptr()), "unknown")
+
+    @property
+    def description(self):
+        """"opencl: Portable Computing Language / ..." or "host: C (...)"."""
+        raw = _lib.cdll().brdffit_context_describe(self._ptr())
+        return raw.decode("utf-8", "replace") if raw else ""
+
+    def close(self):
+        self._h.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __repr__(self):
+        if not self._h.ptr:
+            return "<brdffit.Context closed>"
+        return f"<brdffit.Context {self.description}>"
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """What brdffit_fit returns.  ``params`` in the paper's units, ``error``
+    the "ngan-l2" Error of params, ``status`` the call's Status (OK: a
+    result), ``cminpack_info`` lmder's info of the run kept (1..4 converged),
+    ``iterations`` its Jacobian evaluations, ``evaluations`` all data passes
+    of the fit, ``seconds`` its wall time (``seconds_solver`` inside
+    cminpack, ``seconds_passes`` in data passes), ``samples`` fitted,
+    ``backend`` "opencl" or "host"."""
+
+    model: Model
+    params: Params
+    error: float
+    status: Status
+    cminpack_info: int
+    iterations: int
+    evaluations: int
+    seconds: float
+    seconds_solver: float
+    seconds_passes: float
+    samples: int
+    backend: str
+
+    @property
+    def converged(self):
+        """cminpack reported convergence (info 1..4)."""
+        return 1 <= self.cminpack_info <= 4
+
+
+_OPTION_FIELDS = tuple(f[0] for f in _abi.FitOptions._fields_ if f[0] != "size")
+
+
+def fit_options(**options):
+    """A brdffit_fit_options: the library's defaults, then options by name
+    (the struct's members: starts, refine, ftol, ...)."""
+    opt = _abi.FitOptions()
+    _lib.cdll().brdffit_fit_options_default(ctypes.byref(opt))
+    for name, value in options.items():
+        if name not in _OPTION_FIELDS:
+            raise TypeError(
+                f"fit() got an unknown option {name!r} (options: {', '.join(_OPTION_FIELDS)})"
+            )
+        ctype = dict(_abi.FitOptions._fields_)[name]
+        try:
+            if issubclass(ctype, ctypes.Array):
+                vals = [float(v) for v in value]
+                if len(vals) != ctype._length_:
+                    raise ValueError
+                setattr(opt, name, ctype(*vals))
+            elif ctype in (ctypes.c_int, ctypes.c_size_t, _abi.c_enum):
+                setattr(opt, name, operator.index(value))
+            else:
+                setattr(opt, name, float(value))
+        except (TypeError, ValueError):
+            raise InvalidArgumentError(_BAD, f"fit option {name}: bad value {value!r}") from None
+    return opt
+
+
+def _check_args(ctx, samples):
+    if not isinstance(ctx, Context):
+        raise InvalidArgumentError(_BAD, f"ctx: a brdffit.Context, not {type(ctx).__name__}")
+    if not isinstance(samples, Samples):
+        raise InvalidArgumentError(
+            _BAD, f"samples: a brdffit.Samples, not {type(samples).__name__}"
+        )
+
+
+def fit(ctx, samples, model, **options):
+    """Fit a model to a sample set; returns a FitResult.  options are
+    brdffit_fit_options members (starts=, refine=, ftol=, xtol=, gtol=,
+    max_evals=, lambda_um=); unset ones keep the library's defaults."""
+    _check_args(ctx, samples)
+    m = _model(model)
+    opt = fit_options(**options)
+    r = _abi.FitResult()
+    _lib.call(
+        "brdffit_fit", ctx._ptr(), samples._h.ptr, m.id, ctypes.byref(opt), ctypes.byref(r)
+    )
+    return FitResult(
+        model=m,
+        params=Params.from_c(r.params, m.nparams),
+        error=r.error,
+        status=Status.OK,
+        cminpack_info=r.cminpack_info,
+        iterations=r.iterations,
+        evaluations=r.evaluations,
+        seconds=r.seconds,
+        seconds_solver=r.seconds_solver,
+        seconds_passes=r.seconds_passes,
+        samples=r.samples,
+        backend=_BACKEND_NAMES.get(r.backend, "unknown"),
+    )
+
+
+def error_of(ctx, samples, model, params):
+    """The "ngan-l2" Error of given parameters on a sample set (params: a
+    Params, a FitResult or d_r d_g d_b s_r s_g s_b p0 [p1 [p2]])."""
+    _check_args(ctx, samples)
+    m, _, cp = resolve(model, params)
+    out = ctypes.c_double()
+    _lib.call(
+        "brdffit_error_of", ctx._ptr(), samples._h.ptr, m.id, ctypes.byref(cp), ctypes.byref(out)
+    )
+    return out.value
+
+

@@ -1,0 +1,221 @@
+"""The models of the library's registry, and parameter sets."""
+
+import ctypes
+from dataclasses import dataclass
+from typing import Tuple
+
+import numpy as np
+
+from . import _abi, _lib
+from .errors import InvalidArgumentError, Status, UnknownModelError
+
+_BAD = Status.INVALID_ARGUMENT
+
+
+@dataclass(frozen=True)
+class Param:
+    """One lobe parameter of a model: name, unit ("" when dimensionless),
+    inclusive bounds and a typical starting value, in the paper's units."""
+
+    name: str
+    unit: str
+    lower: float
+    upper: float
+    start: float
+
+
+@dataclass(frozen=True)
+class Model:
+    """A model of the registry: ``id`` (brdffit_model), ``name``
+    ("cook-torrance"), ``title`` ("Cook-Torrance"), its lobe ``params`` and
+    whether its lobe differs per channel (``chromatic``)."""
+
+    id: int
+    name: str
+    title: str
+    params: Tuple[Param, ...]
+    chromatic: bool
+
+    @property
+    def nparams(self):
+        return len(self.params)
+
+    @property
+    def param_names(self):
+        return tuple(p.name for p in self.params)
+
+    def __str__(self):
+        return self.name
+
+    def __repr__(self):
+        return f"brdffit.model({self.name!r})"
+
+
+def _text(raw):
+    return raw.decode("utf-8", "replace") if raw else ""
+
+
+_cache = {}  # Library -> tuple of Model
+
+
+def models():
+    """Every model of the library's registry, in id order."""
+    lib = _lib.library()
+    found = _cache.get(id(lib))
+    if found is not None and found[0] is lib:
+        return found[1]
+    out = []
+    m = 0
+    while True:
+        info = lib.cdll.brdffit_model_get(m)
+        if not info:
+            break
+        mi = info.contents
+        params = tuple(
+            Param(
+                name=_text(mi.param_names[k]),
+                unit="",
+                lower=mi.lower[k],
+                upper=mi.upper[k],
+                start=mi.start[k],
+            )
+            for k in range(mi.nparams)
+        )
+        out.append(Model(mi.id, _text(mi.name), _text(mi.title), params, bool(mi.chromatic)))
+        m += 1
+    result = tuple(out)
+    _cache[id(lib)] = (lib, result)
+    return result
+
+
+def model(which):
+    """The Model for a name ("cook-torrance", "cook_torrance"), an id, or a
+    Model.  Raises UnknownModelError."""
+    if isinstance(which, Model):
+        return which
+    all_models = models()
+    if isinstance(which, (int, np.integer)) and not isinstance(which, bool):
+        if 0 <= int(which) < len(all_models):
+            return all_models[int(which)]
+        raise UnknownModelError(Status.UNKNOWN_MODEL, f"no model with id {int(which)}")
+    if isinstance(which, str):
+        out = _abi.c_enum()
+        status = _lib.cdll().brdffit_model_from_name(which.encode("utf-8"), ctypes.byref(out))
+        if status != 0 or not 0 <= out.value < len(all_models):
+            names = ", ".join(m.name for m in all_models)
+            raise UnknownModelError(status or Status.UNKNOWN_MODEL,
+                                    f"unknown model '{which}' (models: {names})")
+        return all_models[out.value]
+    raise InvalidArgumentError(_BAD, f"a model is a name, an id or a Model, not {type(which).__name__}")
+
+
+def _vector3(name, value, default=None):
+    if value is None:
+        value = default
+    try:
+        arr = np.array(value, dtype=np.float64).reshape(-1)
+    except (TypeError, ValueError):
+        raise InvalidArgumentError(_BAD, f"{name}: not a sequence of 3 numbers") from None
+    if arr.size == 1:
+        arr = np.repeat(arr, 3)
+    if arr.size != 3:
+        raise InvalidArgumentError(_BAD, f"{name}: {arr.size} numbers, expected 3 (R, G, B)")
+    return arr
+
+
+class Params:
+    """A parameter set: Lambertian albedo ``d`` (R, G, B), specular
+    coefficient ``s`` (R, G, B), lobe parameters ``p`` in the paper's units,
+    and for He the wavelengths ``lambda_um`` (0 = the defaults).
+
+    Params(d, s, p) or Params.from_vector([d_r, d_g, d_b, s_r, s_g, s_b, p0, ...]).
+    A single number for d or s means the same for the three channels."""
+
+    __slots__ = ("d", "s", "p", "lambda_um")
+
+    def __init__(self, d, s, p=(), lambda_um=None):
+        self.d = _vector3("d", d)
+        self.s = _vector3("s", s)
+        try:
+            self.p = np.array(p, dtype=np.float64).reshape(-1)
+        except (TypeError, ValueError):
+            raise InvalidArgumentError(_BAD, "p: not a sequence of numbers") from None
+        if self.p.size > _abi.MAX_LOBE_PARAMS:
+            raise InvalidArgumentError(
+                _BAD, f"p: {self.p.size} lobe parameters, at most {_abi.MAX_LOBE_PARAMS}"
+            )
+        self.lambda_um = _vector3("lambda_um", lambda_um, default=(0.0, 0.0, 0.0))
+
+    @classmethod
+    def from_vector(cls, values):
+        """From d_r d_g d_b s_r s_g s_b p0 [p1 [p2]] (the program's order)."""
+        try:
+            v = np.array(values, dtype=np.float64).reshape(-1)
+        except (TypeError, ValueError):
+            raise InvalidArgumentError(_BAD, "params: not a sequence of numbers") from None
+        if not 6 <= v.size <= 6 + _abi.MAX_LOBE_PARAMS:
+            raise InvalidArgumentError(
+                _BAD, f"params: {v.size} numbers, expected d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]"
+            )
+        return cls(v[0:3], v[3:6], v[6:])
+
+    def vector(self):
+        """d_r d_g d_b s_r s_g s_b p... as one array."""
+        return np.concatenate([self.d, self.s, self.p])
+
+    def to_c(self):
+        cp = _abi.Params()
+        for k in range(3):
+            cp.d[k] = self.d[k]
+            cp.s[k] = self.s[k]
+            cp.lambda_um[k] = self.lambda_um[k]
+        for k in range(self.p.size):
+            cp.p[k] = self.p[k]
+        return cp
+
+    @classmethod
+    def from_c(cls, cp, nparams):
+        return cls(list(cp.d), list(cp.s), list(cp.p)[:nparams], list(cp.lambda_um))
+
+    def __eq__(self, other):
+        if not isinstance(other, Params):
+            return NotImplemented
+        return all(
+            a.shape == b.shape and bool(np.all(a == b))
+            for a, b in (
+                (self.d, other.d),
+                (self.s, other.s),
+                (self.p, other.p),
+                (self.lambda_um, other.lambda_um),
+            )
+        )
+
+    def __repr__(self):
+        def f(a):
+            return "[" + ", ".join(repr(float(x)) for x in a) + "]"
+
+        lam = "" if not np.any(self.lambda_um) else f", lambda_um={f(self.lambda_um)}"
+        return f"Params(d={f(self.d)}, s={f(self.s)}, p={f(self.p)}{lam})"
+
+
+def resolve(model_arg, params_arg) -> Tuple[Model, "Params", _abi.Params]:
+    """(Model, Params, C params) from what a caller passed: a Params, an
+    object with .params (a fit result), or a sequence d..., s..., p..."""
+    m = model(model_arg)
+    p = params_arg
+    if hasattr(p, "params") and isinstance(getattr(p, "params"), Params):
+        p = p.params
+    if not isinstance(p, Params):
+        p = Params.from_vector(p)
+    if p.p.size != m.nparams:
+        names = ", ".join(m.param_names)
+        raise InvalidArgumentError(
+            _BAD, f"{m.name} has {m.nparams} lobe parameters ({names}), got {p.p.size}"
+        )
+    return m, p, p.to_c()
+
+
+def metric_name():
+    """The Error metric's name ("ngan-l2")."""
+    return _text(_lib.cdll().brdffit_metric_name())
+

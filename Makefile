@@ -101,10 +101,11 @@ $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 $(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) -lexpat $(LDLIBS)
 
+# The benchmark reads its tables with the tests' helpers (tests/testutil.c).
 $(BUILD)/bench/%.o: bench/%.c | $(BUILD)/bench
-	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) -c -o $@ $<
+	$(CC) $(CPPFLAGS) $(LIB_INC) -Itests $(CFLAGS) -c -o $@ $<
 
-$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/libbrdffit.a
+$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 # The environment every run gets: PoCL needs a writable cache directory.

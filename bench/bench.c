@@ -13,6 +13,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include "pass.h"
+#include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -24,39 +25,15 @@ static const char *const materials[10] = {
     "chrome-steel", "blue-acrylic", "red-fabric", "white-marble", "black-oxidized-steel",
 };
 
-static int table_path(const char *name, char *buf, size_t len)
-{
-    const char *root = getenv("BRDFFIT_SHARED");
-    char cmd[2048];
-    snprintf(cmd, sizeof cmd, "'%s/tools/merl-table' '%s'", root && *root ? root : "../shared", name);
-    FILE *p = popen(cmd, "r");
-    if (!p)
-        return -1;
-    char *got = fgets(buf, (int)len, p);
-    int rc = pclose(p);
-    if (!got || rc != 0)
-        return -1;
-    buf[strcspn(buf, "\r\n")] = '\0';
-    return 0;
-}
-
+/* The sample set of a material (tests/testutil.c reads the tables). */
 static brdffit_samples *load(const char *name)
 {
-    char path[1024];
     brdffit_error err;
-    brdffit_table *t = NULL;
     brdffit_samples *s = NULL;
-    if (table_path(name, path, sizeof path) != 0) {
-        fprintf(stderr, "bench: merl-table %s failed\n", name);
-        return NULL;
-    }
-    if (brdffit_table_read(path, &t, &err) != BRDFFIT_OK ||
-        brdffit_samples_create(t, NULL, &s, &err) != BRDFFIT_OK) {
+    if (tu_merl_samples(name, NULL, &s, &err) != BRDFFIT_OK) {
         fprintf(stderr, "bench: %s\n", err.message);
-        brdffit_table_free(t);
         return NULL;
     }
-    brdffit_table_free(t);
     return s;
 }
 

@@ -87,265 +87,6 @@ static const char *blue_rubber(char *buf, size_t len)
     return p;
 }
 
-/* ------------------------------------------------------------------ a small JSON checker */
-
-typedef struct jp {
-    const char *p;
-} jp;
-
-static void j_ws(jp *j)
-{
-    while (*j->p == ' ' || *j->p == '\t' || *j->p == '\n' || *j->p == '\r')
-        j->p++;
-}
-
-static int j_value(jp *j, int depth);
-
-static int hexval(char c)
-{
-    return c >= '0' && c <= '9' ? c - '0'
-         : c >= 'a' && c <= 'f' ? c - 'a' + 10
-         : c >= 'A' && c <= 'F' ? c - 'A' + 10
-                                : -1;
-}
-
-/* A JSON string; decoded into out (when not NULL; \u escapes up to U+07FF). */
-static int j_string(jp *j, char *out, size_t len)
-{
-    size_t n = 0;
-    if (*j->p != '"')
-        return 0;
-    j->p++;
-    for (;;) {
-        unsigned char c = (unsigned char)*j->p;
-        if (c == '\0' || c < 0x20)
-            return 0;
-        j->p++;
-        if (c == '"')
-            break;
-        unsigned cp = c;
-        if (c == '\\') {
-            char e = *j->p++;
-            switch (e) {
-            case '"': cp = '"'; break;
-            case '\\': cp = '\\'; break;
-            case '/': cp = '/'; break;
-            case 'b': cp = '\b'; break;
-            case 'f': cp = '\f'; break;
-            case 'n': cp = '\n'; break;
-            case 'r': cp = '\r'; break;
-            case 't': cp = '\t'; break;
-            case 'u': {
-                cp = 0;
-                for (int k = 0; k < 4; k++) {
-                    int h = hexval(*j->p++);
-                    if (h < 0)
-                        return 0;
-                    cp = cp * 16 + (unsigned)h;
-                }
-                break;
-            }
-            default: return 0;
-            }
-        }
-        if (out && n + 3 < len) {
-            if (cp < 0x80 || c != '\\') {
-                out[n++] = (char)cp;
-            } else if (cp < 0x800) {
-                out[n++] = (char)(0xC0 | (cp >> 6));
-                out[n++] = (char)(0x80 | (cp & 0x3F));
-            } else {
-                out[n++] = '?';
-            }
-        }
-    }
-    if (out && len)
-        out[n] = '\0';
-    return 1;
-}
-
-static int j_number(jp *j, double *x)
-{
-    const char *s = j->p;
-    if (*s == '-')
-        s++;
-    if (*s == '0')
-        s++;
-    else if (*s >= '1' && *s <= '9')
-        while (*s >= '0' && *s <= '9')
-            s++;
-    else
-        return 0;
-    if (*s == '.') {
-        s++;
-        if (!(*s >= '0' && *s <= '9'))
-            return 0;
-        while (*s >= '0' && *s <= '9')
-            s++;
-    }
-    if (*s == 'e' || *s == 'E') {
-        s++;
-        if (*s == '+' || *s == '-')
-            s++;
-        if (!(*s >= '0' && *s <= '9'))
-            return 0;
-        while (*s >= '0' && *s <= '9')
-            s++;
-    }
-    if (x)
-        *x = strtod(j->p, NULL);
-    j->p = s;
-    return 1;
-}
-
-/* An object; when key is not NULL, *val gets the start of that member's value. */
-static int j_object(jp *j, int depth, const char *key, const char **val)
-{
-    if (*j->p != '{' || depth > 32)
-        return 0;
-    j->p++;
-    j_ws(j);
-    if (*j->p == '}') {
-        j->p++;
-        return 1;
-    }
-    for (;;) {
-        char name[256];
-        j_ws(j);
-        if (!j_string(j, name, sizeof name))
-            return 0;
-        j_ws(j);
-        if (*j->p++ != ':')
-            return 0;
-        j_ws(j);
-        if (key && val && strcmp(name, key) == 0)
-            *val = j->p;
-        if (!j_value(j, depth + 1))
-            return 0;
-        j_ws(j);
-        if (*j->p == ',') {
-            j->p++;
-            continue;
-        }
-        if (*j->p == '}') {
-            j->p++;
-            return 1;
-        }
-        return 0;
-    }
-}
-
-static int j_array(jp *j, int depth)
-{
-    if (*j->p != '[' || depth > 32)
-        return 0;
-    j->p++;
-    j_ws(j);
-    if (*j->p == ']') {
-        j->p++;
-        return 1;
-    }
-    for (;;) {
-        j_ws(j);
-        if (!j_value(j, depth + 1))
-            return 0;
-        j_ws(j);
-        if (*j->p == ',') {
-            j->p++;
-            continue;
-        }
-        if (*j->p == ']') {
-            j->p++;
-            return 1;
-        }
-        return 0;
-    }
-}
-
-static int j_value(jp *j, int depth)
-{
-    switch (*j->p) {
-    case '{': return j_object(j, depth, NULL, NULL);
-    case '[': return j_array(j, depth);
-    case '"': return j_string(j, NULL, 0);
-    case 't': return strncmp(j->p, "true", 4) == 0 ? (j->p += 4, 1) : 0;
-    case 'f': return strncmp(j->p, "false", 5) == 0 ? (j->p += 5, 1) : 0;
-    case 'n': return strncmp(j->p, "null", 4) == 0 ? (j->p += 4, 1) : 0;
-    default: return j_number(j, NULL);
-    }
-}
-
-/* 1 when line is exactly one JSON object (nothing after it). */
-static int json_object_line(const char *line)
-{
-    jp j = { line };
-    if (!j_object(&j, 0, NULL, NULL))
-        return 0;
-    j_ws(&j);
-    return *j.p == '\0';
-}
-
-/* The start of member key's value in the object at obj, or NULL. */
-static const char *json_member(const char *obj, const char *key)
-{
-    jp j = { obj };
-    const char *v = NULL;
-    if (!j_object(&j, 0, key, &v))
-        return NULL;
-    return v;
-}
-
-static int json_get_string(const char *obj, const char *key, char *out, size_t len)
-{
-    const char *v = json_member(obj, key);
-    jp j = { v };
-    return v && j_string(&j, out, len);
-}
-
-static int json_get_number(const char *obj, const char *key, double *x)
-{
-    const char *v = json_member(obj, key);
-    jp j = { v };
-    return v && j_number(&j, x);
-}
-
-/* Element i of the number array member key. */
-static int json_get_element(const char *obj, const char *key, int i, double *x)
-{
-    const char *v = json_member(obj, key);
-    if (!v || *v != '[')
-        return 0;
-    jp j = { v + 1 };
-    for (int k = 0;; k++) {
-        j_ws(&j);
-        double y;
-        if (!j_number(&j, &y))
-            return 0;
-        if (k == i) {
-            *x = y;
-            return 1;
-        }
-        j_ws(&j);
-        if (*j.p++ != ',')
-            return 0;
-    }
-}
-
-/* Length of the number array member key, or -1. */
-static int json_array_len(const char *obj, const char *key)
-{
-    const char *v = json_member(obj, key);
-    if (!v || *v != '[')
-        return -1;
-    jp j = { v };
-    if (!j_array(&j, 0))
-        return -1;
-    int n = 0;
-    for (const char *s = v + 1; s < j.p - 1; s++)
-        n += (*s == ',');
-    return (j.p - v > 2) ? n + 1 : 0;
-}
-
 /* Split the output into lines (in place); returns the count. */
 static int split_lines(char *text, char **lines, int max)
 {
@@ -362,50 +103,50 @@ static void check_fit_record(const char *line, const char *want_material, const 
     static const char *const keys[] = { "material", "model", "d", "s", "p", "error", "metric",
                                         "status", "iterations", "evaluations", "seconds",
                                         "backend", "samples", "cminpack_info" };
-    ck_assert_msg(json_object_line(line), "not one JSON object: %s", line);
+    ck_assert_msg(tu_json_object_line(line), "not one JSON object: %s", line);
     ck_assert_msg(line[0] == '{' && line[strlen(line) - 1] == '}', "line: %s", line);
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
-        ck_assert_msg(json_member(line, keys[k]) != NULL, "no \"%s\" in %s", keys[k], line);
+        ck_assert_msg(tu_json_member(line, keys[k]) != NULL, "no \"%s\" in %s", keys[k], line);
     char s[256];
-    ck_assert(json_get_string(line, "status", s, sizeof s));
+    ck_assert(tu_json_get_string(line, "status", s, sizeof s));
     ck_assert_msg(strcmp(s, "ok") == 0, "status %s in %s", s, line);
-    ck_assert(json_get_string(line, "material", s, sizeof s));
+    ck_assert(tu_json_get_string(line, "material", s, sizeof s));
     ck_assert_str_eq(s, want_material);
-    ck_assert(json_get_string(line, "model", s, sizeof s));
+    ck_assert(tu_json_get_string(line, "model", s, sizeof s));
     if (want_model)
         ck_assert_str_eq(s, want_model);
     brdffit_model m;
     ck_assert_int_eq(brdffit_model_from_name(s, &m), BRDFFIT_OK);
     double e;
-    ck_assert_msg(json_get_number(line, "error", &e) && isfinite(e) && e >= 0, "error in %s", line);
-    ck_assert_int_eq(json_array_len(line, "d"), 3);
-    ck_assert_int_eq(json_array_len(line, "s"), 3);
-    ck_assert_int_eq(json_array_len(line, "p"), brdffit_model_get(m)->nparams);
-    const char *metric = json_member(line, "metric");
+    ck_assert_msg(tu_json_get_number(line, "error", &e) && isfinite(e) && e >= 0, "error in %s", line);
+    ck_assert_int_eq(tu_json_array_len(line, "d"), 3);
+    ck_assert_int_eq(tu_json_array_len(line, "s"), 3);
+    ck_assert_int_eq(tu_json_array_len(line, "p"), brdffit_model_get(m)->nparams);
+    const char *metric = tu_json_member(line, "metric");
     ck_assert_ptr_nonnull(metric);
-    ck_assert(json_get_string(metric, "name", s, sizeof s));
+    ck_assert(tu_json_get_string(metric, "name", s, sizeof s));
     ck_assert_str_eq(s, brdffit_metric_name());
     double cut;
-    ck_assert(json_get_number(metric, "cutoff_deg", &cut));
-    ck_assert(json_get_string(metric, "scale", s, sizeof s));
+    ck_assert(tu_json_get_number(metric, "cutoff_deg", &cut));
+    ck_assert(tu_json_get_string(metric, "scale", s, sizeof s));
     double n;
-    ck_assert(json_get_number(line, "samples", &n) && n > 0);
-    ck_assert(json_get_number(line, "iterations", &n) && n >= 0);
-    ck_assert(json_get_number(line, "evaluations", &n) && n >= 1);
-    ck_assert(json_get_number(line, "seconds", &n) && n >= 0);
+    ck_assert(tu_json_get_number(line, "samples", &n) && n > 0);
+    ck_assert(tu_json_get_number(line, "iterations", &n) && n >= 0);
+    ck_assert(tu_json_get_number(line, "evaluations", &n) && n >= 1);
+    ck_assert(tu_json_get_number(line, "seconds", &n) && n >= 0);
 }
 
 START_TEST(json_checker_self_test)
 {
-    ck_assert(json_object_line("{\"a\":[1,2.5e-3,-0],\"b\":{\"c\":null},\"d\":\"x\\\"y\\u0001\"}"));
-    ck_assert(!json_object_line("{\"a\":nan}"));
-    ck_assert(!json_object_line("{\"a\":1,}"));
-    ck_assert(!json_object_line("{\"a\":\"tab\there\"}"));
-    ck_assert(!json_object_line("{\"a\":1} x"));
-    ck_assert_int_eq(json_array_len("{\"p\":[1,2,3]}", "p"), 3);
-    ck_assert_int_eq(json_array_len("{\"p\":[]}", "p"), 0);
+    ck_assert(tu_json_object_line("{\"a\":[1,2.5e-3,-0],\"b\":{\"c\":null},\"d\":\"x\\\"y\\u0001\"}"));
+    ck_assert(!tu_json_object_line("{\"a\":nan}"));
+    ck_assert(!tu_json_object_line("{\"a\":1,}"));
+    ck_assert(!tu_json_object_line("{\"a\":\"tab\there\"}"));
+    ck_assert(!tu_json_object_line("{\"a\":1} x"));
+    ck_assert_int_eq(tu_json_array_len("{\"p\":[1,2,3]}", "p"), 3);
+    ck_assert_int_eq(tu_json_array_len("{\"p\":[]}", "p"), 0);
     double x;
-    ck_assert(json_get_element("{\"p\":[1,2,3]}", "p", 2, &x) && x == 3);
+    ck_assert(tu_json_get_element("{\"p\":[1,2,3]}", "p", 2, &x) && x == 3);
 }
 END_TEST
 
@@ -563,15 +304,15 @@ START_TEST(json_failure_records)
     int n = split_lines(r.out, lines, 16);
     ck_assert_msg(n == 2, "%d JSON lines, expected 2", n);
     for (int i = 0; i < n; i++) {
-        ck_assert_msg(json_object_line(lines[i]), "not a JSON object: %s", lines[i]);
+        ck_assert_msg(tu_json_object_line(lines[i]), "not a JSON object: %s", lines[i]);
         char s[2048];
-        ck_assert(json_get_string(lines[i], "status", s, sizeof s));
+        ck_assert(tu_json_get_string(lines[i], "status", s, sizeof s));
         ck_assert_str_ne(s, "ok");
-        ck_assert(json_get_string(lines[i], "error_message", s, sizeof s));
+        ck_assert(tu_json_get_string(lines[i], "error_message", s, sizeof s));
         ck_assert_msg(strstr(s, i == 0 ? bad : "gone.binary") != NULL, "message %s", s);
-        ck_assert(json_get_string(lines[i], "material", s, sizeof s));
+        ck_assert(tu_json_get_string(lines[i], "material", s, sizeof s));
         ck_assert_str_eq(s, i == 0 ? name : "gone");
-        ck_assert_ptr_nonnull(json_member(lines[i], "metric"));
+        ck_assert_ptr_nonnull(tu_json_member(lines[i], "metric"));
     }
     run_free(&r);
     unlink(bad);
@@ -627,18 +368,18 @@ START_TEST(fit_json_good_and_missing)
     int n = split_lines(r.out, lines, 16);
     ck_assert_msg(n == 2, "%d lines, expected 2:\n%s", n, r.out);
     check_fit_record(lines[0], "blue-rubber", "ward");
-    const char *metric = json_member(lines[0], "metric");
+    const char *metric = tu_json_member(lines[0], "metric");
     double cut;
     char scale[32];
-    ck_assert(json_get_number(metric, "cutoff_deg", &cut));
+    ck_assert(tu_json_get_number(metric, "cutoff_deg", &cut));
     ck_assert(cut == 75);
-    ck_assert(json_get_string(metric, "scale", scale, sizeof scale));
+    ck_assert(tu_json_get_string(metric, "scale", scale, sizeof scale));
     ck_assert_str_eq(scale, "flat");
-    ck_assert_msg(json_object_line(lines[1]), "%s", lines[1]);
+    ck_assert_msg(tu_json_object_line(lines[1]), "%s", lines[1]);
     char s[1024];
-    ck_assert(json_get_string(lines[1], "status", s, sizeof s));
+    ck_assert(tu_json_get_string(lines[1], "status", s, sizeof s));
     ck_assert_str_eq(s, brdffit_strerror(BRDFFIT_E_FILE_OPEN));
-    ck_assert(json_get_string(lines[1], "error_message", s, sizeof s));
+    ck_assert(tu_json_get_string(lines[1], "error_message", s, sizeof s));
     ck_assert(strstr(s, "/nonexistent-brdffit-dir/missing.binary") != NULL);
     run_free(&r);
 }
@@ -656,9 +397,9 @@ START_TEST(fit_no_such_device)
     ck_assert_msg(strstr(r.err, "no-such-device-xyz") != NULL, "%s", r.err);
     char *lines[4];
     ck_assert_int_eq(split_lines(r.out, lines, 4), 1);
-    ck_assert(json_object_line(lines[0]));
+    ck_assert(tu_json_object_line(lines[0]));
     char s[256];
-    ck_assert(json_get_string(lines[0], "status", s, sizeof s));
+    ck_assert(tu_json_get_string(lines[0], "status", s, sizeof s));
     ck_assert_str_eq(s, brdffit_strerror(BRDFFIT_E_NO_DEVICE));
     run_free(&r);
 }
@@ -676,14 +417,14 @@ START_TEST(demo_json)
     ck_assert_msg(n == 3, "%d lines, expected 3:\n%s", n, r.out);
     static const char *const want[3] = { "ward", "blinn-phong", "cook-torrance" };
     char material[256];
-    ck_assert(json_get_string(lines[0], "material", material, sizeof material));
+    ck_assert(tu_json_get_string(lines[0], "material", material, sizeof material));
     for (int i = 0; i < n; i++)
         check_fit_record(lines[i], material, want[i]);
     double e, f0, m, d0;
-    ck_assert(json_get_number(lines[2], "error", &e));
+    ck_assert(tu_json_get_number(lines[2], "error", &e));
     ck_assert_msg(e < 1e-6, "cook-torrance Error %g on its own data", e);
-    ck_assert(json_get_element(lines[2], "p", 0, &f0) && json_get_element(lines[2], "p", 1, &m));
-    ck_assert(json_get_element(lines[2], "d", 0, &d0));
+    ck_assert(tu_json_get_element(lines[2], "p", 0, &f0) && tu_json_get_element(lines[2], "p", 1, &m));
+    ck_assert(tu_json_get_element(lines[2], "d", 0, &d0));
     ck_assert_msg(tu_reldiff(f0, 0.203) < 1e-4 && tu_reldiff(m, 0.0367) < 1e-4 &&
                       tu_reldiff(d0, 0.0886) < 1e-4,
                   "recovered F0 %g m %g d_r %g", f0, m, d0);

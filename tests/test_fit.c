@@ -14,7 +14,7 @@ static brdffit_context *make_context(void)
 {
     brdffit_error err;
     brdffit_context *ctx = NULL;
-    ck_assert_msg(brdffit_context_create(NULL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_AUTO, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     return ctx;
 }
 
@@ -32,13 +32,12 @@ static brdffit_samples *samples_of(brdffit_table *t, brdffit_scale scale)
 /* The flat-scale sample set of a ../shared/tools/merl-table material. */
 static brdffit_samples *merl_samples(const char *material)
 {
-    char path[1024];
-    ck_assert_msg(tu_merl_table(material, path, sizeof path) != NULL, "merl-table %s", material);
     brdffit_error err;
-    brdffit_table *t = NULL;
-    ck_assert_msg(brdffit_table_read(path, &t, &err) == BRDFFIT_OK, "%s", err.message);
-    brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_FLAT);
-    brdffit_table_free(t);
+    brdffit_samples *s = NULL;
+    brdffit_sample_options so;
+    brdffit_sample_options_default(&so);
+    so.scale = BRDFFIT_SCALE_FLAT;
+    ck_assert_msg(tu_merl_samples(material, &so, &s, &err) == BRDFFIT_OK, "%s", err.message);
     return s;
 }
 

@@ -15,26 +15,6 @@
 
 static const double default_lam[3] = { 0.645, 0.526, 0.444 };
 
-static double urand(unsigned *state)
-{
-    *state = *state * 1664525u + 1013904223u;
-    return ((*state >> 8) + 0.5) / 16777216.0;
-}
-
-static void dir_at(double theta_deg, double phi_deg, double w[3])
-{
-    double t = theta_deg * M_PI / 180, p = phi_deg * M_PI / 180;
-    w[0] = sin(t) * cos(p);
-    w[1] = sin(t) * sin(p);
-    w[2] = cos(t);
-}
-
-/* A random direction in the open upper hemisphere, down to 89.9 deg. */
-static void rand_dir(unsigned *st, double w[3])
-{
-    dir_at(acos(1.7e-3 + (1 - 1.7e-3) * urand(st)) * 180 / M_PI, 360 * urand(st), w);
-}
-
 static bf_geom geom(const double wi[3], const double wo[3])
 {
     bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
@@ -174,12 +154,12 @@ START_TEST(reciprocity)
     const double *P = param_sets[_i];
     for (int t = 0; t < 4000; t++) {
         double wi[3], wo[3], a[3], b[3];
-        rand_dir(&st, wi);
+        tu_rand_dir(&st, 1.7e-3, wi);
         if (t % 4 == 0) { /* near the mirror direction, where K is large */
             double th = acos(wi[2]) * 180 / M_PI, ph = atan2(wi[1], wi[0]) * 180 / M_PI;
-            dir_at(fmin(th + 4 * (urand(&st) - 0.5), 89.9), ph + 180 + 8 * (urand(&st) - 0.5), wo);
+            tu_dir_at(fmin(th + 4 * (tu_urand(&st) - 0.5), 89.9), ph + 180 + 8 * (tu_urand(&st) - 0.5), wo);
         } else {
-            rand_dir(&st, wo);
+            tu_rand_dir(&st, 1.7e-3, wo);
         }
         bf_geom g1 = geom(wi, wo), g2 = geom(wo, wi);
         bf_he(&g1, P[0], P[1], P[2], default_lam, a);
@@ -231,8 +211,8 @@ START_TEST(geometry_limits)
     unsigned st = 99u;
     for (int t = 0; t < 2000; t++) { /* well-separated pairs away from the normal */
         double wi[3], wo[3];
-        rand_dir(&st, wi);
-        rand_dir(&st, wo);
+        tu_rand_dir(&st, 1.7e-3, wi);
+        tu_rand_dir(&st, 1.7e-3, wo);
         double sep = acos(fmin(1.0, wi[0] * wo[0] + wi[1] * wo[1] + wi[2] * wo[2]));
         if (sep < 0.05 || wi[2] > 0.999 || wo[2] > 0.999)
             continue;
@@ -244,7 +224,7 @@ START_TEST(geometry_limits)
     const double thetas[] = { 0, 1e-6, 5, 30, 45, 60, 80, 89, 89.9 };
     for (size_t i = 0; i < sizeof thetas / sizeof thetas[0]; i++) {
         double wi[3], lim = 4.0 / (cos(thetas[i] * M_PI / 180) * cos(thetas[i] * M_PI / 180));
-        dir_at(thetas[i], 37, wi);
+        tu_dir_at(thetas[i], 37, wi);
         bf_geom g = geom(wi, wi);
         double G = bf_he_geometry(&g);
         ck_assert_msg(isfinite(G) && tu_reldiff(G, lim) <= 1e-13, "theta %g: G %.17g limit %.17g",
@@ -260,9 +240,9 @@ START_TEST(geometry_limits)
         for (int s = 0; s < 3; s++) {
             double d = seps[s], dd = d * 180 / M_PI;
             double w1[3], w2[3], w3[3], w4[3];
-            dir_at(thetas[i] - dd / 2, 37, w1);
-            dir_at(thetas[i] + dd / 2, 37, w2);
-            dir_at(thetas[i] + dd, 37, w3);
+            tu_dir_at(thetas[i] - dd / 2, 37, w1);
+            tu_dir_at(thetas[i] + dd / 2, 37, w2);
+            tu_dir_at(thetas[i] + dd, 37, w3);
             bf_geom gs = geom(w1, w2), ga = geom(wi, w3);
             double Gs = bf_he_geometry(&gs), Ga = bf_he_geometry(&ga);
             ck_assert_msg(tu_reldiff(Gs, lim) <= d * d + 1e-12,
@@ -270,7 +250,7 @@ START_TEST(geometry_limits)
             ck_assert_msg(tu_reldiff(Ga, lim) <= 1.01 * d * tan(t) + d * d + 1e-12,
                           "theta %g, wo moved by %g: %.17g vs limit %.17g", thetas[i], d, Ga, lim);
             if (thetas[i] >= 1) {
-                dir_at(thetas[i], 37 + dd / sin(t), w4);
+                tu_dir_at(thetas[i], 37 + dd / sin(t), w4);
                 bf_geom gp = geom(wi, w4);
                 double Gp = bf_he_geometry(&gp);
                 ck_assert_msg(tu_reldiff(Gp, lim) <= d * d + 1e-12,
@@ -384,7 +364,7 @@ START_TEST(rough_normal_limit)
     const double thetas[] = { 0, 0.1, 0.5, 1, 2 };
     for (int i = 0; i < 5; i++) {
         double w[3], K[3];
-        dir_at(thetas[i], 20, w);
+        tu_dir_at(thetas[i], 20, w);
         bf_geom g = geom(w, w);
         bf_he(&g, tau, sigma0, n, default_lam, K);
         /* g = (4 pi sigma cos(theta) / lam)^2 > 9000 here.  Exactly at the
@@ -410,8 +390,8 @@ START_TEST(shadowing_smooth_limit)
     for (int i = 0; i < 5; i++)
         for (int j = 0; j < 5; j++) {
             double wi[3], wo[3];
-            dir_at(thetas[i], 0, wi);
-            dir_at(thetas[j], 150, wo);
+            tu_dir_at(thetas[i], 0, wi);
+            tu_dir_at(thetas[j], 150, wo);
             bf_geom g = geom(wi, wo);
             double S = bf_he_shadowing(&g, 1.0, 0.001); /* the smallest tau: the worst case */
             ck_assert_msg(fabs(S - 1) <= 1e-6, "theta %g, %g: S = %.17g", thetas[i], thetas[j], S);
@@ -456,8 +436,8 @@ static void make_dirs(void)
             for (int p = 0; p < 4; p++) {
                 const double dphi[] = { 0, 180, 90, 179.99 };
                 double *d = dirs[n_dirs++];
-                dir_at(th[a], 10, d);
-                dir_at(th[b], 10 + dphi[p], d + 3);
+                tu_dir_at(th[a], 10, d);
+                tu_dir_at(th[b], 10 + dphi[p], d + 3);
             }
 }
 
@@ -509,8 +489,8 @@ START_TEST(corners_finite)
     brdffit_params p;
     he_params(&p, 20, 0.5, 1.0);
     double rgb[3], wi[3], wo[3];
-    dir_at(30, 0, wi);
-    dir_at(30, 180, wo);
+    tu_dir_at(30, 0, wi);
+    tu_dir_at(30, 180, wo);
     ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb), BRDFFIT_OK);
     ck_assert(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
 }
@@ -545,8 +525,8 @@ END_TEST
 START_TEST(continuous_in_sigma)
 {
     double wi[3], wo[3];
-    dir_at(20, 0, wi);
-    dir_at(20.5, 181, wo);
+    tu_dir_at(20, 0, wi);
+    tu_dir_at(20.5, 181, wo);
     bf_geom g = geom(wi, wo);
     /* at wi ~ wo ~ 20 deg g = (2 pi sigma 1.88 / lam)^2: 18..19 near sigma = 0.23 um at 0.645 */
     double prev[3];

@@ -15,29 +15,6 @@ static const brdffit_model closed_form[] = {
 };
 #define NCLOSED (int)(sizeof closed_form / sizeof closed_form[0])
 
-static double urand(unsigned *state)
-{
-    *state = *state * 1664525u + 1013904223u;
-    return ((*state >> 8) + 0.5) / 16777216.0;
-}
-
-/* A uniformly random direction in the open upper hemisphere. */
-static void rand_dir(unsigned *st, double w[3])
-{
-    double z = 1e-3 + (1 - 2e-3) * urand(st), phi = 2 * M_PI * urand(st), r = sqrt(1 - z * z);
-    w[0] = r * cos(phi);
-    w[1] = r * sin(phi);
-    w[2] = z;
-}
-
-static void dir_at(double theta_deg, double phi_deg, double w[3])
-{
-    double t = theta_deg * M_PI / 180, p = phi_deg * M_PI / 180;
-    w[0] = sin(t) * cos(p);
-    w[1] = sin(t) * sin(p);
-    w[2] = cos(t);
-}
-
 START_TEST(reference_values)
 {
     char path[1024], line[4096];
@@ -112,8 +89,8 @@ START_TEST(reciprocity)
     published(m, &p);
     for (int t = 0; t < 20000; t++) {
         double wi[3], wo[3], a[3], b[3];
-        rand_dir(&st, wi);
-        rand_dir(&st, wo);
+        tu_rand_dir(&st, 1e-3, wi);
+        tu_rand_dir(&st, 1e-3, wo);
         ck_assert_int_eq(brdffit_eval(m, &p, wi, wo, a), BRDFFIT_OK);
         ck_assert_int_eq(brdffit_eval(m, &p, wo, wi, b), BRDFFIT_OK);
         for (int c = 0; c < 3; c++)
@@ -148,15 +125,15 @@ START_TEST(finite_everywhere)
             double lo = mi->lower[k], hi = mi->upper[k];
             p.p[k] = cnr < corners ? (bit ? hi : lo)
                    : cnr < 2 * corners ? (bit ? hi - 1e-9 * (hi - lo) : lo + 1e-9 * (hi - lo))
-                                       : lo + (hi - lo) * urand(&st);
+                                       : lo + (hi - lo) * tu_urand(&st);
         }
         if (m == BRDFFIT_LAFORTUNE && p.p[0] == 0 && p.p[1] == 0)
             p.p[1] = 1;
         for (int a = 0; a < nd; a++)
             for (int b = 0; b < nd; b++) {
                 double wi[3], wo[3], rgb[3];
-                dir_at(dirs[a][0], dirs[a][1], wi);
-                dir_at(dirs[b][0], dirs[b][1], wo);
+                tu_dir_at(dirs[a][0], dirs[a][1], wi);
+                tu_dir_at(dirs[b][0], dirs[b][1], wo);
                 ck_assert_int_eq(brdffit_eval(m, &p, wi, wo, rgb), BRDFFIT_OK);
                 for (int c = 0; c < 3; c++)
                     ck_assert_msg(isfinite(rgb[c]) && rgb[c] >= 0,
@@ -175,8 +152,8 @@ START_TEST(exponent_million)
     memset(&p, 0, sizeof p);
     p.s[0] = p.s[1] = p.s[2] = 1;
     double wi[3], wo[3], rgb[3];
-    dir_at(30, 0, wi);
-    dir_at(30, 180, wo);
+    tu_dir_at(30, 0, wi);
+    tu_dir_at(30, 180, wo);
     brdffit_model ms[] = { BRDFFIT_BLINN_PHONG, BRDFFIT_LAFORTUNE, BRDFFIT_ASHIKHMIN_SHIRLEY };
     for (int i = 0; i < 3; i++) {
         p.p[0] = ms[i] == BRDFFIT_LAFORTUNE ? -1.0 : (ms[i] == BRDFFIT_ASHIKHMIN_SHIRLEY ? 0.5 : 1e6);
@@ -185,7 +162,7 @@ START_TEST(exponent_million)
         ck_assert_int_eq(brdffit_eval(ms[i], &p, wi, wo, rgb), BRDFFIT_OK);
         ck_assert_msg(isfinite(rgb[0]) && rgb[0] > 1e4, "peak of model %d at n=1e6: %g", (int)ms[i], rgb[0]);
         double off[3];
-        dir_at(40, 180, off); /* half-vector 5 deg off the peak */
+        tu_dir_at(40, 180, off); /* half-vector 5 deg off the peak */
         ck_assert_int_eq(brdffit_eval(ms[i], &p, wi, off, rgb), BRDFFIT_OK);
         ck_assert_msg(isfinite(rgb[0]) && rgb[0] >= 0 && rgb[0] < 1e-100, "off-peak %g", rgb[0]);
     }

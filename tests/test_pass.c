@@ -14,14 +14,9 @@
 
 static brdffit_samples *load_samples(const char *material)
 {
-    char path[1024];
     brdffit_error err;
-    brdffit_table *t = NULL;
     brdffit_samples *s = NULL;
-    ck_assert_msg(tu_merl_table(material, path, sizeof path) != NULL, "merl-table %s failed", material);
-    ck_assert_msg(brdffit_table_read(path, &t, &err) == BRDFFIT_OK, "%s", err.message);
-    ck_assert_msg(brdffit_samples_create(t, NULL, &s, &err) == BRDFFIT_OK, "%s", err.message);
-    brdffit_table_free(t);
+    ck_assert_msg(tu_merl_samples(material, NULL, &s, &err) == BRDFFIT_OK, "%s", err.message);
     return s;
 }
 
@@ -53,11 +48,8 @@ START_TEST(kernel_equals_host)
     brdffit_model m = (brdffit_model)_i;
     brdffit_samples *s = load_samples("gold-metallic-paint");
     brdffit_error err;
-    brdffit_context_options co;
-    brdffit_context_options_default(&co);
-    co.backend = BRDFFIT_BACKEND_OPENCL;
     brdffit_context *ctx = NULL;
-    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     bf_pass_driver dr;
     ck_assert_msg(bf_driver_open(&dr, ctx, s, m, &err) == BRDFFIT_OK, "%s", err.message);
     bf_pass_par pp;
@@ -134,6 +126,42 @@ START_TEST(moment_layout)
 }
 END_TEST
 
+/* tu_env_put puts back a changed, a newly set and an unset variable. */
+static void expect_env(const char *name, const char *want)
+{
+    const char *v = getenv(name);
+    if (want)
+        ck_assert_msg(v && strcmp(v, want) == 0, "%s = %s, expected %s", name, v ? v : "(unset)", want);
+    else
+        ck_assert_msg(v == NULL, "%s = %s, expected it unset", name, v);
+}
+
+START_TEST(env_restored)
+{
+    static const char *const names[] = { "HOME", "OCL_ICD_VENDORS", "BRDFFIT_DEVICE" };
+    char *before[3];
+    for (int i = 0; i < 3; i++)
+        before[i] = getenv(names[i]) ? strdup(getenv(names[i])) : NULL;
+    tu_env e;
+    tu_env_get(&e);
+    setenv("HOME", "/nonexistent-home", 1);
+    setenv("OCL_ICD_VENDORS", "/nonexistent-vendors", 1);
+    unsetenv("BRDFFIT_DEVICE");
+    setenv("BRDFFIT_DEVICE", "9:9", 1);
+    tu_env_put(&e);
+    for (int i = 0; i < 3; i++) {
+        expect_env(names[i], before[i]);
+        free(before[i]);
+    }
+    /* and an unset one comes back unset */
+    unsetenv("BRDFFIT_CL_OPTIONS");
+    tu_env_get(&e);
+    setenv("BRDFFIT_CL_OPTIONS", "-DX=1", 1);
+    tu_env_put(&e);
+    expect_env("BRDFFIT_CL_OPTIONS", NULL);
+}
+END_TEST
+
 START_TEST(device_selection)
 {
     brdffit_error err;
@@ -169,7 +197,6 @@ START_TEST(device_selection)
     co.device = NULL;
     co.backend = BRDFFIT_BACKEND_OPENCL;
     ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_E_NO_DEVICE);
-    unsetenv("BRDFFIT_DEVICE");
     co.backend = (brdffit_backend)42;
     ck_assert_int_eq(brdffit_context_create(&co, &ctx, &err), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_context_create(NULL, NULL, &err), BRDFFIT_E_INVALID_ARGUMENT);
@@ -218,7 +245,7 @@ START_TEST(no_platform_falls_back_to_host)
     brdffit_samples_free(s);
     brdffit_table_free(t);
     brdffit_context_free(ctx);
-    rmdir(dir);
+    ck_assert_int_eq(rmdir(dir), 0);
 }
 END_TEST
 
@@ -232,10 +259,7 @@ START_TEST(pocl_cache_out_of_the_box)
     setenv("HOME", home, 1);
     brdffit_error err;
     brdffit_context *ctx = NULL;
-    brdffit_context_options co;
-    brdffit_context_options_default(&co);
-    co.backend = BRDFFIT_BACKEND_OPENCL;
-    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     const char *cache = getenv("POCL_CACHE_DIR");
     ck_assert_ptr_nonnull(cache);
     ck_assert_ptr_nonnull(strstr(cache, home));
@@ -245,6 +269,7 @@ START_TEST(pocl_cache_out_of_the_box)
     cl_kernel kf, kv;
     ck_assert_msg(bf_context_kernels(ctx, BRDFFIT_WARD, &kf, &kv, &err) == BRDFFIT_OK, "%s", err.message);
     brdffit_context_free(ctx);
+    ck_assert_int_eq(tu_remove_tree(home), 0);
 }
 END_TEST
 
@@ -254,10 +279,7 @@ START_TEST(build_failure_carries_log)
     setenv("BRDFFIT_CL_OPTIONS", "-DBF_WIDTH=5", 1); /* bf_common.h: #error */
     brdffit_error err;
     brdffit_context *ctx = NULL;
-    brdffit_context_options co;
-    brdffit_context_options_default(&co);
-    co.backend = BRDFFIT_BACKEND_OPENCL;
-    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     cl_kernel kf, kv;
     brdffit_status st = bf_context_kernels(ctx, BRDFFIT_WARD, &kf, &kv, &err);
     ck_assert_int_eq(st, BRDFFIT_E_KERNEL_BUILD);
@@ -265,7 +287,6 @@ START_TEST(build_failure_carries_log)
     ck_assert_ptr_nonnull(strstr(err.message, "build log"));
     ck_assert_ptr_nonnull(strstr(err.message, "BF_WIDTH must be 4 or 8")); /* the compiler's words */
     brdffit_context_free(ctx);
-    unsetenv("BRDFFIT_CL_OPTIONS");
 }
 END_TEST
 
@@ -277,10 +298,16 @@ Suite *pass_suite(void)
     tcase_add_loop_test(tc, kernel_equals_host, 0, BRDFFIT_MODEL_COUNT);
     tcase_add_test(tc, weights_normalised);
     tcase_add_test(tc, moment_layout);
-    tcase_add_test(tc, device_selection);
-    tcase_add_test(tc, no_platform_falls_back_to_host);
-    tcase_add_test(tc, pocl_cache_out_of_the_box);
-    tcase_add_test(tc, build_failure_carries_log);
     suite_add_tcase(s, tc);
+    /* the tests that change the environment: the fixture puts it back */
+    TCase *te = tcase_create("environment");
+    tcase_set_timeout(te, 300);
+    tcase_add_checked_fixture(te, tu_env_save, tu_env_restore);
+    tcase_add_test(te, env_restored);
+    tcase_add_test(te, device_selection);
+    tcase_add_test(te, no_platform_falls_back_to_host);
+    tcase_add_test(te, pocl_cache_out_of_the_box);
+    tcase_add_test(te, build_failure_carries_log);
+    suite_add_tcase(s, te);
     return s;
 }

@@ -1,11 +1,13 @@
 /* testutil.c -- see testutil.h. */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* nftw */
+#define _DEFAULT_SOURCE  /* M_PI */
 #include "testutil.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <ftw.h>
 #include <unistd.h>
 
 const char *tu_shared(const char *rel, char *buf, size_t len)
@@ -121,4 +123,115 @@ double tu_reldiff(double a, double b)
 {
     double m = fmax(fmax(fabs(a), fabs(b)), 1e-300);
     return fabs(a - b) / m;
+}
+
+/* ------------------------------------------------------------------ tables, samples, contexts */
+
+brdffit_status tu_merl_read(const char *material, brdffit_table **out, brdffit_error *err)
+{
+    char path[1024];
+    *out = NULL;
+    if (!tu_merl_table(material, path, sizeof path)) {
+        if (err) {
+            err->status = BRDFFIT_E_FILE_OPEN;
+            snprintf(err->message, sizeof err->message, "%s %s failed",
+                     tu_shared("tools/merl-table", path, sizeof path), material);
+        }
+        return BRDFFIT_E_FILE_OPEN;
+    }
+    return brdffit_table_read(path, out, err);
+}
+
+brdffit_status tu_merl_samples(const char *material, const brdffit_sample_options *opt,
+                               brdffit_samples **out, brdffit_error *err)
+{
+    brdffit_table *t = NULL;
+    *out = NULL;
+    brdffit_status st = tu_merl_read(material, &t, err);
+    if (st == BRDFFIT_OK)
+        st = brdffit_samples_create(t, opt, out, err);
+    brdffit_table_free(t);
+    return st;
+}
+
+brdffit_status tu_context(brdffit_backend backend, brdffit_context **out, brdffit_error *err)
+{
+    brdffit_context_options co;
+    brdffit_context_options_default(&co);
+    co.backend = backend;
+    return brdffit_context_create(&co, out, err);
+}
+
+/* ------------------------------------------------------------------ random directions */
+
+double tu_urand(unsigned *state)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return ((*state >> 8) + 0.5) / 16777216.0;
+}
+
+void tu_dir_at(double theta_deg, double phi_deg, double w[3])
+{
+    double t = theta_deg * M_PI / 180, p = phi_deg * M_PI / 180;
+    w[0] = sin(t) * cos(p);
+    w[1] = sin(t) * sin(p);
+    w[2] = cos(t);
+}
+
+void tu_rand_dir(unsigned *state, double zmin, double w[3])
+{
+    double z = zmin + (1 - zmin) * tu_urand(state), phi = 2 * M_PI * tu_urand(state);
+    double r = sqrt(fmax(0.0, 1 - z * z));
+    w[0] = r * cos(phi);
+    w[1] = r * sin(phi);
+    w[2] = z;
+}
+
+/* ------------------------------------------------------------------ the environment */
+
+static const char *const env_names[TU_ENV_N] = { "OCL_ICD_VENDORS", "HOME", "XDG_CACHE_HOME",
+                                                 "POCL_CACHE_DIR", "BRDFFIT_DEVICE",
+                                                 "BRDFFIT_CL_OPTIONS" };
+
+void tu_env_get(tu_env *e)
+{
+    for (int i = 0; i < TU_ENV_N; i++) {
+        const char *v = getenv(env_names[i]);
+        e->value[i] = v ? strdup(v) : NULL;
+    }
+}
+
+void tu_env_put(tu_env *e)
+{
+    for (int i = 0; i < TU_ENV_N; i++) {
+        if (e->value[i])
+            setenv(env_names[i], e->value[i], 1);
+        else
+            unsetenv(env_names[i]);
+        free(e->value[i]);
+        e->value[i] = NULL;
+    }
+}
+
+static tu_env fixture_env;
+
+void tu_env_save(void)
+{
+    tu_env_get(&fixture_env);
+}
+
+void tu_env_restore(void)
+{
+    tu_env_put(&fixture_env);
+}
+
+static int remove_one(const char *path, const struct stat *sb, int flag, struct FTW *ftw)
+{
+    (void)sb, (void)flag, (void)ftw;
+    return remove(path);
+}
+
+int tu_remove_tree(const char *path)
+{
+    return nftw(path, remove_one, 16, FTW_DEPTH | FTW_PHYS);
 }

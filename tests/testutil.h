@@ -1,4 +1,12 @@
-/* testutil.h -- helpers the test files share: ../shared data, temporary files. */
+/* testutil.h -- helpers the test files share (and bench/ reuses the data ones):
+ *
+ *   testutil.c   ../shared data, MERL tables and sample sets, contexts,
+ *                temporary files, random directions, the environment
+ *   jsoncheck.c  a strict JSON parser that judges the program's --json output
+ *   xmldoc.c     XML documents parsed with expat (the SVG/HTML output)
+ *
+ * Nothing here uses Check: helpers return a status (and a message in a
+ * brdffit_error) for the caller to assert. */
 #ifndef BRDFFIT_TESTUTIL_H
 #define BRDFFIT_TESTUTIL_H
 
@@ -51,5 +59,58 @@ void tu_xml_free(tu_xml_doc *doc);
 
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double tu_reldiff(double a, double b);
+
+/* ---- MERL tables, sample sets and contexts ---- */
+
+/* Read the MERL table of a material (../shared/tools/merl-table NAME). */
+brdffit_status tu_merl_read(const char *material, brdffit_table **out, brdffit_error *err);
+/* Its sample set with options opt (NULL: the defaults). */
+brdffit_status tu_merl_samples(const char *material, const brdffit_sample_options *opt,
+                               brdffit_samples **out, brdffit_error *err);
+/* A context on backend (device: the default). */
+brdffit_status tu_context(brdffit_backend backend, brdffit_context **out, brdffit_error *err);
+
+/* ---- random directions (a fixed LCG: every run draws the same) ---- */
+
+/* Uniform in (0, 1). */
+double tu_urand(unsigned *state);
+/* The unit vector at polar angle theta and azimuth phi (degrees). */
+void tu_dir_at(double theta_deg, double phi_deg, double w[3]);
+/* A random direction, uniform over the hemisphere where cos theta >= zmin. */
+void tu_rand_dir(unsigned *state, double zmin, double w[3]);
+
+/* ---- the environment ----
+ * A test that changes OCL_ICD_VENDORS, HOME, XDG_CACHE_HOME, POCL_CACHE_DIR,
+ * BRDFFIT_DEVICE or BRDFFIT_CL_OPTIONS runs in a TCase with the checked fixture
+ * (tu_env_save, tu_env_restore): they are put back as they were afterwards,
+ * also when it fails (and so also with CK_FORK=no). */
+void tu_env_save(void);
+void tu_env_restore(void);
+/* The same for a caller's copy: get saves those variables, put restores them
+ * (and frees the copy). */
+#define TU_ENV_N 6
+typedef struct tu_env {
+    char *value[TU_ENV_N]; /* a copy of each value, or NULL when unset */
+} tu_env;
+void tu_env_get(tu_env *e);
+void tu_env_put(tu_env *e);
+
+/* Remove a directory tree (a test's temporary HOME); 0 on success. */
+int tu_remove_tree(const char *path);
+
+/* ---- jsoncheck.c: a strict JSON parser ---- */
+
+/* 1 when line is exactly one JSON object (nothing after it). */
+int tu_json_object_line(const char *line);
+/* The start of member key's value in the object at obj, or NULL. */
+const char *tu_json_member(const char *obj, const char *key);
+/* The string member key, decoded into out; 1 on success. */
+int tu_json_get_string(const char *obj, const char *key, char *out, size_t len);
+/* The number member key; 1 on success. */
+int tu_json_get_number(const char *obj, const char *key, double *x);
+/* Element i of the number array member key; 1 on success. */
+int tu_json_get_element(const char *obj, const char *key, int i, double *x);
+/* Length of the array member key, or -1. */
+int tu_json_array_len(const char *obj, const char *key);
 
 #endif

@@ -15,6 +15,14 @@ static const cli_command commands[] = {
     { "models", cmd_models, "", "list the models, their lobe parameters and bounds" },
     { "eval", cmd_eval, "MODEL d_r d_g d_b s_r s_g s_b p0 [p1 [p2]] --wi X Y Z --wo X Y Z",
       "print f(wi, wo) per channel (1/sr, no cosine factor)" },
+    { "batch", cmd_batch, "INPUT... --out DIR [OPTIONS]",
+      "fit the models to every material (INPUT: a table, a directory\n"
+      "of *.binary, @LIST) and write the report into DIR: pages,\n"
+      "renders, plots, the Error matrix; journaled, resumable" },
+    { "report", cmd_report, "DIR... --out DIR",
+      "merge the journals of batch directories (shards) into one report" },
+    { "score", cmd_score, "TABLE --model M --params d_r,...,p0[,p1,p2] | --fits FILE",
+      "print the Error of given parameters on a table" },
 };
 static const int ncommands = (int)(sizeof commands / sizeof commands[0]);
 

@@ -11,6 +11,8 @@
  *   report.c      the paper-style table and the JSON Lines records
  *   json.c        JSON text: escaped strings, round-tripping numbers
  *   text.c        text for the terminal: control characters made harmless
+ *   demo_material.c  the embedded synthetic material (demo, batch --demo)
+ *   cmd_batch.c, cmd_report.c, cmd_score.c and their support files: batch.h
  *
  * The library never prints or exits; this program does both. */
 #ifndef BRDFFIT_CLI_H
@@ -54,6 +56,19 @@ int cmd_fit(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_models(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
+int cmd_batch(int argc, char **argv);
+int cmd_report(int argc, char **argv);
+int cmd_score(int argc, char **argv);
+/* The "Options of batch" block of --help (cmd_batch.c). */
+void cli_batch_help(FILE *f);
+
+/* ---- demo_material.c: the embedded synthetic material ---- */
+
+const char *cli_demo_name(void);
+/* Its generating model and parameters. */
+const brdffit_params *cli_demo_truth(brdffit_model *model);
+/* Its table, stored in the given scale. */
+brdffit_status cli_demo_table(brdffit_scale scale, brdffit_table **out, brdffit_error *err);
 
 /* ---- args.c ---- */
 

@@ -166,19 +166,12 @@ static int run_fit(const cli_options *o)
 
 /* ------------------------------------------------------------------ demo */
 
-/* The embedded material: a Cook-Torrance lobe plus Lambertian diffuse at the
- * published Ngan et al. 2005 Cook-Torrance fit of MERL alum-bronze. */
-static const brdffit_params demo_truth = {
-    .d = { 0.0886, 0.0602, 0.0299 },
-    .s = { 0.118, 0.0698, 0.0371 },
-    .p = { 0.203, 0.0367 },
-};
-static const brdffit_model demo_model = BRDFFIT_COOK_TORRANCE;
-
 static int run_demo(const cli_options *o)
 {
     runner R = { o, NULL, 0, 0 };
     double t0 = brdffit_seconds();
+    brdffit_model demo_model;
+    const brdffit_params *truth = cli_demo_truth(&demo_model);
     const brdffit_model_info *gi = brdffit_model_get(demo_model);
     char about[512];
     snprintf(about, sizeof about,
@@ -186,15 +179,13 @@ static int run_demo(const cli_options *o)
              "  of MERL alum-bronze, stored as a MERL table (%s scale) and fitted back;\n"
              "  row 'truth' = those generating parameters",
              gi->title, gi->title, brdffit_scale_name(o->sample.scale));
-    cli_material m = { "synthetic-alum-bronze-ct", NULL, about, o->sample };
+    cli_material m = { cli_demo_name(), NULL, about, o->sample };
     brdffit_error err;
     memset(&err, 0, sizeof err);
 
     brdffit_table *table = NULL;
     brdffit_samples *samples = NULL;
-    brdffit_status st = brdffit_table_create(&table, &err);
-    if (st == BRDFFIT_OK)
-        st = brdffit_table_fill_model(table, demo_model, &demo_truth, o->sample.scale, &err);
+    brdffit_status st = cli_demo_table(o->sample.scale, &table, &err);
     if (st == BRDFFIT_OK)
         st = brdffit_samples_create(table, &o->sample, &samples, &err);
     brdffit_table_free(table);
@@ -211,12 +202,12 @@ static int run_demo(const cli_options *o)
     if (!o->json) {
         report_header(stdout, &m, samples, R.ctx, &o->fit);
         double e0 = NAN;
-        st = brdffit_error_of(R.ctx, samples, demo_model, &demo_truth, &e0, &err);
+        st = brdffit_error_of(R.ctx, samples, demo_model, truth, &e0, &err);
         if (st != BRDFFIT_OK) {
             R.failures++;
             fprintf(stderr, "brdffit: the Error of the generating parameters: %s\n", err.message);
         }
-        report_row(stdout, "truth", gi, &demo_truth, e0, NULL);
+        report_row(stdout, "truth", gi, truth, e0, NULL);
     }
     best_fit best = fit_models(&R, &m, samples);
     double total = brdffit_seconds() - t0;

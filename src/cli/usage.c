@@ -40,11 +40,14 @@ void cli_usage(FILE *f, const cli_command *commands, int n)
         command_help(f, &commands[i]);
     fputc('\n', f);
     cli_options_help(f);
+    fputc('\n', f);
+    cli_batch_help(f);
     fputs("\n"
           "  brdffit --help | --version\n"
           "\n"
           "Exit status: 0 success; 1 a file could not be read or a fit failed (the other\n"
-          "files and models are still fitted); 2 a usage error.\n"
+          "files and models are still fitted); 2 a usage error; batch: 128 + the signal\n"
+          "number when SIGINT or SIGTERM stopped it (what was done is kept).\n"
           "PoCL caches kernel builds in $POCL_CACHE_DIR (set to a user cache when unset).\n",
           f);
 }

@@ -1,0 +1,278 @@
+/* batch.h -- what the files of `brdffit batch`, `report` and `score` share.
+ *
+ *   journal.c      the journal DIR/journal.jsonl: records, settings, material
+ *                  identity, append (fsync'd) and load (a torn last line ignored)
+ *   jsonread.c     a small reader for the JSON objects the journal holds
+ *   published.c    the published-fits TSV (material, model, d, s, p0..p2)
+ *   outfile.c      files of the report written whole (temporary + rename), errors kept
+ *   html_report.c  per material params.tsv, params.json, index.html; DIR/index.html,
+ *                  DIR/fits.tsv and the headline figure (SVG)
+ *   cmd_batch.c    `brdffit batch`: inputs, shards, fits, resume, signals, progress
+ *   cmd_report.c   `brdffit report DIR...`: shard journals merged into one report
+ *   cmd_score.c    `brdffit score`: the Error of given parameters
+ *   report_data.c  the materials of a report chosen from the records; medians, best
+ *   demo_material.c, assets.c, fault.c  (see cli.h, below)
+ */
+#ifndef BRDFFIT_BATCH_H
+#define BRDFFIT_BATCH_H
+
+#include "brdffit.h"
+
+#include <stdio.h>
+
+#define BJ_PATH_MAX 4096
+#define BJ_NAME_MAX 256
+#define BJ_MSG_MAX 512
+#define BJ_MODEL_NAME_MAX 32
+#define BJ_MAX_MODELS 32   /* model ids below this (the registry has fewer) */
+#define BJ_ASSETS_MAX 4096
+
+/* The settings a fit depends on besides the material and the model.  Records
+ * made with other settings are not reused. */
+typedef struct bj_settings {
+    char version[32];      /* brdffit_version()                       */
+    char scale[16];        /* "standard" | "flat"                     */
+    double cutoff_deg;
+    int starts;            /* --starts; 0 = each model's own default  */
+} bj_settings;
+
+void bj_settings_make(bj_settings *s, const brdffit_sample_options *so, const brdffit_fit_options *fo);
+int bj_settings_equal(const bj_settings *a, const bj_settings *b);
+/* The differences of b from a, in words ("scale flat (this run: standard)"), into buf. */
+const char *bj_settings_diff(const bj_settings *journal, const bj_settings *run, char *buf,
+                             size_t len);
+
+/* A material's identity: its path (made absolute), size and a hash of its bytes
+ * (64-bit FNV-1a over 8-byte words, hex).  The embedded demo material has path "(embedded)". */
+typedef struct bj_identity {
+    char path[BJ_PATH_MAX];
+    long long size;
+    char hash[20];
+} bj_identity;
+
+/* Identify the file at path (reads it whole).  0, or -1 with err filled. */
+int bj_identify(const char *path, bj_identity *id, brdffit_error *err);
+/* The identity of bytes in memory (the embedded material). */
+void bj_identify_bytes(const char *label, const void *data, size_t len, bj_identity *id);
+int bj_identity_equal(const bj_identity *a, const bj_identity *b);
+
+typedef enum bj_kind {
+    BJ_FIT = 0,         /* a model fitted (or its fit failed: ok = 0)           */
+    BJ_FAILURE = 1,     /* the material could not be read or sampled           */
+    BJ_PUBLISHED = 2,   /* the Error of a material's published parameters       */
+    BJ_ASSETS = 3       /* the renders and plots of a material are written      */
+} bj_kind;
+
+typedef struct bj_record {
+    bj_kind kind;
+    char material[BJ_NAME_MAX];
+    bj_identity id;
+    bj_settings settings;
+    char model[BJ_MODEL_NAME_MAX];  /* BJ_FIT, BJ_PUBLISHED; BJ_ASSETS: "" */
+    int ok;
+    char status[64];                /* "ok" or brdffit_strerror()          */
+    char message[BJ_MSG_MAX];       /* why it failed                       */
+    brdffit_params params;          /* d, s, p (nparams), lambda_um (He)   */
+    int nparams;
+    double error;
+    int iterations, evaluations, cminpack_info;
+    double seconds;
+    long long samples;
+    char on_bound[128];             /* "n=upper,d_b=0" or ""               */
+    char backend[16];               /* "opencl" | "host"                   */
+    char assets_key[BJ_MSG_MAX];    /* BJ_ASSETS: what was drawn ("render,plot:ward,he") */
+    char assets[BJ_ASSETS_MAX];     /* BJ_ASSETS: lines "kind<TAB>file<TAB>caption"   */
+    int origin;                     /* not journaled: which journal it came from      */
+} bj_record;
+
+/* A growing array of records. */
+typedef struct bj_records {
+    bj_record *r;
+    int n, cap;
+} bj_records;
+
+int bj_records_push(bj_records *rs, const bj_record *r);
+void bj_records_free(bj_records *rs);
+
+/* The journal of an output directory, open for appending. */
+typedef struct bj_journal {
+    int fd;
+    char path[BJ_PATH_MAX];
+} bj_journal;
+
+/* Open (create) DIR/journal.jsonl for appending.  A torn last line (a kill in
+ * the middle of a write) is cut off first; *torn says so.  0 or -1 (err). */
+int bj_journal_open(bj_journal *j, const char *dir, int *torn, brdffit_error *err);
+/* Append one record as one line, then fsync: 0, or -1 with err filled. */
+int bj_journal_append(bj_journal *j, const bj_record *r, brdffit_error *err);
+void bj_journal_close(bj_journal *j);
+
+/* Read the records of a journal file into rs (appended).  A missing file is
+ * no record.  Lines that do not parse are skipped and counted in *bad (a torn
+ * last line in *torn).  0, or -1 when the file cannot be read (err). */
+int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdffit_error *err);
+
+/* One record as a JSON object (no newline) onto f. */
+void bj_record_json(FILE *f, const bj_record *r);
+/* Parse one JSON line into r: 0, or -1 when it is not a record. */
+int bj_record_parse(const char *line, bj_record *r);
+
+/* The lobe parameters (and d, s) at a bound, as "name=lower,..." into buf. */
+const char *bj_on_bound(brdffit_model model, const brdffit_params *p, char *buf, size_t len);
+
+/* ---- jsonread.c ---- */
+
+typedef enum jr_type { JR_NULL = 0, JR_BOOL, JR_NUMBER, JR_STRING, JR_ARRAY, JR_OBJECT } jr_type;
+
+#define JR_MAX_MEMBERS 48
+#define JR_MAX_ARRAY 8
+
+/* A flat JSON object: members whose values are null, true/false, numbers,
+ * strings, arrays of up to JR_MAX_ARRAY numbers, or a flat object (settings). */
+typedef struct jr_member {
+    char key[32];
+    jr_type type;
+    double num;
+    double arr[JR_MAX_ARRAY];
+    int narr;
+    char *str;            /* JR_STRING: decoded, NUL-terminated (owned)  */
+    int sub;              /* JR_OBJECT: index of its first member; nsub members follow */
+    int nsub;
+} jr_member;
+
+typedef struct jr_object {
+    jr_member m[JR_MAX_MEMBERS];
+    int n;
+} jr_object;
+
+/* Parse s (one object, nothing but white space after it): 0 or -1. */
+int jr_parse(const char *s, jr_object *o);
+void jr_free(jr_object *o);
+/* The member named key among the top-level members (or inside obj, a member index), or NULL. */
+const jr_member *jr_get(const jr_object *o, const char *key);
+const jr_member *jr_get_in(const jr_object *o, const jr_member *obj, const char *key);
+
+/* ---- published.c ---- */
+
+typedef struct pub_row {
+    char material[BJ_NAME_MAX];
+    brdffit_model model;
+    brdffit_params params;
+} pub_row;
+
+typedef struct pub_table {
+    pub_row *rows;
+    int n;
+    char path[BJ_PATH_MAX];
+} pub_table;
+
+/* Read a TSV of the ngan2005-fits.tsv format: header line "material model
+ * d_r ... p2", '#' comments, an empty p is 0.  0, or -1 with err (names the line). */
+int pub_read(const char *path, pub_table *t, brdffit_error *err);
+void pub_free(pub_table *t);
+/* The row of material and model, or NULL. */
+const pub_row *pub_find(const pub_table *t, const char *material, brdffit_model model);
+
+/* ---- outfile.c ---- */
+
+/* A file of the report: written to PATH.tmp, then renamed over PATH by
+ * out_commit, so that a page is never seen half-written. */
+typedef struct out_file {
+    FILE *f;
+    char path[BJ_PATH_MAX];
+    char tmp[BJ_PATH_MAX + 8];
+} out_file;
+
+/* 0, or -1 with err ("cannot write PATH: reason"). */
+int out_open(out_file *o, const char *path, brdffit_error *err);
+/* Flush, check, fsync? no: close and rename.  0, or -1 with err. */
+int out_commit(out_file *o, brdffit_error *err);
+/* Close and remove the temporary (after a failure). */
+void out_abandon(out_file *o);
+/* mkdir -p of one level (the parent must exist): 0 or -1 with err. */
+int out_mkdir(const char *path, brdffit_error *err);
+/* fsync the directory itself (new entries made durable): 0 or -1 with err. */
+int out_sync_dir(const char *path, brdffit_error *err);
+/* Copy a file (report: assets of a shard directory): 0 or -1 with err. */
+int out_copy(const char *from, const char *to, brdffit_error *err);
+/* Join dir and name into buf ("dir/name"); -1 when it does not fit. */
+int out_join(char *buf, size_t len, const char *dir, const char *name);
+
+/* ---- fault.c: fault injection for the tests (BRDFFIT_FAULT=POINT:N) ---- */
+
+/* 1 when this pass of point is the one BRDFFIT_FAULT names. */
+int cli_fault_hit(const char *point);
+/* SIGKILL the program when this pass of point is the one BRDFFIT_FAULT names. */
+void cli_fault_point(const char *point);
+
+/* ---- assets.c ---- */
+
+/* Write the renders and plots of a material (its table, the fits that
+ * succeeded) into dir; list the files written as lines
+ * "kind<TAB>file<TAB>caption" (kind: image, plot, data) into list.
+ * 0, or -1 with err (BRDFFIT_E_FILE_WRITE when dir could not be written). */
+int batch_assets(const char *dir, const char *material, const brdffit_table *table,
+                 const brdffit_sample_options *sample, const bj_record *const *fits, int nfits,
+                 int render, int plot, char *list, size_t len, brdffit_error *err);
+
+/* ---- report_data.c ---- */
+
+/* The report's materials, chosen from journal records. */
+
+/* ---- html_report.c ---- */
+
+/* One material of the report: its records, selected for the report's settings. */
+typedef struct rp_material {
+    char name[BJ_NAME_MAX];
+    bj_identity id;
+    const bj_record *failure;       /* the material could not be read: why    */
+    const bj_record *fit[BJ_MAX_MODELS];       /* by slot of rp_report.models, or NULL */
+    const bj_record *published[BJ_MAX_MODELS]; /* by slot, or NULL                     */
+    const bj_record *assets;
+    char asset_dir[BJ_PATH_MAX];    /* where its renders and plots are (report: a shard) */
+} rp_material;
+
+typedef struct rp_report {
+    rp_material *m;
+    int n;
+    brdffit_model models[BJ_MAX_MODELS];
+    int nmodels;
+    bj_settings settings;
+    char backend[256];              /* a description of the backend            */
+    char published_path[BJ_PATH_MAX]; /* --published, or ""                    */
+    int have_published;
+    char started[64];               /* date of the report (UTC ISO 8601)       */
+    const char *extra_note;         /* a line for the settings table, or NULL  */
+} rp_report;
+
+/* An empty report of these models and settings: 0 or -1 (no memory). */
+int rp_init(rp_report *rep, const brdffit_model *models, int nmodels, const bj_settings *s);
+/* Add the material name: its records among rs with these settings and the
+ * identity id (NULL: that of the material's last record).  A record's assets
+ * are in origin_dirs[record origin]/name.  0 or -1 (no memory). */
+int rp_add(rp_report *rep, const char *name, const bj_identity *id, const bj_records *rs,
+           const char *const *origin_dirs, int ndirs);
+void rp_free(rp_report *rep);
+
+/* Write every page of the report into dir: DIR/<material>/params.tsv,
+ * params.json, index.html; DIR/index.html, DIR/fits.tsv, DIR/headline.svg.
+ * 0, or -1 with err (the path that could not be written and why). */
+int rp_write(const rp_report *rep, const char *dir, brdffit_error *err);
+
+/* The slot of material i's best fit (lowest Error), or -1. */
+int rp_best(const rp_report *rep, int i);
+/* The model sorted by (for the headline figure): the one with the lowest
+ * median Error; -1 when no model has an Error. */
+int rp_sort_model(const rp_report *rep);
+/* Median Error of model slot k over the materials it was fitted to, and how
+ * often it is the best; NAN / 0 when none. */
+double rp_median(const rp_report *rep, int k, int *nbest, int *nfitted);
+
+/* Assets: the files the renders and plots of a material are, for its page. */
+typedef struct rp_asset {
+    char file[128];       /* relative to the material's directory */
+    char caption[256];
+    int kind;             /* 0 image (PNG), 1 plot (SVG), 2 other (EXR, linked) */
+} rp_asset;
+
+#endif

@@ -1,0 +1,898 @@
+/* cmd_batch.c -- `brdffit batch INPUT... --out DIR`: every model fitted to every
+ * material, each fit journaled (fsync'd) before the next starts, the report
+ * (pages, index, headline figure) rebuilt from the journal.  Re-running the
+ * same command resumes; SIGINT/SIGTERM stop after the fit in progress;
+ * --shard K/N takes every N-th material of the sorted list. */
+#define _POSIX_C_SOURCE 200809L
+#include "batch.h"
+#include "cli.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+/* ------------------------------------------------------------------ options */
+
+typedef struct batch_options {
+    cli_options common;      /* --model --scale --cutoff --starts --backend --device, INPUT... */
+    const char *out;
+    const char *published;
+    int shard_k, shard_n;    /* 1-based; 1/1 unsharded */
+    int quiet, no_render, no_plot, demo;
+} batch_options;
+
+static int parse_shard(const char *v, int *k, int *n)
+{
+    const char *slash = strchr(v, '/');
+    char a[32];
+    if (!slash || (size_t)(slash - v) >= sizeof a)
+        return -1;
+    memcpy(a, v, (size_t)(slash - v));
+    a[slash - v] = '\0';
+    if (cli_parse_int(slash + 1, 1, 1000000, n) != 0 || cli_parse_int(a, 1, *n, k) != 0)
+        return -1;
+    return 0;
+}
+
+/* The batch's own options are taken out; the rest go to cli_parse_options. */
+static int parse_batch(int argc, char **argv, batch_options *b)
+{
+    memset(b, 0, sizeof *b);
+    b->shard_k = b->shard_n = 1;
+    char **rest = malloc((size_t)(argc + 1) * sizeof *rest);
+    if (!rest) {
+        fputs("brdffit: out of memory\n", stderr);
+        return CLI_FAILED;
+    }
+    int nrest = 0, rc = CLI_OK;
+    for (int i = 0; i < argc && rc == CLI_OK; i++) {
+        const char *a = argv[i];
+        const char **dst = NULL;
+        if (strcmp(a, "--") == 0) {
+            while (i < argc)
+                rest[nrest++] = argv[i++];
+            break;
+        }
+        if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0)
+            b->quiet = 1;
+        else if (strcmp(a, "--no-render") == 0)
+            b->no_render = 1;
+        else if (strcmp(a, "--no-plot") == 0)
+            b->no_plot = 1;
+        else if (strcmp(a, "--demo") == 0)
+            b->demo = 1;
+        else if (strcmp(a, "--json") == 0)
+            rc = cli_usage_error("batch writes its JSON into --out DIR; --json is for fit");
+        else if (strncmp(a, "--out", 5) == 0 && (a[5] == '\0' || a[5] == '='))
+            dst = &b->out;
+        else if (strncmp(a, "--published", 11) == 0 && (a[11] == '\0' || a[11] == '='))
+            dst = &b->published;
+        else if (strncmp(a, "--shard", 7) == 0 && (a[7] == '\0' || a[7] == '=')) {
+            const char *v = a[7] == '=' ? a + 8 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v || parse_shard(v, &b->shard_k, &b->shard_n) != 0)
+                rc = cli_usage_error("--shard '%s': expected K/N with 1 <= K <= N", v ? v : "");
+        } else
+            rest[nrest++] = argv[i];
+        if (dst) {
+            const char *eq = strchr(a, '=');
+            const char *v = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
+            if (!v || !*v)
+                rc = cli_usage_error("%.11s needs a value", a);
+            else
+                *dst = v;
+        }
+    }
+    if (rc == CLI_OK) {
+        rc = cli_parse_options(nrest, rest, &b->common);
+        if (rc == CLI_OK && !b->out)
+            rc = cli_usage_error("batch needs --out DIR");
+        else if (rc == CLI_OK && b->common.nfiles == 0 && !b->demo)
+            rc = cli_usage_error("batch needs INPUT: a table, a directory of *.binary or @LIST");
+    }
+    free(rest);
+    return rc;
+}
+
+void cli_batch_help(FILE *f)
+{
+    fputs("Options of batch (and the options of fit but --json):\n"
+          "  --out DIR                     the report: DIR/index.html, DIR/<material>/, fits.tsv,\n"
+          "                                journal.jsonl (re-run the same command to resume)\n"
+          "  --published FITS.tsv          also the Error of published parameters (the format\n"
+          "                                of ngan2005-fits.tsv) on each table, and the ratio\n"
+          "  --shard K/N                   only every N-th material of the sorted list, from the\n"
+          "                                K-th (merge the shards with `brdffit report`)\n"
+          "  --no-render, --no-plot        leave out the renders / the incidence-plane plots\n"
+          "  --demo                        add the embedded synthetic material\n"
+          "  --quiet                       no progress on stderr (a live line on a terminal,\n"
+          "                                else one line per material)\n",
+          f);
+}
+
+/* ------------------------------------------------------------------ materials */
+
+typedef struct batch_material {
+    char name[BJ_NAME_MAX];
+    char path[BJ_PATH_MAX];   /* as given ("" for the embedded material) */
+    int embedded;
+    bj_identity id;
+    int identified;
+} batch_material;
+
+typedef struct material_list {
+    batch_material *m;
+    int n, cap;
+} material_list;
+
+static int add_material(material_list *L, const char *path, int embedded)
+{
+    if (L->n == L->cap) {
+        int cap = L->cap ? L->cap * 2 : 64;
+        batch_material *g = realloc(L->m, (size_t)cap * sizeof *g);
+        if (!g)
+            return -1;
+        L->m = g;
+        L->cap = cap;
+    }
+    batch_material *m = &L->m[L->n++];
+    memset(m, 0, sizeof *m);
+    m->embedded = embedded;
+    if (embedded) {
+        snprintf(m->name, sizeof m->name, "%s", cli_demo_name());
+    } else {
+        snprintf(m->path, sizeof m->path, "%s", path);
+        cli_material_name(path, m->name, sizeof m->name);
+    }
+    return 0;
+}
+
+static int has_suffix(const char *s, const char *suf)
+{
+    size_t n = strlen(s), k = strlen(suf);
+    return n > k && strcmp(s + n - k, suf) == 0;
+}
+
+static int add_directory(material_list *L, const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) {
+        fprintf(stderr, "brdffit: cannot read the directory %s: %s\n", dir, strerror(errno));
+        return -1;
+    }
+    struct dirent *e;
+    int rc = 0, found = 0;
+    while ((e = readdir(d)) != NULL && rc == 0) {
+        if (e->d_name[0] == '.' || !has_suffix(e->d_name, ".binary"))
+            continue;
+        char path[BJ_PATH_MAX];
+        if (out_join(path, sizeof path, dir, e->d_name) != 0 || add_material(L, path, 0) != 0)
+            rc = -1;
+        found++;
+    }
+    closedir(d);
+    if (rc == 0 && found == 0)
+        fprintf(stderr, "brdffit: note: no *.binary file in %s\n", dir);
+    return rc;
+}
+
+static int add_list_file(material_list *L, const char *list)
+{
+    FILE *f = fopen(list, "r");
+    if (!f) {
+        fprintf(stderr, "brdffit: cannot read the list %s: %s\n", list, strerror(errno));
+        return -1;
+    }
+    char *line = NULL;
+    size_t cap = 0;
+    int rc = 0;
+    while (rc == 0 && getline(&line, &cap, f) > 0) {
+        line[strcspn(line, "\r\n")] = '\0';
+        if (line[0] == '\0' || line[0] == '#')
+            continue;
+        rc = add_material(L, line, 0);
+    }
+    free(line);
+    fclose(f);
+    return rc;
+}
+
+static int by_name(const void *a, const void *b)
+{
+    const batch_material *x = a, *y = b;
+    int c = strcmp(x->name, y->name);
+    return c ? c : strcmp(x->path, y->path);
+}
+
+/* The materials of the inputs, sorted by name, without repeats; then this shard's share. */
+static int collect(const batch_options *b, material_list *L)
+{
+    for (int i = 0; i < b->common.nfiles; i++) {
+        const char *in = b->common.files[i];
+        struct stat st;
+        int rc;
+        if (in[0] == '@')
+            rc = add_list_file(L, in + 1);
+        else if (stat(in, &st) == 0 && S_ISDIR(st.st_mode))
+            rc = add_directory(L, in);
+        else
+            rc = add_material(L, in, 0); /* a missing file becomes a failure row */
+        if (rc != 0)
+            return CLI_USAGE;
+    }
+    if (b->demo && add_material(L, NULL, 1) != 0)
+        return CLI_FAILED;
+    qsort(L->m, (size_t)L->n, sizeof *L->m, by_name);
+    int w = 0;
+    for (int i = 0; i < L->n; i++) {
+        if (w > 0 && strcmp(L->m[w - 1].name, L->m[i].name) == 0) {
+            if (strcmp(L->m[w - 1].path, L->m[i].path) == 0)
+                continue; /* the same file twice */
+            return cli_usage_error("two inputs are named '%s' (%s and %s): the report has one "
+                                   "page per name",
+                                   L->m[i].name, L->m[w - 1].path, L->m[i].path);
+        }
+        if (strcmp(L->m[i].name, ".") == 0 || strcmp(L->m[i].name, "..") == 0 || !L->m[i].name[0])
+            return cli_usage_error("'%s' cannot name a material (its page directory)", L->m[i].path);
+        L->m[w++] = L->m[i];
+    }
+    L->n = w;
+    /* the shard: every N-th of the sorted list, from the K-th */
+    w = 0;
+    for (int i = 0; i < L->n; i++)
+        if (i % b->shard_n == b->shard_k - 1)
+            L->m[w++] = L->m[i];
+    L->n = w;
+    return CLI_OK;
+}
+
+/* ------------------------------------------------------------------ signals */
+
+/* SIGINT and SIGTERM are blocked in every thread (PoCL's included: they are
+ * made after this) and taken by one thread with sigwait, so that no library
+ * call is interrupted: the fit in progress finishes and is journaled, then the
+ * batch stops.  A second signal stops the program at once (the journal is
+ * whole up to its last synced record; a torn line is ignored next time). */
+static _Atomic int stop_signal = 0;
+
+static void *signal_waiter(void *arg)
+{
+    const sigset_t *set = arg;
+    for (;;) {
+        int sig = 0;
+        if (sigwait(set, &sig) != 0)
+            continue;
+        if (stop_signal)
+            _exit(128 + sig);
+        stop_signal = sig;
+    }
+    return NULL;
+}
+
+static void install_signals(void)
+{
+    static sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    pthread_t t;
+    if (pthread_sigmask(SIG_BLOCK, &set, NULL) == 0 &&
+        pthread_create(&t, NULL, signal_waiter, &set) == 0)
+        pthread_detach(t);
+    /* a file-size limit then makes a write fail with EFBIG, reported like a full disk */
+    signal(SIGXFSZ, SIG_IGN);
+}
+
+/* ------------------------------------------------------------------ progress */
+
+static double now(void)
+{
+    return brdffit_seconds();
+}
+
+typedef struct progress {
+    int live;            /* stderr is a terminal */
+    int quiet;
+    double t0;
+    int total_fits, done_fits, fitted_now;
+    double fit_seconds;  /* of the fits of this run (for the ETA) */
+} progress;
+
+static void hms(char *buf, size_t len, double s)
+{
+    if (!isfinite(s) || s < 0)
+        snprintf(buf, len, "--:--");
+    else if (s >= 3600)
+        snprintf(buf, len, "%d:%02d:%02d", (int)(s / 3600), (int)fmod(s / 60, 60), (int)fmod(s, 60));
+    else
+        snprintf(buf, len, "%d:%02d", (int)(s / 60), (int)fmod(s, 60));
+}
+
+static void progress_live(progress *P, int i, int n, const char *material, const char *model)
+{
+    if (P->quiet || !P->live)
+        return;
+    char el[32], eta[32];
+    double elapsed = now() - P->t0;
+    double per = P->fitted_now ? P->fit_seconds / P->fitted_now : NAN;
+    hms(el, sizeof el, elapsed);
+    hms(eta, sizeof eta, per * (P->total_fits - P->done_fits));
+    fprintf(stderr, "\r\033[K[%d/%d] ", i + 1, n);
+    plain_string(stderr, material);
+    fprintf(stderr, " %s  fits %d/%d  %s elapsed  ETA %s", model, P->done_fits, P->total_fits, el, eta);
+    fflush(stderr);
+}
+
+static void progress_material(progress *P, int i, int n, const char *material, const char *what)
+{
+    if (P->quiet)
+        return;
+    char el[32];
+    hms(el, sizeof el, now() - P->t0);
+    if (P->live)
+        fputs("\r\033[K", stderr);
+    fprintf(stderr, "[%d/%d] ", i + 1, n);
+    plain_string(stderr, material);
+    fprintf(stderr, ": %s (fits %d/%d, %s)\n", what, P->done_fits, P->total_fits, el);
+}
+
+/* ------------------------------------------------------------------ the run */
+
+typedef struct batch_run {
+    const batch_options *b;
+    bj_settings settings;
+    bj_journal journal;
+    bj_records all;          /* the journal's records, then this run's       */
+    pub_table pub;
+    int have_pub;
+    brdffit_context *ctx;
+    progress P;
+    int failures;            /* materials and fits that failed */
+    int out_failed;          /* --out could not be written: stop */
+    brdffit_error out_err;
+    char backend[256];
+    double seconds_fitting;  /* inside brdffit_fit and brdffit_error_of */
+} batch_run;
+
+static void fill_key(bj_record *r, bj_kind kind, const batch_material *m, const bj_settings *s)
+{
+    memset(r, 0, sizeof *r);
+    r->kind = kind;
+    snprintf(r->material, sizeof r->material, "%s", m->name);
+    r->id = m->id;
+    r->settings = *s;
+}
+
+/* The record of this key already journaled (last one), or NULL. */
+static const bj_record *find(const batch_run *R, bj_kind kind, const batch_material *m,
+                             const char *model)
+{
+    for (int i = R->all.n - 1; i >= 0; i--) {
+        const bj_record *r = &R->all.r[i];
+        if (r->kind == kind && strcmp(r->model, model) == 0 && strcmp(r->material, m->name) == 0 &&
+            bj_identity_equal(&r->id, &m->id) && bj_settings_equal(&r->settings, &R->settings))
+            return r;
+    }
+    return NULL;
+}
+
+/* Journal a record and keep it; a failure to write stops the batch. */
+static int keep(batch_run *R, const bj_record *r)
+{
+    if (bj_journal_append(&R->journal, r, &R->out_err) != 0) {
+        R->out_failed = 1;
+        return -1;
+    }
+    cli_fault_point("record");
+    if (bj_records_push(&R->all, r) != 0) {
+        R->out_err.status = BRDFFIT_E_NO_MEMORY;
+        snprintf(R->out_err.message, sizeof R->out_err.message, "out of memory");
+        R->out_failed = 1;
+        return -1;
+    }
+    return 0;
+}
+
+static void assets_key(const batch_run *R, char *buf, size_t len)
+{
+    const batch_options *b = R->b;
+    size_t used = (size_t)snprintf(buf, len, "render=%d,plot=%d:", !b->no_render, !b->no_plot);
+    for (int i = 0; i < b->common.nmodels && used < len; i++)
+        used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? "," : "",
+                                 brdffit_model_get(b->common.models[i])->name);
+}
+
+static int want_assets(const batch_run *R)
+{
+    return !R->b->no_render || !R->b->no_plot;
+}
+
+/* What is left to do for a material. */
+typedef struct todo {
+    int fits[BJ_MAX_MODELS];   /* by slot of the run's models */
+    int published[BJ_MAX_MODELS];
+    int assets;
+    int any;
+} todo;
+
+static int same_params(const brdffit_params *a, const brdffit_params *b, int np)
+{
+    for (int c = 0; c < 3; c++)
+        if (a->d[c] != b->d[c] || a->s[c] != b->s[c])
+            return 0;
+    for (int k = 0; k < np; k++)
+        if (a->p[k] != b->p[k])
+            return 0;
+    return 1;
+}
+
+/* A fit that failed for a reason outside the data (no device, an OpenCL or
+ * kernel-build failure, no memory) is tried again by the next run. */
+static int done_fit(const bj_record *r)
+{
+    static const brdffit_status transient[] = { BRDFFIT_E_NO_MEMORY, BRDFFIT_E_NO_DEVICE,
+                                                BRDFFIT_E_OPENCL, BRDFFIT_E_KERNEL_BUILD };
+    if (!r)
+        return 0;
+    for (size_t i = 0; i < sizeof transient / sizeof transient[0]; i++)
+        if (!r->ok && strcmp(r->status, brdffit_strerror(transient[i])) == 0)
+            return 0;
+    return 1;
+}
+
+static todo plan(const batch_run *R, const batch_material *m)
+{
+    todo t;
+    memset(&t, 0, sizeof t);
+    const cli_options *o = &R->b->common;
+    for (int i = 0; i < o->nmodels; i++) {
+        const char *mn = brdffit_model_get(o->models[i])->name;
+        t.fits[i] = !done_fit(find(R, BJ_FIT, m, mn));
+        const pub_row *pr = R->have_pub ? pub_find(&R->pub, m->name, o->models[i]) : NULL;
+        if (pr) {
+            const bj_record *pb = find(R, BJ_PUBLISHED, m, mn);
+            t.published[i] =
+                !pb || !same_params(&pb->params, &pr->params, brdffit_model_get(o->models[i])->nparams);
+        }
+        t.any |= t.fits[i] | t.published[i];
+    }
+    if (want_assets(R)) {
+        char key[BJ_MSG_MAX];
+        assets_key(R, key, sizeof key);
+        const bj_record *a = find(R, BJ_ASSETS, m, "");
+        t.assets = !a || strcmp(a->assets_key, key) != 0;
+        t.any |= t.assets;
+    }
+    return t;
+}
+
+/* ------------------------------------------------------------------ one material */
+
+static void material_failed(batch_run *R, batch_material *m, const brdffit_error *err)
+{
+    bj_record r;
+    fill_key(&r, BJ_FAILURE, m, &R->settings);
+    if (!m->identified) { /* not even readable: the path as given, no size or hash */
+        snprintf(r.id.path, sizeof r.id.path, "%s", m->path);
+        r.id.size = -1;
+    }
+    r.ok = 0;
+    snprintf(r.status, sizeof r.status, "%s", brdffit_strerror(err->status));
+    snprintf(r.message, sizeof r.message, "%.500s", err->message[0] ? err->message : r.status);
+    if (!m->identified)
+        m->id = r.id;
+    R->failures++;
+    if (R->P.live && !R->P.quiet)
+        fputs("\r\033[K", stderr);
+    fputs("brdffit: ", stderr);
+    plain_string(stderr, r.message);
+    fputc('\n', stderr);
+    keep(R, &r);
+}
+
+static int ensure_context(batch_run *R, brdffit_error *err)
+{
+    if (R->ctx)
+        return 0;
+    brdffit_status st = brdffit_context_create(&R->b->common.context, &R->ctx, err);
+    if (st != BRDFFIT_OK) {
+        err->status = st;
+        R->ctx = NULL;
+        return -1;
+    }
+    snprintf(R->backend, sizeof R->backend, "%s", brdffit_context_describe(R->ctx));
+    return 0;
+}
+
+static brdffit_status load_table(const batch_material *m, brdffit_scale scale, brdffit_table **t,
+                                 brdffit_error *err)
+{
+    if (m->embedded)
+        return cli_demo_table(scale, t, err);
+    return brdffit_table_read(m->path, t, err);
+}
+
+static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples *s,
+                    brdffit_model model)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    brdffit_fit_result res;
+    brdffit_error err;
+    memset(&res, 0, sizeof res);
+    memset(&err, 0, sizeof err);
+    double t0 = now();
+    brdffit_status st = brdffit_fit(R->ctx, s, model, &R->b->common.fit, &res, &err);
+    R->seconds_fitting += now() - t0;
+    R->P.fit_seconds += now() - t0;
+    R->P.fitted_now++;
+    bj_record r;
+    fill_key(&r, BJ_FIT, m, &R->settings);
+    snprintf(r.model, sizeof r.model, "%s", mi->name);
+    r.ok = st == BRDFFIT_OK;
+    snprintf(r.status, sizeof r.status, "%s", r.ok ? "ok" : brdffit_strerror(st));
+    r.nparams = mi->nparams;
+    r.samples = (long long)brdffit_samples_count(s);
+    snprintf(r.backend, sizeof r.backend, "%s",
+             brdffit_context_backend(R->ctx) == BRDFFIT_BACKEND_OPENCL ? "opencl" : "host");
+    if (r.ok) {
+        r.params = res.params;
+        r.error = res.error;
+        r.iterations = res.iterations;
+        r.evaluations = res.evaluations;
+        r.cminpack_info = res.cminpack_info;
+        r.seconds = res.seconds;
+        bj_on_bound(model, &res.params, r.on_bound, sizeof r.on_bound);
+    } else {
+        r.error = NAN;
+        r.seconds = NAN;
+        snprintf(r.message, sizeof r.message, "%.500s", err.message);
+        R->failures++;
+        fprintf(stderr, "%sbrdffit: %s: fitting %s failed: ", R->P.live && !R->P.quiet ? "\r\033[K" : "",
+                m->name, mi->name);
+        plain_string(stderr, err.message[0] ? err.message : r.status);
+        fputc('\n', stderr);
+    }
+    keep(R, &r);
+}
+
+static void published_one(batch_run *R, const batch_material *m, const brdffit_samples *s,
+                          brdffit_model model)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    const pub_row *pr = pub_find(&R->pub, m->name, model);
+    bj_record r;
+    fill_key(&r, BJ_PUBLISHED, m, &R->settings);
+    snprintf(r.model, sizeof r.model, "%s", mi->name);
+    r.params = pr->params;
+    r.nparams = mi->nparams;
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    double e = NAN, t0 = now();
+    brdffit_status st = brdffit_params_check(model, &pr->params, &err);
+    if (st == BRDFFIT_OK)
+        st = brdffit_error_of(R->ctx, s, model, &pr->params, &e, &err);
+    R->seconds_fitting += now() - t0;
+    r.ok = st == BRDFFIT_OK;
+    r.error = e;
+    snprintf(r.status, sizeof r.status, "%s", r.ok ? "ok" : brdffit_strerror(st));
+    if (!r.ok)
+        snprintf(r.message, sizeof r.message, "published parameters of %s: %.400s", mi->name,
+                 err.message);
+    keep(R, &r);
+}
+
+/* The renders and plots of the material's fitted models, and their record. */
+static void assets_of(batch_run *R, const batch_material *m, const brdffit_table *t)
+{
+    const cli_options *o = &R->b->common;
+    const bj_record *fits[BJ_MAX_MODELS];
+    int nf = 0;
+    for (int i = 0; i < o->nmodels; i++) {
+        const bj_record *f = find(R, BJ_FIT, m, brdffit_model_get(o->models[i])->name);
+        if (f && f->ok)
+            fits[nf++] = f;
+    }
+    char dir[BJ_PATH_MAX];
+    bj_record r;
+    fill_key(&r, BJ_ASSETS, m, &R->settings);
+    assets_key(R, r.assets_key, sizeof r.assets_key);
+    if (out_join(dir, sizeof dir, R->b->out, m->name) != 0 || out_mkdir(dir, &R->out_err) != 0) {
+        R->out_failed = 1;
+        return;
+    }
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    int rc = batch_assets(dir, m->name, t, &R->b->common.sample, fits, nf, !R->b->no_render,
+                          !R->b->no_plot, r.assets, sizeof r.assets, &err);
+    if (rc != 0) {
+        if (err.status == BRDFFIT_E_FILE_WRITE) { /* the output directory: stop */
+            R->out_err = err;
+            R->out_failed = 1;
+        } else {
+            R->failures++;
+            fprintf(stderr, "brdffit: %s: renders and plots: ", m->name);
+            plain_string(stderr, err.message);
+            fputc('\n', stderr);
+        }
+        return;
+    }
+    r.ok = 1;
+    snprintf(r.status, sizeof r.status, "ok");
+    cli_fault_point("asset");
+    keep(R, &r);
+}
+
+/* Say when a file changed since its records were journaled. */
+static void note_changed(const batch_run *R, const batch_material *m)
+{
+    for (int i = R->all.n - 1; i >= 0; i--) {
+        const bj_record *r = &R->all.r[i];
+        if (strcmp(r->material, m->name) != 0 || r->id.size < 0 || m->embedded ||
+            !bj_settings_equal(&r->settings, &R->settings))
+            continue;
+        if (!bj_identity_equal(&r->id, &m->id)) {
+            fprintf(stderr, "brdffit: %s: the table changed since it was journaled "
+                            "(%s, %lld bytes, hash %s; now %s, %lld bytes, hash %s): fitted again\n",
+                    m->name, r->id.path, r->id.size, r->id.hash, m->id.path, m->id.size, m->id.hash);
+        }
+        return;
+    }
+}
+
+/* Fit what is left of one material.  Returns 0 to go on, -1 to stop. */
+static int do_material(batch_run *R, batch_material *m, int i, int n)
+{
+    const cli_options *o = &R->b->common;
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    if (m->embedded) {
+        m->identified = 1; /* identified when its table is made */
+    } else if (bj_identify(m->path, &m->id, &err) == 0) {
+        m->identified = 1;
+        note_changed(R, m);
+    } else {
+        material_failed(R, m, &err);
+        R->P.done_fits += o->nmodels;
+        progress_material(&R->P, i, n, m->name, "failed");
+        return R->out_failed ? -1 : 0;
+    }
+    brdffit_table *t = NULL;
+    brdffit_samples *s = NULL;
+    if (m->embedded) {
+        if (load_table(m, o->sample.scale, &t, &err) != BRDFFIT_OK) {
+            material_failed(R, m, &err);
+            return R->out_failed ? -1 : 0;
+        }
+        bj_identify_bytes("(embedded)", brdffit_table_values_const(t),
+                          3 * (size_t)BRDFFIT_MERL_BINS * sizeof(double), &m->id);
+    }
+    todo td = plan(R, m);
+    if (!td.any || find(R, BJ_FAILURE, m, "")) {
+        const bj_record *f = find(R, BJ_FAILURE, m, "");
+        R->P.done_fits += o->nmodels;
+        if (f)
+            R->failures++;
+        progress_material(&R->P, i, n, m->name, f ? "failed (journaled)" : "done (journaled)");
+        brdffit_table_free(t);
+        return 0;
+    }
+    brdffit_status st = t ? BRDFFIT_OK : load_table(m, o->sample.scale, &t, &err);
+    if (st == BRDFFIT_OK)
+        st = brdffit_samples_create(t, &o->sample, &s, &err);
+    if (st != BRDFFIT_OK) {
+        err.status = st;
+        if (!strstr(err.message, m->path) || m->embedded) {
+            char msg[BRDFFIT_MESSAGE_MAX];
+            snprintf(msg, sizeof msg, "%.1000s: %.1000s", m->embedded ? m->name : m->path, err.message);
+            memcpy(err.message, msg, sizeof msg);
+        }
+        material_failed(R, m, &err);
+        R->P.done_fits += o->nmodels;
+        progress_material(&R->P, i, n, m->name, "failed");
+        brdffit_table_free(t);
+        return R->out_failed ? -1 : 0;
+    }
+    if (ensure_context(R, &err) != 0) {
+        brdffit_samples_free(s);
+        brdffit_table_free(t);
+        fprintf(stderr, "brdffit: cannot set up the fitting backend: %s\n", err.message);
+        R->failures++;
+        return -1;
+    }
+    for (int k = 0; k < o->nmodels && !R->out_failed; k++) {
+        if (!td.fits[k]) {
+            R->P.done_fits++;
+            continue;
+        }
+        if (stop_signal)
+            break;
+        progress_live(&R->P, i, n, m->name, brdffit_model_get(o->models[k])->name);
+        fit_one(R, m, s, o->models[k]);
+        R->P.done_fits++;
+    }
+    for (int k = 0; k < o->nmodels && !R->out_failed && !stop_signal; k++)
+        if (td.published[k])
+            published_one(R, m, s, o->models[k]);
+    brdffit_samples_free(s);
+    if (td.assets && !R->out_failed && !stop_signal) {
+        progress_live(&R->P, i, n, m->name, "renders and plots");
+        assets_of(R, m, t);
+    }
+    brdffit_table_free(t);
+    if (!R->out_failed)
+        progress_material(&R->P, i, n, m->name, stop_signal ? "interrupted" : "done");
+    return R->out_failed ? -1 : 0;
+}
+
+/* ------------------------------------------------------------------ start and finish */
+
+/* Say (once) that journaled records of other settings are not reused. */
+static void note_other_settings(const batch_run *R)
+{
+    int other = 0;
+    char diff[512] = "";
+    for (int i = 0; i < R->all.n; i++)
+        if (!bj_settings_equal(&R->all.r[i].settings, &R->settings)) {
+            if (!other++)
+                bj_settings_diff(&R->all.r[i].settings, &R->settings, diff, sizeof diff);
+        }
+    if (other)
+        fprintf(stderr,
+                "brdffit: %s: %d journaled record%s made with other settings (%s): not reused; "
+                "those fits are done again\n",
+                R->journal.path, other, other == 1 ? " was" : "s were", diff);
+}
+
+static int open_out(batch_run *R)
+{
+    const char *out = R->b->out;
+    brdffit_error *err = &R->out_err;
+    if (out_mkdir(out, err) != 0)
+        return -1;
+    char path[BJ_PATH_MAX];
+    int bad = 0, torn = 0;
+    if (out_join(path, sizeof path, out, "journal.jsonl") != 0 ||
+        bj_journal_load(path, &R->all, &bad, &torn, err) != 0)
+        return -1;
+    if (bad)
+        fprintf(stderr, "brdffit: %s: %d line%s that are not journal records ignored\n", path, bad,
+                bad == 1 ? "" : "s");
+    int torn2 = 0;
+    if (bj_journal_open(&R->journal, out, &torn2, err) != 0)
+        return -1;
+    if (torn || torn2)
+        fprintf(stderr, "brdffit: %s: its last line was cut short (a run killed while writing "
+                        "it): ignored, that fit is done again\n", path);
+    note_other_settings(R);
+    return 0;
+}
+
+static void utc_now(char *buf, size_t len)
+{
+    time_t t = time(NULL);
+    struct tm tm;
+    gmtime_r(&t, &tm);
+    strftime(buf, len, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+/* The report of this run's materials, from the records. */
+static int write_report(batch_run *R, const material_list *L)
+{
+    const cli_options *o = &R->b->common;
+    rp_report rep;
+    if (rp_init(&rep, o->models, o->nmodels, &R->settings) != 0)
+        return -1;
+    utc_now(rep.started, sizeof rep.started);
+    snprintf(rep.backend, sizeof rep.backend, "%s",
+             R->ctx ? R->backend : "none started in this run (every fit was in the journal)");
+    if (R->have_pub) {
+        rep.have_published = 1;
+        snprintf(rep.published_path, sizeof rep.published_path, "%s", R->pub.path);
+    }
+    const char *dirs[1] = { R->b->out };
+    int rc = 0;
+    for (int i = 0; i < L->n && rc == 0; i++)
+        if (L->m[i].identified || L->m[i].id.size < 0)
+            rc = rp_add(&rep, L->m[i].name, &L->m[i].id, &R->all, dirs, 1);
+    if (rc == 0)
+        rc = rp_write(&rep, R->b->out, &R->out_err);
+    else
+        snprintf(R->out_err.message, sizeof R->out_err.message, "out of memory");
+    rp_free(&rep);
+    return rc;
+}
+
+static int run_batch(batch_run *R, material_list *L)
+{
+    const batch_options *b = R->b;
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    if (b->published) {
+        if (pub_read(b->published, &R->pub, &err) != 0) {
+            fprintf(stderr, "brdffit: --published: %s\n", err.message);
+            return CLI_USAGE;
+        }
+        R->have_pub = 1;
+    }
+    if (open_out(R) != 0) {
+        fprintf(stderr, "brdffit: %s\n", R->out_err.message);
+        return CLI_FAILED;
+    }
+    R->P.total_fits = L->n * b->common.nmodels;
+    install_signals();
+    double t0 = now();
+    for (int i = 0; i < L->n && !stop_signal; i++) {
+        batch_material *m = &L->m[i];
+        if (do_material(R, m, i, L->n) != 0)
+            break;
+    }
+    if (R->P.live && !b->quiet)
+        fputs("\r\033[K", stderr);
+    if (R->out_failed) {
+        fprintf(stderr, "brdffit: %s; stopped (what is in %s is kept)\n", R->out_err.message,
+                R->journal.path);
+        return CLI_FAILED;
+    }
+    double t_fits = now();
+    if (write_report(R, L) != 0) {
+        fprintf(stderr, "brdffit: %s; stopped (what is in %s is kept)\n", R->out_err.message,
+                R->journal.path);
+        return CLI_FAILED;
+    }
+    double total = now() - t0;
+    char index[BJ_PATH_MAX];
+    out_join(index, sizeof index, b->out, "index.html");
+    if (!b->quiet)
+        fprintf(stderr, "brdffit: %d material%s, %d fit%s this run; %.1f s, of which %.1f s "
+                        "fitting (%.0f%% outside: reading, renders, plots, pages; the report %.2f s)\n",
+                L->n, L->n == 1 ? "" : "s", R->P.fitted_now, R->P.fitted_now == 1 ? "" : "s", total,
+                R->seconds_fitting, total > 0 ? 100 * (total - R->seconds_fitting) / total : 0.0,
+                now() - t_fits);
+    printf("%s\n", index);
+    if (stop_signal) {
+        int sig = stop_signal;
+        fprintf(stderr, "brdffit: interrupted (signal %d): the report holds what was done; run the "
+                        "same command again to go on\n", sig);
+        return 128 + sig;
+    }
+    if (R->failures)
+        fprintf(stderr, "brdffit: %d failure%s (see the report)\n", R->failures,
+                R->failures == 1 ? "" : "s");
+    return R->failures ? CLI_FAILED : CLI_OK;
+}
+
+int cmd_batch(int argc, char **argv)
+{
+    batch_options b;
+    int rc = parse_batch(argc, argv, &b);
+    if (rc != CLI_OK) { /* CLI_HELP too: main prints the usage */
+        cli_options_free(&b.common);
+        return rc;
+    }
+    material_list L = { NULL, 0, 0 };
+    rc = collect(&b, &L);
+    if (rc == CLI_OK) {
+        batch_run R;
+        memset(&R, 0, sizeof R);
+        R.b = &b;
+        R.journal.fd = -1;
+        bj_settings_make(&R.settings, &b.common.sample, &b.common.fit);
+        R.P.live = isatty(STDERR_FILENO);
+        R.P.quiet = b.quiet;
+        R.P.t0 = now();
+        rc = run_batch(&R, &L);
+        bj_journal_close(&R.journal);
+        bj_records_free(&R.all);
+        pub_free(&R.pub);
+        brdffit_context_free(R.ctx);
+    }
+    free(L.m);
+    cli_options_free(&b.common);
+    return rc;
+}

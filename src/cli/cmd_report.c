@@ -1,0 +1,162 @@
+/* cmd_report.c -- `brdffit report DIR... --out OUT`: the journals of several
+ * batch directories (the shards of one job) merged into one report: the same
+ * pages, index, fits.tsv and headline figure as `batch` writes, with the
+ * renders and plots copied from the shard that made them. */
+#define _POSIX_C_SOURCE 200809L
+#include "batch.h"
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static int by_str(const void *a, const void *b)
+{
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+/* The settings of the report: those of each journal's last record, which must agree. */
+static int pick_settings(const bj_records *rs, char **dirs, int ndirs, bj_settings *out)
+{
+    int have = 0, from = -1;
+    for (int d = 0; d < ndirs; d++) {
+        const bj_record *last = NULL;
+        for (int i = 0; i < rs->n; i++)
+            if (rs->r[i].origin == d)
+                last = &rs->r[i];
+        if (!last) {
+            fprintf(stderr, "brdffit: %s: no journal records (not a batch directory?)\n", dirs[d]);
+            return -1;
+        }
+        if (!have) {
+            *out = last->settings;
+            have = 1;
+            from = d;
+        } else if (!bj_settings_equal(out, &last->settings)) {
+            char diff[512];
+            bj_settings_diff(&last->settings, out, diff, sizeof diff);
+            fprintf(stderr, "brdffit: %s was made with other settings than %s: %s "
+                            "(\"this run\" = %s); not merged\n",
+                    dirs[d], dirs[from], diff, dirs[from]);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int build(rp_report *rep, const bj_records *rs, char **dirs, int ndirs)
+{
+    /* the models: every model fitted with these settings, in registry order */
+    brdffit_model models[BJ_MAX_MODELS];
+    int nm = 0, other = 0;
+    for (int id = 0; id < BJ_MAX_MODELS; id++) {
+        const brdffit_model_info *mi = brdffit_model_get((brdffit_model)id);
+        if (!mi)
+            break;
+        for (int i = 0; i < rs->n; i++)
+            if (rs->r[i].kind == BJ_FIT && strcmp(rs->r[i].model, mi->name) == 0 &&
+                bj_settings_equal(&rs->r[i].settings, &rep->settings)) {
+                models[nm++] = (brdffit_model)id;
+                break;
+            }
+    }
+    bj_settings s = rep->settings;
+    if (rp_init(rep, models, nm, &s) != 0)
+        return -1;
+    /* the materials, by name */
+    const char **names = malloc((size_t)(rs->n > 0 ? rs->n : 1) * sizeof *names);
+    if (!names)
+        return -1;
+    int nn = 0;
+    for (int i = 0; i < rs->n; i++) {
+        const bj_record *r = &rs->r[i];
+        if (!bj_settings_equal(&r->settings, &rep->settings)) {
+            other++;
+            continue;
+        }
+        if (r->kind == BJ_PUBLISHED)
+            rep->have_published = 1;
+        if (!rep->backend[0] && r->backend[0])
+            snprintf(rep->backend, sizeof rep->backend, "%s (from the journals)", r->backend);
+        names[nn++] = r->material;
+    }
+    qsort(names, (size_t)nn, sizeof *names, by_str);
+    int rc = 0;
+    for (int i = 0; i < nn && rc == 0; i++)
+        if (i == 0 || strcmp(names[i], names[i - 1]) != 0)
+            rc = rp_add(rep, names[i], NULL, rs, (const char *const *)dirs, ndirs);
+    free(names);
+    if (other)
+        fprintf(stderr, "brdffit: %d journal record%s made with other settings left out\n", other,
+                other == 1 ? "" : "s");
+    return rc;
+}
+
+int cmd_report(int argc, char **argv)
+{
+    const char *out = NULL;
+    char **dirs = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *dirs);
+    int ndirs = 0, rc = CLI_OK;
+    if (!dirs)
+        return CLI_FAILED;
+    for (int i = 0; i < argc && rc == CLI_OK; i++) {
+        if (cli_is_help(argv[i]))
+            rc = CLI_HELP;
+        else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+            out = argv[++i];
+        else if (strncmp(argv[i], "--out=", 6) == 0)
+            out = argv[i] + 6;
+        else if (argv[i][0] == '-' && argv[i][1])
+            rc = cli_usage_error("report: unknown option '%s'", argv[i]);
+        else
+            dirs[ndirs++] = argv[i];
+    }
+    if (rc == CLI_OK && (!out || !*out || ndirs == 0))
+        rc = cli_usage_error("report needs batch directories and --out DIR");
+    bj_records rs = { NULL, 0, 0 };
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    for (int d = 0; d < ndirs && rc == CLI_OK; d++) {
+        char path[BJ_PATH_MAX];
+        int bad = 0, torn = 0, before = rs.n;
+        if (out_join(path, sizeof path, dirs[d], "journal.jsonl") != 0 ||
+            bj_journal_load(path, &rs, &bad, &torn, &err) != 0) {
+            fprintf(stderr, "brdffit: %s\n", err.message[0] ? err.message : path);
+            rc = CLI_FAILED;
+            break;
+        }
+        for (int i = before; i < rs.n; i++)
+            rs.r[i].origin = d;
+        if (bad || torn)
+            fprintf(stderr, "brdffit: %s: %d damaged line%s ignored%s\n", path, bad,
+                    bad == 1 ? "" : "s", torn ? " and a torn last line" : "");
+    }
+    rp_report rep;
+    memset(&rep, 0, sizeof rep);
+    if (rc == CLI_OK && pick_settings(&rs, dirs, ndirs, &rep.settings) != 0)
+        rc = CLI_FAILED;
+    if (rc == CLI_OK && build(&rep, &rs, dirs, ndirs) != 0) {
+        fputs("brdffit: out of memory\n", stderr);
+        rc = CLI_FAILED;
+    }
+    if (rc == CLI_OK) {
+        time_t t = time(NULL);
+        struct tm tm;
+        gmtime_r(&t, &tm);
+        strftime(rep.started, sizeof rep.started, "%Y-%m-%dT%H:%M:%SZ", &tm);
+        if (!rep.backend[0])
+            snprintf(rep.backend, sizeof rep.backend, "(not recorded)");
+        if (rep.have_published)
+            snprintf(rep.published_path, sizeof rep.published_path, "(from the journals)");
+        if (out_mkdir(out, &err) != 0 || rp_write(&rep, out, &err) != 0) {
+            fprintf(stderr, "brdffit: %s\n", err.message);
+            rc = CLI_FAILED;
+        } else {
+            printf("%s/index.html\n", out);
+        }
+    }
+    rp_free(&rep);
+    bj_records_free(&rs);
+    free(dirs);
+    return rc;
+}

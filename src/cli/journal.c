@@ -1,0 +1,528 @@
+/* journal.c -- the batch journal DIR/journal.jsonl: one JSON object per line,
+ * one line per finished fit (and per failed material, published Error and
+ * written renders), appended with one write() and fsync'd before the batch
+ * goes on.  Records are keyed by the material's identity (absolute path, size,
+ * a 64-bit FNV-1a hash of its bytes taken over 8-byte words) and the settings (version, scale, cutoff,
+ * starts) with the model; the batch reuses a record only when all of it
+ * matches.  A kill in the middle of a write leaves a last line without its
+ * newline: loading ignores it and opening cuts it off. */
+#define _XOPEN_SOURCE 700
+#include "batch.h"
+#include "cli.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* ------------------------------------------------------------------ settings */
+
+void bj_settings_make(bj_settings *s, const brdffit_sample_options *so, const brdffit_fit_options *fo)
+{
+    memset(s, 0, sizeof *s);
+    snprintf(s->version, sizeof s->version, "%s", brdffit_version());
+    snprintf(s->scale, sizeof s->scale, "%s", brdffit_scale_name(so->scale));
+    s->cutoff_deg = so->cutoff_deg;
+    s->starts = fo->starts;
+}
+
+int bj_settings_equal(const bj_settings *a, const bj_settings *b)
+{
+    return strcmp(a->version, b->version) == 0 && strcmp(a->scale, b->scale) == 0 &&
+           a->cutoff_deg == b->cutoff_deg && a->starts == b->starts;
+}
+
+const char *bj_settings_diff(const bj_settings *journal, const bj_settings *run, char *buf,
+                             size_t len)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+#define ADD(...)                                                                      \
+    do {                                                                              \
+        int w_ = snprintf(buf + used, len - used, "%s", used ? ", " : "");            \
+        if (w_ > 0 && (size_t)w_ < len - used)                                        \
+            used += (size_t)w_;                                                       \
+        w_ = snprintf(buf + used, len - used, __VA_ARGS__);                           \
+        if (w_ > 0 && (size_t)w_ < len - used)                                        \
+            used += (size_t)w_;                                                       \
+    } while (0)
+    if (strcmp(journal->version, run->version) != 0)
+        ADD("program version %s (this run: %s)", journal->version, run->version);
+    if (strcmp(journal->scale, run->scale) != 0)
+        ADD("scale %s (this run: %s)", journal->scale, run->scale);
+    if (journal->cutoff_deg != run->cutoff_deg)
+        ADD("cutoff %g deg (this run: %g)", journal->cutoff_deg, run->cutoff_deg);
+    if (journal->starts != run->starts)
+        ADD("starts %d (this run: %d; 0 = each model's default)", journal->starts, run->starts);
+#undef ADD
+    return buf;
+}
+
+/* ------------------------------------------------------------------ identity */
+
+#define FNV_OFFSET 0xcbf29ce484222325ULL
+#define FNV_PRIME 0x100000001b3ULL
+
+/* FNV-1a 64 taken over 8-byte little-endian words (the tail bytes one by one):
+ * eight times fewer multiplications than byte-wise FNV-1a; a change detector,
+ * not a cryptographic hash.  n is a multiple of 8 except for the last call. */
+static uint64_t hash_words(uint64_t h, const unsigned char *p, size_t n)
+{
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        uint64_t w = 0;
+        for (int b = 7; b >= 0; b--)
+            w = (w << 8) | p[i + (size_t)b];
+        h ^= w;
+        h *= FNV_PRIME;
+    }
+    for (; i < n; i++) {
+        h ^= p[i];
+        h *= FNV_PRIME;
+    }
+    return h;
+}
+
+int bj_identify(const char *path, bj_identity *id, brdffit_error *err)
+{
+    memset(id, 0, sizeof *id);
+    char abs[PATH_MAX];
+    if (!realpath(path, abs)) {
+        err->status = BRDFFIT_E_FILE_OPEN;
+        snprintf(err->message, sizeof err->message, "%.1000s: cannot open: %s", path,
+                 strerror(errno));
+        return -1;
+    }
+    snprintf(id->path, sizeof id->path, "%s", abs);
+    FILE *f = fopen(abs, "rb");
+    if (!f) {
+        err->status = BRDFFIT_E_FILE_OPEN;
+        snprintf(err->message, sizeof err->message, "%.1000s: cannot open: %s", path,
+                 strerror(errno));
+        return -1;
+    }
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        fclose(f);
+        err->status = BRDFFIT_E_FILE_NOT_REGULAR;
+        snprintf(err->message, sizeof err->message, "%.1000s: not a regular file", path);
+        return -1;
+    }
+    static unsigned char buf[1 << 16];
+    uint64_t h = FNV_OFFSET;
+    long long size = 0;
+    size_t got;
+    while ((got = fread(buf, 1, sizeof buf, f)) > 0) {
+        h = hash_words(h, buf, got);
+        size += (long long)got;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        err->status = BRDFFIT_E_FILE_READ;
+        snprintf(err->message, sizeof err->message, "%.1000s: read error after %lld bytes",
+                 path, size);
+        return -1;
+    }
+    id->size = size;
+    snprintf(id->hash, sizeof id->hash, "%016llx", (unsigned long long)h);
+    return 0;
+}
+
+void bj_identify_bytes(const char *label, const void *data, size_t len, bj_identity *id)
+{
+    memset(id, 0, sizeof *id);
+    snprintf(id->path, sizeof id->path, "%s", label);
+    id->size = (long long)len;
+    snprintf(id->hash, sizeof id->hash, "%016llx",
+             (unsigned long long)hash_words(FNV_OFFSET, data, len));
+}
+
+int bj_identity_equal(const bj_identity *a, const bj_identity *b)
+{
+    return strcmp(a->path, b->path) == 0 && a->size == b->size && strcmp(a->hash, b->hash) == 0;
+}
+
+/* ------------------------------------------------------------------ records */
+
+int bj_records_push(bj_records *rs, const bj_record *r)
+{
+    if (rs->n == rs->cap) {
+        int cap = rs->cap ? rs->cap * 2 : 64;
+        bj_record *g = realloc(rs->r, (size_t)cap * sizeof *g);
+        if (!g)
+            return -1;
+        rs->r = g;
+        rs->cap = cap;
+    }
+    rs->r[rs->n++] = *r;
+    return 0;
+}
+
+void bj_records_free(bj_records *rs)
+{
+    free(rs->r);
+    rs->r = NULL;
+    rs->n = rs->cap = 0;
+}
+
+static const char *const kind_names[] = { "fit", "failure", "published", "assets" };
+
+const char *bj_on_bound(brdffit_model model, const brdffit_params *p, char *buf, size_t len)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    size_t used = 0;
+    buf[0] = '\0';
+    if (!mi)
+        return buf;
+    static const char ch[3] = { 'r', 'g', 'b' };
+    for (int c = 0; c < 3; c++) {
+        int w = 0;
+        if (p->d[c] <= 0)
+            w = snprintf(buf + used, len - used, "%sd_%c=0", used ? "," : "", ch[c]);
+        if (w > 0 && (size_t)w < len - used)
+            used += (size_t)w;
+        w = 0;
+        if (p->s[c] <= 0)
+            w = snprintf(buf + used, len - used, "%ss_%c=0", used ? "," : "", ch[c]);
+        if (w > 0 && (size_t)w < len - used)
+            used += (size_t)w;
+    }
+    for (int k = 0; k < mi->nparams; k++) {
+        double x = p->p[k], lo = mi->lower[k], hi = mi->upper[k];
+        double tol = 1e-9 * fmax(1.0, fmax(fabs(lo), fabs(hi)));
+        const char *at = x <= lo + tol ? "lower" : x >= hi - tol ? "upper" : NULL;
+        if (!at)
+            continue;
+        int w = snprintf(buf + used, len - used, "%s%s=%s", used ? "," : "", mi->param_names[k], at);
+        if (w > 0 && (size_t)w < len - used)
+            used += (size_t)w;
+    }
+    return buf;
+}
+
+void bj_record_json(FILE *f, const bj_record *r)
+{
+    fputs("{\"kind\":", f);
+    json_string(f, kind_names[r->kind]);
+    fputs(",\"material\":", f);
+    json_string(f, r->material);
+    fputs(",\"file\":{\"path\":", f);
+    json_string(f, r->id.path);
+    fprintf(f, ",\"size\":%lld,\"hash\":", r->id.size);
+    json_string(f, r->id.hash);
+    fputs("},\"settings\":{\"version\":", f);
+    json_string(f, r->settings.version);
+    fputs(",\"scale\":", f);
+    json_string(f, r->settings.scale);
+    fputs(",\"cutoff_deg\":", f);
+    json_number(f, r->settings.cutoff_deg);
+    fprintf(f, ",\"starts\":%d},\"model\":", r->settings.starts);
+    json_string(f, r->model);
+    fprintf(f, ",\"ok\":%s,\"status\":", r->ok ? "true" : "false");
+    json_string(f, r->status);
+    fputs(",\"message\":", f);
+    json_string(f, r->message);
+    if (r->kind == BJ_FIT || r->kind == BJ_PUBLISHED) {
+        fputs(",\"d\":", f);
+        json_numbers(f, r->params.d, 3);
+        fputs(",\"s\":", f);
+        json_numbers(f, r->params.s, 3);
+        fputs(",\"p\":", f);
+        json_numbers(f, r->params.p, r->nparams);
+        fputs(",\"lambda_um\":", f);
+        json_numbers(f, r->params.lambda_um, 3);
+        fputs(",\"error\":", f);
+        json_number(f, r->error);
+    }
+    if (r->kind == BJ_FIT) {
+        fprintf(f, ",\"iterations\":%d,\"evaluations\":%d,\"cminpack_info\":%d,\"seconds\":",
+                r->iterations, r->evaluations, r->cminpack_info);
+        json_number(f, r->seconds);
+        fprintf(f, ",\"samples\":%lld,\"on_bound\":", r->samples);
+        json_string(f, r->on_bound);
+        fputs(",\"backend\":", f);
+        json_string(f, r->backend);
+    }
+    if (r->kind == BJ_ASSETS) {
+        fputs(",\"assets_key\":", f);
+        json_string(f, r->assets_key);
+        fputs(",\"assets\":", f);
+        json_string(f, r->assets);
+    }
+    putc('}', f);
+}
+
+static int get_str(const jr_object *o, const jr_member *in, const char *key, char *out, size_t len,
+                   int required)
+{
+    const jr_member *m = in ? jr_get_in(o, in, key) : jr_get(o, key);
+    if (!m || m->type != JR_STRING) {
+        out[0] = '\0';
+        return required ? -1 : 0;
+    }
+    if (strlen(m->str) >= len)
+        return -1;
+    strcpy(out, m->str);
+    return 0;
+}
+
+static int get_num(const jr_object *o, const jr_member *in, const char *key, double *x, int required)
+{
+    const jr_member *m = in ? jr_get_in(o, in, key) : jr_get(o, key);
+    if (!m || (m->type != JR_NUMBER && m->type != JR_NULL)) {
+        *x = NAN;
+        return required ? -1 : 0;
+    }
+    *x = m->num;
+    return 0;
+}
+
+static int get_arr(const jr_object *o, const char *key, double *x, int max, int *n)
+{
+    const jr_member *m = jr_get(o, key);
+    if (!m || m->type != JR_ARRAY || m->narr > max)
+        return -1;
+    for (int i = 0; i < m->narr; i++)
+        x[i] = m->arr[i];
+    if (n)
+        *n = m->narr;
+    return 0;
+}
+
+int bj_record_parse(const char *line, bj_record *r)
+{
+    jr_object o;
+    if (jr_parse(line, &o) != 0)
+        return -1;
+    memset(r, 0, sizeof *r);
+    int rc = -1;
+    char kind[32];
+    double x;
+    if (get_str(&o, NULL, "kind", kind, sizeof kind, 1) != 0)
+        goto done;
+    r->kind = (bj_kind)-1;
+    for (int k = 0; k < 4; k++)
+        if (strcmp(kind, kind_names[k]) == 0)
+            r->kind = (bj_kind)k;
+    if ((int)r->kind < 0)
+        goto done;
+    const jr_member *file = jr_get(&o, "file"), *set = jr_get(&o, "settings");
+    if (get_str(&o, NULL, "material", r->material, sizeof r->material, 1) != 0 ||
+        get_str(&o, file, "path", r->id.path, sizeof r->id.path, 1) != 0 ||
+        get_num(&o, file, "size", &x, 1) != 0 ||
+        get_str(&o, file, "hash", r->id.hash, sizeof r->id.hash, 1) != 0)
+        goto done;
+    r->id.size = (long long)x;
+    if (get_str(&o, set, "version", r->settings.version, sizeof r->settings.version, 1) != 0 ||
+        get_str(&o, set, "scale", r->settings.scale, sizeof r->settings.scale, 1) != 0 ||
+        get_num(&o, set, "cutoff_deg", &r->settings.cutoff_deg, 1) != 0 ||
+        get_num(&o, set, "starts", &x, 1) != 0)
+        goto done;
+    r->settings.starts = (int)x;
+    const jr_member *ok = jr_get(&o, "ok");
+    if (!ok || ok->type != JR_BOOL)
+        goto done;
+    r->ok = ok->num != 0;
+    if (get_str(&o, NULL, "model", r->model, sizeof r->model, 1) != 0 ||
+        get_str(&o, NULL, "status", r->status, sizeof r->status, 1) != 0 ||
+        get_str(&o, NULL, "message", r->message, sizeof r->message, 0) != 0)
+        goto done;
+    if (r->kind == BJ_FIT || r->kind == BJ_PUBLISHED) {
+        if (get_arr(&o, "d", r->params.d, 3, NULL) != 0 ||
+            get_arr(&o, "s", r->params.s, 3, NULL) != 0 ||
+            get_arr(&o, "p", r->params.p, BRDFFIT_MAX_LOBE_PARAMS, &r->nparams) != 0 ||
+            get_arr(&o, "lambda_um", r->params.lambda_um, 3, NULL) != 0 ||
+            get_num(&o, NULL, "error", &r->error, 1) != 0)
+            goto done;
+    }
+    if (r->kind == BJ_FIT) {
+        double it, ev, info, smp;
+        if (get_num(&o, NULL, "iterations", &it, 1) != 0 ||
+            get_num(&o, NULL, "evaluations", &ev, 1) != 0 ||
+            get_num(&o, NULL, "cminpack_info", &info, 1) != 0 ||
+            get_num(&o, NULL, "seconds", &r->seconds, 1) != 0 ||
+            get_num(&o, NULL, "samples", &smp, 1) != 0 ||
+            get_str(&o, NULL, "on_bound", r->on_bound, sizeof r->on_bound, 0) != 0 ||
+            get_str(&o, NULL, "backend", r->backend, sizeof r->backend, 0) != 0)
+            goto done;
+        r->iterations = (int)it;
+        r->evaluations = (int)ev;
+        r->cminpack_info = (int)info;
+        r->samples = (long long)smp;
+    }
+    if (r->kind == BJ_ASSETS &&
+        (get_str(&o, NULL, "assets_key", r->assets_key, sizeof r->assets_key, 1) != 0 ||
+         get_str(&o, NULL, "assets", r->assets, sizeof r->assets, 1) != 0))
+        goto done;
+    rc = 0;
+done:
+    jr_free(&o);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ the file */
+
+static int io_fail(brdffit_error *err, const char *what, const char *path, int e)
+{
+    err->status = BRDFFIT_E_FILE_WRITE;
+    snprintf(err->message, sizeof err->message, "cannot %s %.1800s: %s", what, path, strerror(e));
+    return -1;
+}
+
+int bj_journal_open(bj_journal *j, const char *dir, int *torn, brdffit_error *err)
+{
+    *torn = 0;
+    j->fd = -1;
+    if (out_join(j->path, sizeof j->path, dir, "journal.jsonl") != 0)
+        return io_fail(err, "open", dir, ENAMETOOLONG);
+    int fd = open(j->path, O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (fd < 0)
+        return io_fail(err, "open", j->path, errno);
+    /* cut a torn last line off: find the last newline */
+    off_t size = lseek(fd, 0, SEEK_END);
+    if (size > 0) {
+        char buf[4096];
+        off_t keep = 0, pos = size;
+        while (pos > 0) {
+            off_t from = pos > (off_t)sizeof buf ? pos - (off_t)sizeof buf : 0;
+            ssize_t got = pread(fd, buf, (size_t)(pos - from), from);
+            if (got != pos - from) {
+                int e = got < 0 ? errno : EIO;
+                close(fd);
+                return io_fail(err, "read", j->path, e);
+            }
+            off_t k = got;
+            while (k > 0 && buf[k - 1] != '\n')
+                k--;
+            if (k > 0) {
+                keep = from + k;
+                break;
+            }
+            pos = from;
+        }
+        if (keep < size) {
+            *torn = 1;
+            if (ftruncate(fd, keep) != 0 || fsync(fd) != 0) {
+                int e = errno;
+                close(fd);
+                return io_fail(err, "repair", j->path, e);
+            }
+        }
+    }
+    j->fd = fd;
+    return out_sync_dir(dir, err);
+}
+
+int bj_journal_append(bj_journal *j, const bj_record *r, brdffit_error *err)
+{
+    char *line = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&line, &len);
+    if (!m) {
+        err->status = BRDFFIT_E_NO_MEMORY;
+        snprintf(err->message, sizeof err->message, "out of memory writing %.1800s", j->path);
+        return -1;
+    }
+    bj_record_json(m, r);
+    putc('\n', m);
+    if (fclose(m) != 0 || !line) {
+        free(line);
+        err->status = BRDFFIT_E_NO_MEMORY;
+        snprintf(err->message, sizeof err->message, "out of memory writing %.1800s", j->path);
+        return -1;
+    }
+    /* one write for the whole line; a short write is completed (or fails) */
+    size_t done = 0;
+    if (cli_fault_hit("torn")) { /* the test of a kill in the middle of this write */
+        done = len / 2;
+        if (write(j->fd, line, done) == (ssize_t)done)
+            (void)fsync(j->fd);
+        raise(SIGKILL);
+    }
+    while (done < len) {
+        ssize_t w = write(j->fd, line + done, len - done);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0) {
+            int e = w < 0 ? errno : ENOSPC;
+            free(line);
+            /* the partial line is a torn line: cut it so the journal stays whole */
+            off_t end = lseek(j->fd, 0, SEEK_END);
+            if (end >= (off_t)done && ftruncate(j->fd, end - (off_t)done) == 0)
+                (void)fsync(j->fd);
+            return io_fail(err, "write", j->path, e);
+        }
+        done += (size_t)w;
+    }
+    free(line);
+    if (fsync(j->fd) != 0)
+        return io_fail(err, "write (fsync)", j->path, errno);
+    return 0;
+}
+
+void bj_journal_close(bj_journal *j)
+{
+    if (j->fd >= 0)
+        close(j->fd);
+    j->fd = -1;
+}
+
+int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdffit_error *err)
+{
+    *bad = 0;
+    *torn = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        if (errno == ENOENT)
+            return 0;
+        err->status = BRDFFIT_E_FILE_OPEN;
+        snprintf(err->message, sizeof err->message, "cannot read %.1800s: %s", path,
+                 strerror(errno));
+        return -1;
+    }
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t n;
+    bj_record *r = malloc(sizeof *r);
+    int rc = 0;
+    if (!r) {
+        fclose(f);
+        err->status = BRDFFIT_E_NO_MEMORY;
+        snprintf(err->message, sizeof err->message, "out of memory reading %.1800s", path);
+        return -1;
+    }
+    while ((n = getline(&line, &cap, f)) > 0) {
+        if (line[n - 1] != '\n') { /* the last line, without its newline: torn */
+            *torn = 1;
+            break;
+        }
+        line[n - 1] = '\0';
+        if (bj_record_parse(line, r) != 0) {
+            (*bad)++;
+            continue;
+        }
+        if (bj_records_push(rs, r) != 0) {
+            err->status = BRDFFIT_E_NO_MEMORY;
+            snprintf(err->message, sizeof err->message, "out of memory reading %.1800s", path);
+            rc = -1;
+            break;
+        }
+    }
+    if (rc == 0 && ferror(f)) {
+        err->status = BRDFFIT_E_FILE_READ;
+        snprintf(err->message, sizeof err->message, "cannot read %.1800s: %s", path,
+                 strerror(errno));
+        rc = -1;
+    }
+    free(r);
+    free(line);
+    fclose(f);
+    return rc;
+}

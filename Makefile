@@ -1,7 +1,8 @@
 # brdffit -- library (libbrdffit.a, libbrdffit.so), program (brdffit), tests, benchmark.
 #
 #   make             build/libbrdffit.a build/libbrdffit.so build/brdffit
-#   make demo        build, then fit every model to the embedded synthetic material
+#   make demo        build, then run the batch on the embedded synthetic material
+#                    (report in build/demo; prints the path of its index.html)
 #   make test        build and run the Check suite and the Python package's tests
 #                    (python/tests, pytest; uses ../shared when present)
 #   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
@@ -113,7 +114,7 @@ RUN_ENV = POCL_CACHE_DIR="$${POCL_CACHE_DIR:-$(CURDIR)/$(BUILD)/pocl-cache}"
 
 demo: all
 	@mkdir -p $(BUILD)/pocl-cache
-	$(RUN_ENV) ./$(BUILD)/brdffit demo
+	$(RUN_ENV) ./$(BUILD)/brdffit batch --demo --out $(BUILD)/demo
 
 test: $(BUILD)/test_brdffit $(BUILD)/brdffit $(BUILD)/libbrdffit.so
 	@mkdir -p $(BUILD)/pocl-cache

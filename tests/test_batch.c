@@ -399,84 +399,6 @@ START_TEST(html_checker_self_test)
 }
 END_TEST
 
-/* ------------------------------------------------------------------ a JSON well-formedness check */
-
-static const char *j_value(const char *p, int depth);
-
-static const char *j_ws(const char *p)
-{
-    while (*p == ' ' || *p == '\n' || *p == '\t' || *p == '\r')
-        p++;
-    return p;
-}
-
-static const char *j_string(const char *p)
-{
-    if (*p++ != '"')
-        return NULL;
-    while (*p != '"') {
-        if ((unsigned char)*p < 0x20)
-            return NULL;
-        if (*p == '\\') {
-            p++;
-            if (*p == 'u') {
-                for (int k = 1; k <= 4; k++)
-                    if (!isxdigit((unsigned char)p[k]))
-                        return NULL;
-                p += 4;
-            } else if (!strchr("\"\\/bfnrt", *p)) {
-                return NULL;
-            }
-        }
-        p++;
-    }
-    return p + 1;
-}
-
-static const char *j_value(const char *p, int depth)
-{
-    p = j_ws(p);
-    if (depth > 20)
-        return NULL;
-    if (*p == '"')
-        return j_string(p);
-    if (*p == '{' || *p == '[') {
-        char close = *p == '{' ? '}' : ']';
-        p = j_ws(p + 1);
-        if (*p == close)
-            return p + 1;
-        for (;;) {
-            if (close == '}') {
-                p = j_string(j_ws(p));
-                if (!p || *(p = j_ws(p)) != ':')
-                    return NULL;
-                p++;
-            }
-            if (!(p = j_value(p, depth + 1)))
-                return NULL;
-            p = j_ws(p);
-            if (*p == ',') {
-                p++;
-                continue;
-            }
-            return *p == close ? p + 1 : NULL;
-        }
-    }
-    if (strncmp(p, "null", 4) == 0 || strncmp(p, "true", 4) == 0)
-        return p + 4;
-    if (strncmp(p, "false", 5) == 0)
-        return p + 5;
-    char *end;
-    strtod(p, &end);
-    return end == p || strncmp(p, "nan", 3) == 0 || strncmp(p, "inf", 3) == 0 ? NULL : end;
-}
-
-static int json_valid(const char *s)
-{
-    const char *p = j_value(s, 0);
-    return p && *j_ws(p) == '\0';
-}
-
 /* ------------------------------------------------------------------ the report */
 
 static void check_material_files(const char *out, const char *name)
@@ -489,7 +411,7 @@ static void check_material_files(const char *out, const char *name)
     }
     snprintf(path, sizeof path, "%s/%s/params.json", out, name);
     char *j = slurp(path);
-    ck_assert_msg(json_valid(j), "%s is not valid JSON:\n%s", path, j);
+    ck_assert_msg(tu_json_object_line(j), "%s is not valid JSON:\n%s", path, j);
     free(j);
     snprintf(path, sizeof path, "%s/index.html", name);
     ck_assert_int_ge(check_page(out, path), 3);
@@ -527,6 +449,15 @@ START_TEST(batch_writes_every_file)
     check_material_files(out, "broken");
     check_material_files(out, "nope");
     ck_assert_int_ge(check_page(out, "index.html"), 3 + 2 + 2);
+
+    /* every journal line is one JSON object */
+    snprintf(path, sizeof path, "%s/journal.jsonl", out);
+    char *jl = slurp(path);
+    int nrec = 0;
+    for (char *line = strtok(jl, "\n"); line; line = strtok(NULL, "\n"), nrec++)
+        ck_assert_msg(tu_json_object_line(line), "journal line %d is not a JSON object: %s", nrec + 1, line);
+    free(jl);
+    ck_assert_int_ge(nrec, 3 * 2 + 2);
 
     /* the headline figure: well-formed SVG, one marker per fit and per legend entry */
     tu_xml_doc svg;

@@ -8,8 +8,10 @@
 #   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make bench       the benchmark (bench/), figures as in README.md
 #   make bench-python  only its Python part (eval from NumPy against C)
-#   make install PREFIX=/usr/local   header, libraries, brdffit.pc, program, and
-#                    the Python package (python/brdffit) beside the library
+#   make deps        install the Debian packages the build needs (.ci/install-deps)
+#   make install PREFIX=/usr/local [DESTDIR=...]   headers, libraries, brdffit.pc,
+#                    program, and the Python package (python/brdffit) beside the library
+#   make uninstall PREFIX=/usr/local [DESTDIR=...]  removes what install put there
 #   make clean
 
 PREFIX   ?= /usr/local
@@ -19,18 +21,25 @@ OPT      ?= -O2
 SONAME    = libbrdffit.so.0
 VERSION   = 0.1.0
 
-# On a fresh machine the first `make` installs the Debian packages it needs
-# (.ci/install-deps: a no-op when they are there).
-DEPS_OK := $(shell sh .ci/install-deps >&2 && echo ok)
-ifneq ($(DEPS_OK),ok)
-$(error build dependencies missing: see the message above)
-endif
+# ---- build dependencies ----
+# `make deps` installs the Debian packages the build needs (.ci/install-deps,
+# a no-op when they are there).  A build runs it once, the first time, through
+# the stamp $(DEPS_STAMP) (an order-only prerequisite of the build folders);
+# `make install` / `uninstall` only check (never apt), `make clean` and
+# `make -n` never run it.  pkg-config is asked when a recipe runs (`=`, not
+# `:=`), so a first build sees the packages it has just installed.
+DEPS_STAMP = $(BUILD)/.deps-ok
+deps:
+	sh .ci/install-deps
+$(DEPS_STAMP):
+	sh .ci/install-deps $(if $(filter install uninstall,$(MAKECMDGOALS)),--check)
+	@mkdir -p $(@D) && touch $@
 
 PKGS       = cminpack
-PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null || echo -I/usr/include/cminpack-1)
-PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lcminpack)
-CHECK_CFLAGS := $(shell pkg-config --cflags check 2>/dev/null)
-CHECK_LIBS   := $(shell pkg-config --libs check 2>/dev/null || echo -lcheck -lsubunit -lrt -lpthread -lm)
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null || echo -I/usr/include/cminpack-1)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lcminpack)
+CHECK_CFLAGS = $(shell pkg-config --cflags check 2>/dev/null)
+CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null || echo -lcheck -lsubunit -lrt -lpthread -lm)
 
 # Include paths: the library sees its own internals and the kernel headers;
 # the program sees the public header and its own; the tests, which reach
@@ -59,7 +68,7 @@ BENCH_SRC = $(wildcard bench/*.c)
 
 all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
 
-$(BUILD)/lib $(BUILD)/cli $(BUILD)/tests $(BUILD)/bench:
+$(BUILD)/lib $(BUILD)/cli $(BUILD)/tests $(BUILD)/bench: | $(DEPS_STAMP)
 	mkdir -p $@
 
 # The kernel sources, embedded at build time as C strings, in KERNEL_SOURCES order.
@@ -76,18 +85,37 @@ $(BUILD)/lib/kernel_source.c: $(KERNEL_SOURCES) | $(BUILD)/lib
 	  echo 'const size_t bf_kernel_source_count = sizeof bf_kernel_sources / sizeof bf_kernel_sources[0];'; \
 	} > $@.tmp && mv $@.tmp $@
 
+# ---- the libraries: only brdffit_* is visible ----
+# Library objects are compiled -fvisibility=hidden; include/brdffit.h gives
+# its declarations default visibility, so libbrdffit.so exports brdffit_*
+# only.  libbrdffit.a holds ONE relocatable object (ld -r) whose hidden
+# symbols are made local (objcopy --localize-hidden), so its internals (bf_*)
+# cannot collide with a caller's.  The tests and the benchmark reach the
+# internals through libbrdffit-internal.a (the plain objects; not installed).
+LIB_CFLAGS = -fvisibility=hidden
+SOFILE     = libbrdffit.so.$(VERSION)
+OBJCOPY   ?= objcopy
+
 $(BUILD)/lib/%.o: src/lib/%.c | $(BUILD)/lib
-	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) -c -o $@ $<
+	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
 $(BUILD)/lib/kernel_source.o: $(BUILD)/lib/kernel_source.c
-	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+	$(CC) $(CPPFLAGS) $(CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
-$(BUILD)/libbrdffit.a: $(LIB_OBJ)
+$(BUILD)/libbrdffit-internal.a: $(LIB_OBJ)
 	rm -f $@ && ar rcs $@ $^
 
-$(BUILD)/libbrdffit.so: $(LIB_OBJ)
-	$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) -o $(BUILD)/$(SONAME) $^ $(LDLIBS)
-	ln -sf $(SONAME) $@
+$(BUILD)/lib/libbrdffit-all.o: $(LIB_OBJ)
+	$(LD) -r -o $@ $^ && $(OBJCOPY) --localize-hidden $@
+
+$(BUILD)/libbrdffit.a: $(BUILD)/lib/libbrdffit-all.o
+	rm -f $@ && ar rcs $@ $^
+
+$(BUILD)/$(SOFILE): $(LIB_OBJ)
+	$(CC) -shared -Wl,-soname,$(SONAME) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/libbrdffit.so: $(BUILD)/$(SOFILE)
+	ln -sf $(SOFILE) $(BUILD)/$(SONAME) && ln -sf $(SONAME) $@
 
 $(BUILD)/cli/%.o: src/cli/%.c | $(BUILD)/cli
 	$(CC) $(CPPFLAGS) $(CLI_INC) $(CFLAGS) -c -o $@ $<
@@ -99,14 +127,14 @@ $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) $(TEST_INC) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
 
 # expat: the tests' independent XML parser
-$(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
+$(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit-internal.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) -lexpat $(LDLIBS)
 
 # The benchmark reads its tables with the tests' helpers (tests/testutil.c).
 $(BUILD)/bench/%.o: bench/%.c | $(BUILD)/bench
 	$(CC) $(CPPFLAGS) $(LIB_INC) -Itests $(CFLAGS) -c -o $@ $<
 
-$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(BUILD)/libbrdffit.a
+$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(BUILD)/libbrdffit-internal.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 # The environment every run gets: PoCL needs a writable cache directory.
@@ -116,11 +144,17 @@ demo: all
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/brdffit batch --demo --out $(BUILD)/demo
 
-test: $(BUILD)/test_brdffit $(BUILD)/brdffit $(BUILD)/libbrdffit.so
+# The Check suite, the Python package's tests, then tests/packaging.sh
+# (exported symbols, the static library's internals, install/uninstall,
+# pkg-config, README's example built and run in C and C++, shared and
+# static).  All always run; any failing fails the goal.
+test: $(BUILD)/test_brdffit all
 	@mkdir -p $(BUILD)/pocl-cache
-	$(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit ./$(BUILD)/test_brdffit
+	@rc=0; $(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit ./$(BUILD)/test_brdffit || rc=1; \
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
-	    sh python/tests/run -q
+	    sh python/tests/run -q || rc=1; \
+	$(RUN_ENV) BUILD=$(BUILD) CC="$(CC)" sh tests/packaging.sh || rc=1; \
+	exit $$rc
 
 # The same suite built with ASan + UBSan in its own build directory.  LLVM
 # (inside PoCL) keeps allocations until exit: tests/lsan.supp names them.
@@ -146,15 +180,27 @@ bench-python: $(BUILD)/bench_eval_c $(BUILD)/libbrdffit.so
 	BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
 	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c
 
+# ---- install / uninstall ----
+# The header, both libraries (libbrdffit.so.VERSION, its soname link and the
+# .so link), brdffit.pc, the program, and the drop-in evaluator headers a
+# renderer includes (README): kernels/bf_lobe.h and every header it includes,
+# as <brdffit/bf_lobe.h>.
+LIBDIR     = $(PREFIX)/lib
+INCLUDEDIR = $(PREFIX)/include
+BINDIR     = $(PREFIX)/bin
+DROPIN_HEADERS = $(shell $(CC) -MM -MT x -x c kernels/bf_lobe.h | sed -e 's/^x://' -e 's/\\//g')
+
 install: all
-	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/bin
-	install -m 644 include/brdffit.h $(DESTDIR)$(PREFIX)/include/
-	install -m 644 $(BUILD)/libbrdffit.a $(DESTDIR)$(PREFIX)/lib/
-	install -m 755 $(BUILD)/$(SONAME) $(DESTDIR)$(PREFIX)/lib/
-	ln -sf $(SONAME) $(DESTDIR)$(PREFIX)/lib/libbrdffit.so
-	install -m 755 $(BUILD)/brdffit $(DESTDIR)$(PREFIX)/bin/
+	install -d $(DESTDIR)$(INCLUDEDIR)/brdffit $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(BINDIR)
+	install -m 644 include/brdffit.h $(DESTDIR)$(INCLUDEDIR)/
+	install -m 644 $(DROPIN_HEADERS) $(DESTDIR)$(INCLUDEDIR)/brdffit/
+	install -m 644 $(BUILD)/libbrdffit.a $(DESTDIR)$(LIBDIR)/
+	install -m 755 $(BUILD)/$(SOFILE) $(DESTDIR)$(LIBDIR)/
+	ln -sf $(SOFILE) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libbrdffit.so
+	install -m 755 $(BUILD)/brdffit $(DESTDIR)$(BINDIR)/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' brdffit.pc.in \
-	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/brdffit.pc
+	    > $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc
 	$(MAKE) --no-print-directory install-python
 
 # The Python package into $(PYTHONDIR) (default: $(PREFIX)/lib/pythonX.Y/dist-packages
@@ -175,11 +221,31 @@ install-python:
 	ln -sf "$$(realpath -m --relative-to="$$dir/brdffit" '$(PREFIX)/lib/$(SONAME)')" \
 	    "$(DESTDIR)$$dir/brdffit/$(SONAME)"
 
+uninstall:
+	rm -f $(DESTDIR)$(INCLUDEDIR)/brdffit.h $(DESTDIR)$(LIBDIR)/libbrdffit.a \
+	      $(DESTDIR)$(LIBDIR)/$(SOFILE) $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libbrdffit.so \
+	      $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc $(DESTDIR)$(BINDIR)/brdffit
+	rm -f $(DESTDIR)$(INCLUDEDIR)/brdffit/*.h
+	rmdir $(DESTDIR)$(INCLUDEDIR)/brdffit 2>/dev/null || true
+	$(MAKE) --no-print-directory uninstall-python
+
+# What install-python put there (the same folder).
+uninstall-python:
+	@dir='$(PYTHONDIR)'; \
+	if [ -z "$$dir" ]; then \
+	    v=$$(python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null) || exit 0; \
+	    dir='$(PREFIX)'/lib/python$$v/dist-packages; \
+	fi; \
+	set -x; \
+	rm -f $(addprefix "$(DESTDIR)$$dir/brdffit/",$(notdir $(PY_SRC))) "$(DESTDIR)$$dir/brdffit/$(SONAME)"; \
+	rm -rf "$(DESTDIR)$$dir/brdffit/__pycache__"; \
+	rmdir "$(DESTDIR)$$dir/brdffit" 2>/dev/null || true
+
 clean:
 	rm -rf $(BUILD) build-san
 
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize bench bench-python install install-python clean
+.PHONY: all demo test sanitize bench bench-python deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

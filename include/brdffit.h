@@ -66,6 +66,12 @@
 extern "C" {
 #endif
 
+/* Every declaration in this header is the ABI of libbrdffit.so, and the
+ * only part of it: the library is compiled -fvisibility=hidden. */
+#if defined(__GNUC__)
+#pragma GCC visibility push(default)
+#endif
+
 #define BRDFFIT_VERSION_MAJOR 0
 #define BRDFFIT_VERSION_MINOR 1
 #define BRDFFIT_VERSION_PATCH 0
@@ -372,6 +378,10 @@ size_t brdffit_struct_size(brdffit_struct_kind kind);
  * its name), or (size_t)-1 when the struct has no such member or the kind is
  * unknown. */
 size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member);
+
+#if defined(__GNUC__)
+#pragma GCC visibility pop
+#endif
 
 #ifdef __cplusplus
 }

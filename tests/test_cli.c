@@ -521,11 +521,16 @@ Suite *cli_suite(void)
 
     TCase *tf = tcase_create("fit");
     tcase_set_timeout(tf, 180);
+    tcase_set_tags(tf, TU_NEEDS_SHARED);
     tcase_add_test(tf, fit_good_and_missing);
     tcase_add_test(tf, fit_json_good_and_missing);
     tcase_add_test(tf, fit_no_such_device);
-    tcase_add_test(tf, demo_json);
-    tcase_add_test(tf, demo_table);
     suite_add_tcase(s, tf);
+
+    TCase *td = tcase_create("demo");
+    tcase_set_timeout(td, 180);
+    tcase_add_test(td, demo_json);
+    tcase_add_test(td, demo_table);
+    suite_add_tcase(s, td);
     return s;
 }

@@ -347,10 +347,12 @@ Suite *fit_suite(void)
     Suite *s = suite_create("fit");
     TCase *tr = tcase_create("recovery");
     tcase_set_timeout(tr, 300);
+    tcase_set_tags(tr, TU_NEEDS_SHARED);
     tcase_add_loop_test(tr, recovery, 0, 12);
     suite_add_tcase(s, tr);
     TCase *tp = tcase_create("paper");
     tcase_set_timeout(tp, 600);
+    tcase_set_tags(tp, TU_NEEDS_SHARED);
     tcase_add_loop_test(tp, beats_published, 0, 4);
     suite_add_tcase(s, tp);
     TCase *td = tcase_create("degenerate");
@@ -360,6 +362,7 @@ Suite *fit_suite(void)
     suite_add_tcase(s, td);
     TCase *th = tcase_create("he");
     tcase_set_timeout(th, 900);
+    tcase_set_tags(th, TU_NEEDS_SHARED);
     tcase_add_loop_test(th, he_recovery, 0, 2);
     tcase_add_loop_test(th, he_beats_published, 0, 2);
     tcase_add_test(th, he_published_rows_finite);

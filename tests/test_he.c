@@ -726,17 +726,22 @@ static void free_dirs(void)
 Suite *he_suite(void)
 {
     Suite *s = suite_create("he");
+    TCase *tr = tcase_create("he-data");
+    tcase_set_timeout(tr, 300);
+    tcase_set_tags(tr, TU_NEEDS_SHARED);
+    tcase_add_checked_fixture(tr, NULL, free_dirs);
+    tcase_add_test(tr, reference_values);
+    tcase_add_test(tr, published_fits_finite);
+    suite_add_tcase(s, tr);
     TCase *tc = tcase_create("he");
     tcase_set_timeout(tc, 300);
     tcase_add_checked_fixture(tc, NULL, free_dirs);
-    tcase_add_test(tc, reference_values);
     tcase_add_loop_test(tc, reciprocity, 0, NSETS);
     tcase_add_test(tc, geometry_limits);
     tcase_add_test(tc, distribution_switch);
     tcase_add_test(tc, series_brute_force);
     tcase_add_test(tc, rough_normal_limit);
     tcase_add_test(tc, shadowing_smooth_limit);
-    tcase_add_test(tc, published_fits_finite);
     tcase_add_loop_test(tc, corners_finite, 0, 3);
     tcase_add_test(tc, extreme_directions);
     tcase_add_test(tc, continuous_in_sigma);

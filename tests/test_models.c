@@ -256,9 +256,13 @@ END_TEST
 Suite *models_suite(void)
 {
     Suite *s = suite_create("models");
+    TCase *tr = tcase_create("reference");
+    tcase_set_timeout(tr, 60);
+    tcase_set_tags(tr, TU_NEEDS_SHARED);
+    tcase_add_test(tr, reference_values);
+    suite_add_tcase(s, tr);
     TCase *tc = tcase_create("closed-form");
     tcase_set_timeout(tc, 60);
-    tcase_add_test(tc, reference_values);
     tcase_add_loop_test(tc, reciprocity, 0, NCLOSED);
     tcase_add_loop_test(tc, finite_everywhere, 0, NCLOSED);
     tcase_add_test(tc, exponent_million);

@@ -295,10 +295,13 @@ Suite *pass_suite(void)
     Suite *s = suite_create("pass");
     TCase *tc = tcase_create("kernel");
     tcase_set_timeout(tc, 300);
+    tcase_set_tags(tc, TU_NEEDS_SHARED);
     tcase_add_loop_test(tc, kernel_equals_host, 0, BRDFFIT_MODEL_COUNT);
     tcase_add_test(tc, weights_normalised);
-    tcase_add_test(tc, moment_layout);
     suite_add_tcase(s, tc);
+    TCase *tl = tcase_create("layout");
+    tcase_add_test(tl, moment_layout);
+    suite_add_tcase(s, tl);
     /* the tests that change the environment: the fixture puts it back */
     TCase *te = tcase_create("environment");
     tcase_set_timeout(te, 300);

@@ -915,9 +915,14 @@ Suite *table_suite(void)
 
     tc = tcase_create("merl");
     tcase_set_timeout(tc, 300);
+    tcase_set_tags(tc, TU_NEEDS_SHARED);
     tcase_add_test(tc, test_merl_blue_rubber);
     tcase_add_test(tc, test_merl_alum_bronze);
     tcase_add_test(tc, test_merl_gold_metallic_paint);
+    suite_add_tcase(s, tc);
+
+    tc = tcase_create("weights");
+    tcase_set_timeout(tc, 300);
     tcase_add_test(tc, test_bin_weights);
     suite_add_tcase(s, tc);
 

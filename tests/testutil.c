@@ -17,6 +17,27 @@ const char *tu_shared(const char *rel, char *buf, size_t len)
     return buf;
 }
 
+int tu_shared_present(char *why, size_t len)
+{
+    static const char *const need[] = { "tools/merl-table", "data/ngan2005-fits.tsv",
+                                        "data/model-reference.tsv", "data/he-reference.tsv" };
+    const char *root = getenv("BRDFFIT_SHARED");
+    char path[1024];
+    for (size_t i = 0; i < sizeof need / sizeof need[0]; i++) {
+        tu_shared(need[i], path, sizeof path);
+        if (access(path, i == 0 ? X_OK : R_OK) != 0) {
+            snprintf(why, len,
+                     "%s not found%s: the MERL tables and reference data come from the shared "
+                     "data folder beside the checkout (../shared, described by its README.md; "
+                     "BRDFFIT_SHARED=DIR points elsewhere); running only the tests that need "
+                     "no data, then failing",
+                     path, root && *root ? " (BRDFFIT_SHARED)" : "");
+            return 0;
+        }
+    }
+    return 1;
+}
+
 const char *tu_merl_table(const char *name, char *buf, size_t len)
 {
     char tool[1024], cmd[2048];

@@ -16,6 +16,12 @@
 
 /* Path of a file under ../shared (or $BRDFFIT_SHARED), into buf. */
 const char *tu_shared(const char *rel, char *buf, size_t len);
+/* 1 when ../shared (or $BRDFFIT_SHARED) has the tools and data the tests
+ * read; else 0 and, in why, one line: what is missing and where it comes from. */
+int tu_shared_present(char *why, size_t len);
+/* The Check tag of the test cases that read ../shared: they are left out when
+ * it is missing (tests/check_main.c).  tcase_set_tags(tc, TU_NEEDS_SHARED). */
+#define TU_NEEDS_SHARED "shared"
 /* Run ../shared/tools/merl-table NAME and return its path in buf (NULL on failure). */
 const char *tu_merl_table(const char *name, char *buf, size_t len);
 /* A fresh temporary file path (the file exists, empty) into buf. */

@@ -95,6 +95,8 @@ $(BUILD)/lib/kernel_source.c: $(KERNEL_SOURCES) | $(BUILD)/lib
 LIB_CFLAGS = -fvisibility=hidden
 SOFILE     = libbrdffit.so.$(VERSION)
 OBJCOPY   ?= objcopy
+# The flags above live here: a changed Makefile rebuilds the library objects.
+$(LIB_OBJ): Makefile
 
 $(BUILD)/lib/%.o: src/lib/%.c | $(BUILD)/lib
 	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) $(LIB_CFLAGS) -c -o $@ $<

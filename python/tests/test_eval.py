@@ -46,6 +46,7 @@ def c_eval_one(cdll, brdffit, m, params, wi, wo):
     return rgb
 
 
+@pytest.mark.shared
 def test_reference_values_equal_the_c_evaluator(brdffit, cdll, cli):
     rows_by_model = reference_rows()
     assert sum(len(v) for v in rows_by_model.values()) == 384
@@ -77,6 +78,7 @@ def test_reference_values_equal_the_c_evaluator(brdffit, cdll, cli):
         assert [float(x) for x in out] == got[-1].tolist()
 
 
+@pytest.mark.shared
 def test_he_equals_the_c_evaluator(brdffit, cdll):
     rows = read_tsv("data/he-reference.tsv")
     assert len(rows) > 50

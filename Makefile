@@ -170,9 +170,9 @@ sanitize:
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	./build-san/test_brdffit
 
-bench: $(BUILD)/bench_brdffit bench-python
+bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache
-	$(RUN_ENV) ./$(BUILD)/bench_brdffit
+	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit
 
 # The Python package's eval on 1,000,000 pairs against the same call from C.
 $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdffit.so

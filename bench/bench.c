@@ -6,7 +6,9 @@
  *  2. per model, one complete fit (the fastest of 3 identical runs): wall
  *     time, passes, share inside cminpack; then the He / Cook-Torrance ratio
  *     from 3 more runs of each, alternating (the fastest of each);
- *  3. all models on 10 materials end to end.
+ *  3. all models on 10 materials end to end;
+ *  4. `brdffit batch` on the same materials (bench_batch.c): its time and the
+ *     share outside fitting.
  *
  * Tables come from ../shared/tools/merl-table (BRDFFIT_SHARED overrides).
  * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N]
@@ -14,6 +16,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "pass.h"
 #include "testutil.h"
+#include "bench_batch.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -227,5 +230,5 @@ int main(int argc, char **argv)
     double total = bf_now() - t0;
     printf("  total %d fits in %.2f s (%.2f s per fit)\n", fits, total, fits ? total / fits : 0.0);
     brdffit_context_free(ctx);
-    return 0;
+    return bench_batch(materials, nmat, models) == 0 ? 0 : 1;
 }

@@ -809,6 +809,18 @@ START_TEST(changed_settings_and_files_are_refitted)
     ck_assert_msg(strstr(r.err, "blue-rubber: done (journaled)"), "%s", r.err);
     run_free(&r);
     ck_assert_int_eq(journal_count(out, "fit"), 14);
+
+    /* a journal written by another program version: said, and everything refitted */
+    char jpath[1200], cmd[4096];
+    snprintf(jpath, sizeof jpath, "%s/journal.jsonl", out);
+    snprintf(cmd, sizeof cmd, "sed -i 's/\"version\":\"[^\"]*\"/\"version\":\"0.0.1-old\"/' '%s'", jpath);
+    ck_assert_int_eq(system(cmd), 0);
+    r = run(args);
+    expect_status(r, 0, args);
+    ck_assert_msg(strstr(r.err, "program version 0.0.1-old (this run: "), "%s", r.err);
+    ck_assert_msg(!strstr(r.err, "done (journaled)"), "reused a record of another version:\n%s", r.err);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 20);
 }
 END_TEST
 

@@ -45,6 +45,9 @@ int out_commit(out_file *o, brdffit_error *err)
     if (fclose(o->f) != 0 && !e)
         e = errno ? errno : EIO;
     o->f = NULL;
+    struct stat st;
+    if (!e && lstat(o->path, &st) == 0 && !S_ISREG(st.st_mode))
+        e = EEXIST; /* never rename over a directory, device or link: report it */
     if (e) {
         unlink(o->tmp);
         return fail(err, "write", o->path, e);

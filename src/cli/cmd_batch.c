@@ -358,6 +358,8 @@ typedef struct batch_run {
     brdffit_error out_err;
     char backend[256];
     double seconds_fitting;  /* inside brdffit_fit and brdffit_error_of */
+    double seconds_render;   /* of the render jobs (in their thread)   */
+    struct render_job *job;  /* the renders and plots in flight        */
 } batch_run;
 
 static void fill_key(bj_record *r, bj_kind kind, const batch_material *m, const bj_settings *s)
@@ -587,45 +589,105 @@ static void published_one(batch_run *R, const batch_material *m, const brdffit_s
     keep(R, &r);
 }
 
-/* The renders and plots of the material's fitted models, and their record. */
-static void assets_of(batch_run *R, const batch_material *m, const brdffit_table *t)
-{
-    const cli_options *o = &R->b->common;
-    const bj_record *fits[BJ_MAX_MODELS];
-    int nf = 0;
-    for (int i = 0; i < o->nmodels; i++) {
-        const bj_record *f = find(R, BJ_FIT, m, brdffit_model_get(o->models[i])->name);
-        if (f && f->ok)
-            fits[nf++] = f;
-    }
+/* The renders and plots of a material run in a thread of their own while the
+ * next material is fitted (a fit keeps about one core busy; the machine has
+ * more).  One job at a time; the main thread journals its record when it is
+ * collected, so the record still comes after the files. */
+typedef struct render_job {
+    pthread_t thread;
+    int running;                   /* a job to collect               */
+    int threaded;                  /* in its own thread (to join)    */
     char dir[BJ_PATH_MAX];
-    bj_record r;
-    fill_key(&r, BJ_ASSETS, m, &R->settings);
-    assets_key(R, r.assets_key, sizeof r.assets_key);
-    if (out_join(dir, sizeof dir, R->b->out, m->name) != 0 || out_mkdir(dir, &R->out_err) != 0) {
-        R->out_failed = 1;
-        return;
-    }
+    brdffit_table *table;          /* owned: freed when collected   */
+    brdffit_sample_options sample;
+    bj_record *fits;               /* copies (the records array may move) */
+    int nfits, render, plot;
+    bj_record rec;                 /* the BJ_ASSETS record to journal */
+    int rc;
     brdffit_error err;
-    memset(&err, 0, sizeof err);
-    int rc = batch_assets(dir, m->name, t, &R->b->common.sample, fits, nf, !R->b->no_render,
-                          !R->b->no_plot, r.assets, sizeof r.assets, &err);
-    if (rc != 0) {
-        if (err.status == BRDFFIT_E_FILE_WRITE) { /* the output directory: stop */
-            R->out_err = err;
+    double seconds;
+} render_job;
+
+static void *render_main(void *arg)
+{
+    render_job *J = arg;
+    const bj_record *fits[BJ_MAX_MODELS];
+    for (int i = 0; i < J->nfits; i++)
+        fits[i] = &J->fits[i];
+    double t0 = now();
+    J->rc = batch_assets(J->dir, J->rec.material, J->table, &J->sample, fits, J->nfits, J->render,
+                         J->plot, J->rec.assets, sizeof J->rec.assets, &J->err);
+    J->seconds = now() - t0;
+    return NULL;
+}
+
+/* Wait for the job in flight (if any), journal its record or report its failure. */
+static void render_collect(batch_run *R, render_job *J)
+{
+    if (!J->running)
+        return;
+    if (J->threaded)
+        pthread_join(J->thread, NULL);
+    J->running = J->threaded = 0;
+    R->seconds_render += J->seconds;
+    brdffit_table_free(J->table);
+    free(J->fits);
+    J->table = NULL;
+    J->fits = NULL;
+    if (J->rc != 0) {
+        if (J->err.status == BRDFFIT_E_FILE_WRITE) { /* the output directory: stop */
+            R->out_err = J->err;
             R->out_failed = 1;
         } else {
             R->failures++;
-            fprintf(stderr, "brdffit: %s: renders and plots: ", m->name);
-            plain_string(stderr, err.message);
+            fprintf(stderr, "%sbrdffit: %s: renders and plots: ", R->P.live && !R->P.quiet ? "\r\033[K" : "",
+                    J->rec.material);
+            plain_string(stderr, J->err.message);
             fputc('\n', stderr);
         }
         return;
     }
-    r.ok = 1;
-    snprintf(r.status, sizeof r.status, "ok");
+    J->rec.ok = 1;
+    snprintf(J->rec.status, sizeof J->rec.status, "ok");
     cli_fault_point("asset");
-    keep(R, &r);
+    if (!R->out_failed)
+        keep(R, &J->rec);
+}
+
+/* Start the renders and plots of material m (its table t is handed over). */
+static void render_start(batch_run *R, render_job *J, const batch_material *m, brdffit_table *t)
+{
+    render_collect(R, J);
+    const cli_options *o = &R->b->common;
+    memset(&J->err, 0, sizeof J->err);
+    J->table = t;
+    J->sample = o->sample;
+    J->render = !R->b->no_render;
+    J->plot = !R->b->no_plot;
+    J->nfits = 0;
+    J->fits = malloc((size_t)(o->nmodels > 0 ? o->nmodels : 1) * sizeof *J->fits);
+    fill_key(&J->rec, BJ_ASSETS, m, &R->settings);
+    assets_key(R, J->rec.assets_key, sizeof J->rec.assets_key);
+    if (!J->fits || out_join(J->dir, sizeof J->dir, R->b->out, m->name) != 0 ||
+        out_mkdir(J->dir, &R->out_err) != 0) {
+        if (!J->fits)
+            snprintf(R->out_err.message, sizeof R->out_err.message, "out of memory");
+        R->out_failed = 1;
+        free(J->fits);
+        J->fits = NULL;
+        brdffit_table_free(t);
+        J->table = NULL;
+        return;
+    }
+    for (int i = 0; i < o->nmodels; i++) {
+        const bj_record *f = find(R, BJ_FIT, m, brdffit_model_get(o->models[i])->name);
+        if (f && f->ok)
+            J->fits[J->nfits++] = *f;
+    }
+    J->threaded = pthread_create(&J->thread, NULL, render_main, J) == 0;
+    if (!J->threaded)
+        render_main(J); /* no thread to be had: here, then */
+    J->running = 1;
 }
 
 /* Say when a file changed since its records were journaled. */
@@ -721,8 +783,8 @@ static int do_material(batch_run *R, batch_material *m, int i, int n)
             published_one(R, m, s, o->models[k]);
     brdffit_samples_free(s);
     if (td.assets && !R->out_failed && !stop_signal) {
-        progress_live(&R->P, i, n, m->name, "renders and plots");
-        assets_of(R, m, t);
+        render_start(R, R->job, m, t); /* t is the job's now */
+        t = NULL;
     }
     brdffit_table_free(t);
     if (!R->out_failed)
@@ -832,6 +894,7 @@ static int run_batch(batch_run *R, material_list *L)
         if (do_material(R, m, i, L->n) != 0)
             break;
     }
+    render_collect(R, R->job);
     if (R->P.live && !b->quiet)
         fputs("\r\033[K", stderr);
     if (R->out_failed) {
@@ -850,10 +913,11 @@ static int run_batch(batch_run *R, material_list *L)
     out_join(index, sizeof index, b->out, "index.html");
     if (!b->quiet)
         fprintf(stderr, "brdffit: %d material%s, %d fit%s this run; %.1f s, of which %.1f s "
-                        "fitting (%.0f%% outside: reading, renders, plots, pages; the report %.2f s)\n",
+                        "fitting (%.1f%% outside: reading, renders, plots, pages; renders and plots "
+                        "%.1f s beside the fits; the report %.2f s)\n",
                 L->n, L->n == 1 ? "" : "s", R->P.fitted_now, R->P.fitted_now == 1 ? "" : "s", total,
                 R->seconds_fitting, total > 0 ? 100 * (total - R->seconds_fitting) / total : 0.0,
-                now() - t_fits);
+                R->seconds_render, now() - t_fits);
     printf("%s\n", index);
     if (stop_signal) {
         int sig = stop_signal;
@@ -879,8 +943,10 @@ int cmd_batch(int argc, char **argv)
     rc = collect(&b, &L);
     if (rc == CLI_OK) {
         batch_run R;
+        static render_job job;
         memset(&R, 0, sizeof R);
         R.b = &b;
+        R.job = &job;
         R.journal.fd = -1;
         bj_settings_make(&R.settings, &b.common.sample, &b.common.fit);
         R.P.live = isatty(STDERR_FILENO);

@@ -6,6 +6,7 @@
 #   make test        build and run the Check suite and the Python package's tests
 #                    (python/tests, pytest; uses ../shared when present)
 #   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
+#   make tsan        the threaded tests under ThreadSanitizer (clang)
 #   make bench       the benchmark (bench/), figures as in README.md
 #   make bench-python  only its Python part (eval from NumPy against C)
 #   make deps        install the Debian packages the build needs (.ci/install-deps)
@@ -49,8 +50,8 @@ LIB_INC   = -Isrc/lib -Ikernels $(PKG_CFLAGS)
 CLI_INC   = -Isrc/cli
 TEST_INC  = $(LIB_INC) $(CLI_INC) -Itests
 # -MMD -MP: each object's header dependencies, written beside it (.d)
-CFLAGS   += -std=c11 $(OPT) -g -Wall -Wextra -fPIC -MMD -MP $(SAN)
-LDLIBS   += $(PKG_LIBS) -lOpenCL -lm
+CFLAGS   += -std=c11 $(OPT) -g -Wall -Wextra -fPIC -MMD -MP -pthread $(SAN)
+LDLIBS   += $(PKG_LIBS) -lOpenCL -lm -pthread
 LDFLAGS  += $(SAN)
 
 LIB_SRC  = $(wildcard src/lib/*.c)
@@ -170,6 +171,18 @@ sanitize:
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	./build-san/test_brdffit
 
+# The threaded tests under ThreadSanitizer (clang; .ci/install-deps clang
+# installs it), in their own build directory.  A report fails the test that
+# ran into it.  tests/tsan.supp names what is not ours (PoCL, LLVM).
+tsan:
+	sh .ci/install-deps clang
+	$(MAKE) BUILD=build-tsan CC=clang OPT=-O1 SAN="-fsanitize=thread -fno-omit-frame-pointer" \
+	    build-tsan/test_brdffit
+	@mkdir -p build-tsan/pocl-cache
+	POCL_CACHE_DIR="$(CURDIR)/build-tsan/pocl-cache" CK_RUN_SUITE=threads \
+	TSAN_OPTIONS=halt_on_error=1:suppressions=$(CURDIR)/tests/tsan.supp \
+	./build-tsan/test_brdffit
+
 bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit
@@ -244,10 +257,10 @@ uninstall-python:
 	rmdir "$(DESTDIR)$$dir/brdffit" 2>/dev/null || true
 
 clean:
-	rm -rf $(BUILD) build-san
+	rm -rf $(BUILD) build-san build-tsan
 
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize bench bench-python deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan bench bench-python deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

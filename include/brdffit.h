@@ -103,6 +103,9 @@ typedef enum brdffit_status {
     BRDFFIT_E_OPENCL,            /* an OpenCL call failed                     */
     BRDFFIT_E_KERNEL_BUILD,      /* the OpenCL program did not build (log in message) */
     BRDFFIT_E_FIT_FAILED,        /* the optimiser could not produce a result  */
+    BRDFFIT_E_CACHE_DIR = 19,    /* PoCL's kernel cache directory is unusable (which, why) */
+    BRDFFIT_E_TOO_FEW_SAMPLES = 20, /* fewer distinct sample geometries than the model's unknowns */
+    BRDFFIT_E_VALUE_RANGE = 21,  /* a finite stored value too large to fit (bin, value named) */
     BRDFFIT_STATUS_COUNT
 } brdffit_status;
 
@@ -307,6 +310,11 @@ brdffit_backend brdffit_context_backend(const brdffit_context *ctx);
 /* A human description: "opencl: Portable Computing Language / pthread-haswell..."
  * or "host: C (no OpenCL device: ...)". */
 const char *brdffit_context_describe(const brdffit_context *ctx);
+/* Why a context asked for AUTO fits on the host path: the status and message
+ * of the OpenCL set-up that failed (BRDFFIT_E_CACHE_DIR, BRDFFIT_E_NO_DEVICE
+ * with the device asked for, ...), for the caller to show.  BRDFFIT_OK and an
+ * empty message when the context uses OpenCL or HOST was asked. */
+brdffit_status brdffit_context_fallback(const brdffit_context *ctx, brdffit_error *why);
 
 typedef struct brdffit_fit_options {
     int starts;          /* starting points screened; 0 (default): the model's

@@ -95,7 +95,7 @@ fi
 if [ "$(echo $libs)" = "-L$D$P/lib -lbrdffit" ]; then pass; else
     fail "pkg-config --libs brdffit is '$libs'"
 fi
-if [ "$(echo $slibs)" = "-L$D$P/lib -lbrdffit -Wl,-Bdynamic -lcminpack -lOpenCL -lm" ]; then pass; else
+if [ "$(echo $slibs)" = "-L$D$P/lib -lbrdffit -Wl,-Bdynamic -lcminpack -lOpenCL -lm -pthread" ]; then pass; else
     fail "pkg-config --static --libs brdffit is '$slibs'"
 fi
 

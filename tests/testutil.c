@@ -3,11 +3,13 @@
 #define _DEFAULT_SOURCE  /* M_PI */
 #include "testutil.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <ftw.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 const char *tu_shared(const char *rel, char *buf, size_t len)
@@ -255,4 +257,51 @@ static int remove_one(const char *path, const struct stat *sb, int flag, struct 
 int tu_remove_tree(const char *path)
 {
     return nftw(path, remove_one, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+int tu_in_child(void (*fn)(void *arg, void *out, size_t len), void *arg, void *out, size_t len)
+{
+    int fds[2];
+    if (pipe(fds) != 0)
+        return -1;
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        close(fds[0]);
+        memset(out, 0, len);
+        fn(arg, out, len);
+        const char *p = out;
+        size_t left = len;
+        while (left > 0) {
+            ssize_t w = write(fds[1], p, left);
+            if (w <= 0)
+                _exit(120);
+            p += w;
+            left -= (size_t)w;
+        }
+        _exit(0);
+    }
+    close(fds[1]);
+    char *p = out;
+    size_t got = 0;
+    while (got < len) {
+        ssize_t r = read(fds[0], p + got, len - got);
+        if (r <= 0)
+            break;
+        got += (size_t)r;
+    }
+    close(fds[0]);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return -1;
+    if (WIFSIGNALED(status))
+        return 128 + WTERMSIG(status);
+    if (!WIFEXITED(status))
+        return -1;
+    if (WEXITSTATUS(status) != 0)
+        return WEXITSTATUS(status);
+    return got == len ? 0 : 121;
 }

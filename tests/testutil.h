@@ -63,6 +63,13 @@ const char *tu_xml_attr(const tu_xml_elem *e, const char *name);
 int tu_xml_count(const tu_xml_doc *doc, const char *name);
 void tu_xml_free(tu_xml_doc *doc);
 
+/* Run fn(arg, out, len) in a child process (a fresh fork: state the library
+ * keeps per process, such as PoCL's set-up, starts anew) and copy what it
+ * wrote into out back.  Returns 0 when the child exited with status 0, else
+ * its exit status (or 128 + signal); what a crash or a sanitizer report
+ * left on stderr stays there. */
+int tu_in_child(void (*fn)(void *arg, void *out, size_t len), void *arg, void *out, size_t len);
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double tu_reldiff(double a, double b);
 

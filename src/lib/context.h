@@ -16,6 +16,8 @@ struct brdffit_context {
     cl_command_queue queue;
     cl_uint compute_units;
     int width;                        /* lanes per work-item vector (BF_WIDTH) */
+    char cl_options[256];             /* $BRDFFIT_CL_OPTIONS when the context was made */
+    brdffit_error fallback;           /* AUTO on the host path: why OpenCL was not used */
     cl_program program[BRDFFIT_MODEL_COUNT];   /* built on first use */
     cl_kernel kfull[BRDFFIT_MODEL_COUNT], kvalue[BRDFFIT_MODEL_COUNT];
 };

@@ -16,6 +16,10 @@
  * return status, so that callers can write `return bf_fail(err, ...)`. */
 brdffit_status bf_fail(brdffit_error *err, brdffit_status status, const char *fmt, ...)
     BF_PRINTF(3, 4);
+/* path as it goes into a message: itself when shorter than len, else its
+ * head, "...", and its tail (len - 1 bytes in all), so that what follows the
+ * path in a message (the reason) still fits.  Returns buf. */
+const char *bf_path_brief(const char *path, char *buf, size_t len);
 /* Mark err as a success (status OK, empty message). */
 void bf_ok(brdffit_error *err);
 

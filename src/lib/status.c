@@ -33,6 +33,9 @@ static const char *const status_text[BRDFFIT_STATUS_COUNT] = {
     [BRDFFIT_E_OPENCL] = "OpenCL error",
     [BRDFFIT_E_KERNEL_BUILD] = "OpenCL kernel build failed",
     [BRDFFIT_E_FIT_FAILED] = "fit failed",
+    [BRDFFIT_E_CACHE_DIR] = "PoCL kernel cache directory unusable",
+    [BRDFFIT_E_TOO_FEW_SAMPLES] = "too few samples for the model",
+    [BRDFFIT_E_VALUE_RANGE] = "stored value too large",
 };
 
 const char *brdffit_strerror(brdffit_status status)
@@ -52,6 +55,22 @@ brdffit_status bf_fail(brdffit_error *err, brdffit_status status, const char *fm
         va_end(ap);
     }
     return status;
+}
+
+const char *bf_path_brief(const char *path, char *buf, size_t len)
+{
+    size_t n = strlen(path);
+    if (len < 8 || n < len) {
+        snprintf(buf, len, "%s", path);
+        return buf;
+    }
+    /* head ... tail: the start says where, the end names the file */
+    size_t keep = len - 4, head = keep / 3, tail = keep - head;
+    memcpy(buf, path, head);
+    memcpy(buf + head, "...", 3);
+    memcpy(buf + head + 3, path + n - tail, tail);
+    buf[head + 3 + tail] = '\0';
+    return buf;
 }
 
 void bf_ok(brdffit_error *err)

@@ -181,6 +181,11 @@ brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *par
 #define BRDFFIT_MERL_NTD 90
 #define BRDFFIT_MERL_NPD 180
 #define BRDFFIT_MERL_BINS (90 * 90 * 180)   /* 1,458,000 per channel */
+/* The largest stored value a table may hold.  A finite value above it is no
+ * measurement (MERL's largest are ~1e4) and would swamp or overflow every
+ * sum of a fit: brdffit_table_read and brdffit_samples_create refuse it with
+ * BRDFFIT_E_VALUE_RANGE, naming the bin, the channel and the value. */
+#define BRDFFIT_VALUE_MAX 1e20
 
 typedef enum brdffit_scale {
     BRDFFIT_SCALE_STANDARD = 0,  /* (1, 1.15, 1.66) / 1500 */

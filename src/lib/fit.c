@@ -412,6 +412,26 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
     return BRDFFIT_OK;
 }
 
+/* Each channel has d, s and the lobe's coordinates to determine: with fewer
+ * distinct geometries than that the fit is underdetermined (one sample, or
+ * a cutoff so small that only the normal is left), and LM would return any
+ * of infinitely many answers. */
+static brdffit_status check_enough_samples(const brdffit_samples *samples, brdffit_model model,
+                                           brdffit_error *err)
+{
+    size_t unknowns = 2 + (size_t)bf_model_ncoords(model);
+    size_t found = bf_samples_geometries(samples, unknowns);
+    if (found >= unknowns)
+        return BRDFFIT_OK;
+    return bf_fail(err, BRDFFIT_E_TOO_FEW_SAMPLES,
+                   "%zu sample%s at %zu distinct geometr%s (up to rotation about the normal and "
+                   "exchange of wi and wo): too few for %s, which has %zu unknowns per channel "
+                   "(d, s and %d lobe parameter%s)",
+                   brdffit_samples_count(samples), brdffit_samples_count(samples) == 1 ? "" : "s",
+                   found, found == 1 ? "y" : "ies", brdffit_model_get(model)->name, unknowns,
+                   bf_model_ncoords(model), bf_model_ncoords(model) == 1 ? "" : "s");
+}
+
 brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples, brdffit_model model,
                            const brdffit_fit_options *opt, brdffit_fit_result *result,
                            brdffit_error *err)
@@ -426,6 +446,9 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (opt)
         o = *opt;
     brdffit_status rc = check_fit_options(&o, err);
+    if (rc != BRDFFIT_OK)
+        return rc;
+    rc = check_enough_samples(samples, model, err);
     if (rc != BRDFFIT_OK)
         return rc;
 

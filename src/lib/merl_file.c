@@ -156,6 +156,17 @@ static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brd
 
     for (size_t n = 0; n < BF_NVALUES; n++) {
         double x = t->v[n];
+        if (x > BRDFFIT_VALUE_MAX && isfinite(x)) {
+            size_t c = n / BF_NBINS;
+            int i, j, k;
+            bf_bin_ijk(n % BF_NBINS, &i, &j, &k);
+            free(t);
+            return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
+                           "%s: value %.17g at byte %zu (index %zu, channel %c, bin %d,%d,%d) is above "
+                           "%g, the largest a table may hold",
+                           path, x, HEADER_BYTES + n * sizeof(double), n, bf_channel_name[c], i, j, k,
+                           BRDFFIT_VALUE_MAX);
+        }
         if (!isfinite(x)) {
             size_t c = n / BF_NBINS;
             int i, j, k;
@@ -184,9 +195,12 @@ brdffit_status brdffit_table_read(const char *path, brdffit_table **out, brdffit
     do
         fd = open(path, O_RDONLY | O_NONBLOCK);
     while (fd < 0 && errno == EINTR);
+    /* messages name the path shortened, so that the reason after it fits */
+    char shown[BRDFFIT_MESSAGE_MAX / 2];
+    bf_path_brief(path, shown, sizeof shown);
     if (fd < 0)
-        return bf_fail(err, BRDFFIT_E_FILE_OPEN, "%s: cannot open: %s", path, strerror(errno));
-    brdffit_status s = read_fd(fd, path, out, err);
+        return bf_fail(err, BRDFFIT_E_FILE_OPEN, "%s: cannot open: %s", shown, strerror(errno));
+    brdffit_status s = read_fd(fd, shown, out, err);
     close(fd);
     return s;
 }
@@ -199,9 +213,11 @@ brdffit_status brdffit_table_write(const brdffit_table *table, const char *path,
     if (!table || !path)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_table_write: %s is NULL",
                        !table ? "table" : "path");
+    char shown[BRDFFIT_MESSAGE_MAX / 2];
+    bf_path_brief(path, shown, sizeof shown);
     FILE *f = fopen(path, "wb");
     if (!f)
-        return bf_fail(err, BRDFFIT_E_FILE_WRITE, "%s: cannot open for writing: %s", path,
+        return bf_fail(err, BRDFFIT_E_FILE_WRITE, "%s: cannot open for writing: %s", shown,
                        strerror(errno));
     unsigned char hdr[HEADER_BYTES];
     put_le32(hdr, BF_NTH);
@@ -227,7 +243,7 @@ brdffit_status brdffit_table_write(const brdffit_table *table, const char *path,
         e = errno;
     }
     if (!ok)
-        return bf_fail(err, BRDFFIT_E_FILE_WRITE, "%s: write failed: %s", path,
+        return bf_fail(err, BRDFFIT_E_FILE_WRITE, "%s: write failed: %s", shown,
                        e ? strerror(e) : "short write");
     bf_ok(err);
     return BRDFFIT_OK;

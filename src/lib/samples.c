@@ -77,6 +77,17 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
                            "table holds a non-finite value (channel %c, bin %d,%d,%d)", ch[c], i,
                            j, k);
         }
+        if (r > BRDFFIT_VALUE_MAX || g > BRDFFIT_VALUE_MAX || bl > BRDFFIT_VALUE_MAX) {
+            int c = r > BRDFFIT_VALUE_MAX ? 0 : g > BRDFFIT_VALUE_MAX ? 1 : 2, i, j, k;
+            double x = v[(size_t)c * BF_NBINS + b];
+            bf_bin_ijk(b, &i, &j, &k);
+            free(s);
+            free(bins);
+            return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
+                           "table holds %.17g (channel %c, bin %d,%d,%d), above %g, the largest a "
+                           "table may hold",
+                           x, ch[c], i, j, k, BRDFFIT_VALUE_MAX);
+        }
         if (r < 0 || g < 0 || bl < 0) {
             s->masked++;
             continue;
@@ -209,4 +220,33 @@ void brdffit_samples_options(const brdffit_samples *samples, brdffit_sample_opti
         *out = samples->opt;
     else
         brdffit_sample_options_default(out);
+}
+
+/* Two geometries closer than this in every invariant are the same one. */
+#define GEOM_TOL 1e-9
+
+size_t bf_samples_geometries(const brdffit_samples *s, size_t need)
+{
+    /* the invariants of an isotropic, reciprocal BRDF's arguments: the two
+     * cosines (in either order) and wi . wo */
+    double seen[BF_GEOM_NEED_MAX][3];
+    size_t found = 0;
+    if (need > BF_GEOM_NEED_MAX)
+        need = BF_GEOM_NEED_MAX;
+    const double *d = s->data;
+    size_t np = s->npad;
+    for (size_t m = 0; m < s->n && found < need; m++) {
+        double iz = d[BF_F_IZ * np + m], oz = d[BF_F_OZ * np + m];
+        double dot = d[BF_F_IX * np + m] * d[BF_F_OX * np + m] +
+                     d[BF_F_IY * np + m] * d[BF_F_OY * np + m] + iz * oz;
+        double key[3] = { iz < oz ? iz : oz, iz < oz ? oz : iz, dot };
+        size_t q = 0;
+        for (; q < found; q++)
+            if (fabs(seen[q][0] - key[0]) <= GEOM_TOL && fabs(seen[q][1] - key[1]) <= GEOM_TOL &&
+                fabs(seen[q][2] - key[2]) <= GEOM_TOL)
+                break;
+        if (q == found)
+            memcpy(seen[found++], key, sizeof key);
+    }
+    return found;
 }

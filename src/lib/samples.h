@@ -28,4 +28,12 @@ struct brdffit_samples {
     int *bin;                    /* n bin indices k + 180*(j + 90*i) */
 };
 
+/* How many distinct geometries the samples hold, counted up to need (at
+ * most BF_GEOM_NEED_MAX): directions that differ only by a rotation about
+ * the normal or by exchanging wi and wo are one geometry, as every model is
+ * isotropic and reciprocal.  A fit with fewer than its unknowns per channel
+ * is refused (brdffit_fit: BRDFFIT_E_TOO_FEW_SAMPLES). */
+#define BF_GEOM_NEED_MAX 8
+size_t bf_samples_geometries(const brdffit_samples *s, size_t need);
+
 #endif /* BRDFFIT_SAMPLES_H */

@@ -7,6 +7,7 @@
 #                    (python/tests, pytest; uses ../shared when present)
 #   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make tsan        the threaded tests under ThreadSanitizer (clang)
+#   make fuzz        the fuzz targets (tests/fuzz/, libFuzzer), FUZZ_SECONDS each (default 60)
 #   make bench       the benchmark (bench/), figures as in README.md
 #   make bench-python  only its Python part (eval from NumPy against C)
 #   make deps        install the Debian packages the build needs (.ci/install-deps)
@@ -140,6 +141,22 @@ $(BUILD)/bench/%.o: bench/%.c | $(BUILD)/bench
 $(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(BUILD)/libbrdffit-internal.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
+# libFuzzer targets (tests/fuzz/) and their seed writer.
+$(BUILD)/fuzz:
+	mkdir -p $@
+
+$(BUILD)/fuzz/%.o: tests/fuzz/%.c | $(BUILD)/fuzz
+	$(CC) $(CPPFLAGS) $(CLI_INC) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/fuzz/fuzz_table: $(BUILD)/fuzz/fuzz_table.o $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
+$(BUILD)/fuzz/fuzz_options: $(BUILD)/fuzz/fuzz_options.o $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+
+$(BUILD)/fuzz/make_seeds: tests/fuzz/make_seeds.c | $(BUILD)/fuzz
+	$(CC) -std=c11 -O1 -Wall -Wextra -o $@ $<
+
 # The environment every run gets: PoCL needs a writable cache directory.
 RUN_ENV = POCL_CACHE_DIR="$${POCL_CACHE_DIR:-$(CURDIR)/$(BUILD)/pocl-cache}"
 
@@ -182,6 +199,24 @@ tsan:
 	POCL_CACHE_DIR="$(CURDIR)/build-tsan/pocl-cache" CK_RUN_SUITE=threads \
 	TSAN_OPTIONS=halt_on_error=1:suppressions=$(CURDIR)/tests/tsan.supp \
 	./build-tsan/test_brdffit
+
+# Both fuzz targets built with clang (libFuzzer + ASan + UBSan) in their own
+# build directory, each run for FUZZ_SECONDS from the seed corpus
+# tests/fuzz/make_seeds.c writes (build-fuzz/corpus/, grown by the runs).  A
+# crash stops the run and leaves its input as build-fuzz/crash-*.
+FUZZ_SECONDS ?= 60
+FUZZ_SAN = -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+FUZZ_RUN = -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=4096 -close_fd_mask=3 -print_final_stats=1
+fuzz:
+	sh .ci/install-deps clang
+	$(MAKE) BUILD=build-fuzz CC=clang OPT=-O1 SAN="$(FUZZ_SAN) -fsanitize=fuzzer-no-link" \
+	    build-fuzz/fuzz/fuzz_table build-fuzz/fuzz/fuzz_options build-fuzz/fuzz/make_seeds
+	mkdir -p build-fuzz/corpus/table build-fuzz/corpus/options
+	./build-fuzz/fuzz/make_seeds build-fuzz/corpus
+	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_table $(FUZZ_RUN) -max_len=4200 \
+	    -artifact_prefix=build-fuzz/crash-table- build-fuzz/corpus/table
+	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_options $(FUZZ_RUN) -max_len=2048 \
+	    -artifact_prefix=build-fuzz/crash-options- build-fuzz/corpus/options
 
 bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache
@@ -257,10 +292,10 @@ uninstall-python:
 	rmdir "$(DESTDIR)$$dir/brdffit" 2>/dev/null || true
 
 clean:
-	rm -rf $(BUILD) build-san build-tsan
+	rm -rf $(BUILD) build-san build-tsan build-fuzz
 
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize tsan bench bench-python deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan fuzz bench bench-python deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

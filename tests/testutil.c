@@ -305,3 +305,60 @@ int tu_in_child(void (*fn)(void *arg, void *out, size_t len), void *arg, void *o
         return WEXITSTATUS(status);
     return got == len ? 0 : 121;
 }
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    if (!f || !buf) {
+        if (f)
+            fclose(f);
+        free(buf);
+        return NULL;
+    }
+    size_t got;
+    while ((got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
+        n += got;
+        if (cap - n - 1 == 0) {
+            char *bigger = realloc(buf, cap * 2);
+            if (!bigger)
+                break;
+            buf = bigger;
+            cap *= 2;
+        }
+    }
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+tu_run_out tu_run_cli(const char *env, const char *args)
+{
+    tu_run_out r = { -1, NULL, NULL };
+    const char *cli = getenv("BRDFFIT_CLI");
+    char out[512], err[512];
+    if (!tu_tmpfile(out, sizeof out) || !tu_tmpfile(err, sizeof err))
+        return r;
+    size_t len = strlen(args) + strlen(env) + 2048;
+    char *cmd = malloc(len);
+    if (!cmd)
+        return r;
+    snprintf(cmd, len, "%s '%s' %s >'%s' 2>'%s' </dev/null", env, cli && *cli ? cli : "./build/brdffit",
+             args, out, err);
+    int rc = system(cmd);
+    free(cmd);
+    r.status = (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    unlink(out);
+    unlink(err);
+    return r;
+}
+
+void tu_run_free(tu_run_out *r)
+{
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+}

@@ -70,6 +70,18 @@ void tu_xml_free(tu_xml_doc *doc);
  * left on stderr stays there. */
 int tu_in_child(void (*fn)(void *arg, void *out, size_t len), void *arg, void *out, size_t len);
 
+/* What a run of the brdffit program left. */
+typedef struct tu_run_out {
+    int status; /* exit status, or -1 when it did not exit normally */
+    char *out;  /* stdout, NUL-terminated (free with tu_run_free) */
+    char *err;  /* stderr */
+} tu_run_out;
+/* Run `[env] brdffit args` through the shell ($BRDFFIT_CLI, default
+ * ./build/brdffit; env such as "env -u POCL_CACHE_DIR HOME=/x" or ""; args
+ * already quoted), stdin from /dev/null. */
+tu_run_out tu_run_cli(const char *env, const char *args);
+void tu_run_free(tu_run_out *r);
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double tu_reldiff(double a, double b);
 

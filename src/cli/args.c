@@ -42,11 +42,13 @@ int cli_is_help(const char *a)
 
 int cli_usage_error(const char *fmt, ...)
 {
+    char msg[3 * BRDFFIT_MESSAGE_MAX]; /* arguments are quoted in it: printed plain */
     va_list ap;
-    fputs("brdffit: ", stderr);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    fputs("brdffit: ", stderr);
+    plain_string(stderr, msg);
     fputs("\nTry 'brdffit --help' for more information.\n", stderr);
     return CLI_USAGE;
 }

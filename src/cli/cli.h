@@ -146,7 +146,15 @@ void json_numbers(FILE *f, const double *x, int n);
 
 /* ---- text.c ---- */
 
-/* s with control characters replaced by '?', for the terminal. */
+/* s for the terminal: control characters (newlines too), C1 controls and
+ * bytes that are not well-formed UTF-8 written as \xHH. */
 void plain_string(FILE *f, const char *s);
+/* The same, but a newline stays one, followed by an indent (a build log). */
+void plain_lines(FILE *f, const char *s);
+/* "brdffit: MESSAGE\n" on stderr, the message through plain_string. */
+void cli_error(const char *fmt, ...) CLI_PRINTF(1, 2);
+/* s itself when shorter than len, else its head, "..." and its tail
+ * (len - 1 bytes): a long path in a message leaves room for the reason. */
+const char *cli_brief(const char *s, char *buf, size_t len);
 
 #endif

@@ -9,6 +9,7 @@
 typedef struct runner {
     const cli_options *o;
     brdffit_context *ctx;    /* created at the first sample set, reused for every fit */
+    brdffit_error ctx_err;   /* why no context could be made: each later material fails with it */
     int failures;            /* files and fits that failed */
     int fits_ok;
 } runner;
@@ -24,30 +25,64 @@ typedef struct best_fit {
 static void material_failed(runner *R, const cli_material *m, const brdffit_error *err)
 {
     R->failures++;
-    fprintf(stderr, "brdffit: %s\n", err->message[0] ? err->message : brdffit_strerror(err->status));
+    cli_error("%s", err->message[0] ? err->message : brdffit_strerror(err->status));
     if (R->o->json)
         report_json_failure(stdout, m, err->status, err);
 }
 
+/* Under AUTO, a context on the host path says why on stderr (a device that
+ * matches nothing, an unusable PoCL cache directory, no OpenCL at all). */
+static void warn_fallback(const runner *R)
+{
+    brdffit_error why;
+    memset(&why, 0, sizeof why);
+    if (R->o->context.backend == BRDFFIT_BACKEND_AUTO &&
+        brdffit_context_fallback(R->ctx, &why) != BRDFFIT_OK)
+        cli_error("warning: fitting on the host (C, one thread), not OpenCL: %s", why.message);
+}
+
+/* The context, made for the first material that needs one.  When it cannot
+ * be made, this material and every later one get a failure record with the
+ * reason (-1). */
 static int ensure_context(runner *R, const cli_material *m)
 {
-    if (R->ctx)
-        return 0;
-    brdffit_error err;
-    memset(&err, 0, sizeof err);
-    brdffit_status st = brdffit_context_create(&R->o->context, &R->ctx, &err);
-    if (st != BRDFFIT_OK) {
-        err.status = st;
-        char msg[BRDFFIT_MESSAGE_MAX];
-        snprintf(msg, sizeof msg, "cannot set up the %s backend: %.1900s",
+    if (!R->ctx && R->ctx_err.status == BRDFFIT_OK) {
+        brdffit_error err;
+        memset(&err, 0, sizeof err);
+        brdffit_status st = brdffit_context_create(&R->o->context, &R->ctx, &err);
+        if (st == BRDFFIT_OK) {
+            warn_fallback(R);
+            return 0;
+        }
+        R->ctx = NULL;
+        R->ctx_err.status = st;
+        snprintf(R->ctx_err.message, sizeof R->ctx_err.message, "cannot set up the %s backend: %.1900s",
                  R->o->context.backend == BRDFFIT_BACKEND_OPENCL ? "OpenCL" : "fitting",
                  err.message[0] ? err.message : brdffit_strerror(st));
-        memcpy(err.message, msg, sizeof msg);
-        material_failed(R, m, &err);
-        R->ctx = NULL;
-        return -1;
     }
-    return 0;
+    if (R->ctx)
+        return 0;
+    brdffit_error err = R->ctx_err;
+    char shown[512];
+    snprintf(err.message, sizeof err.message, "%s: not fitted: %.1500s",
+             m->file ? cli_brief(m->file, shown, sizeof shown) : m->name, R->ctx_err.message);
+    material_failed(R, m, &err);
+    return -1;
+}
+
+/* "brdffit: MATERIAL: fitting MODEL failed: why" on stderr; a build log keeps its lines. */
+static void fit_failed_message(const cli_material *m, brdffit_model model, const brdffit_error *err)
+{
+    char head[1200];
+    snprintf(head, sizeof head, "%s: fitting %s failed: ", m->name, brdffit_model_get(model)->name);
+    fputs("brdffit: ", stderr);
+    plain_string(stderr, head);
+    const char *why = err->message[0] ? err->message : brdffit_strerror(err->status);
+    if (err->status == BRDFFIT_E_KERNEL_BUILD)
+        plain_lines(stderr, why);
+    else
+        plain_string(stderr, why);
+    putc('\n', stderr);
 }
 
 /* Fit every requested model to one sample set and report each fit. */
@@ -65,8 +100,7 @@ static best_fit fit_models(runner *R, const cli_material *m, const brdffit_sampl
         if (st != BRDFFIT_OK) {
             err.status = st;
             R->failures++;
-            fprintf(stderr, "brdffit: %s: fitting %s failed: %s\n", m->name,
-                    brdffit_model_get(model)->name, err.message[0] ? err.message : brdffit_strerror(st));
+            fit_failed_message(m, model, &err);
         } else {
             R->fits_ok++;
             if (r.error < best.error) {
@@ -114,8 +148,8 @@ static brdffit_samples *file_samples(runner *R, const cli_material *m)
     if (st != BRDFFIT_OK) {
         err.status = st;
         /* the library's sample messages do not name the file: add it */
-        char msg[BRDFFIT_MESSAGE_MAX];
-        snprintf(msg, sizeof msg, "%.1000s: %.1000s", m->file, err.message);
+        char msg[BRDFFIT_MESSAGE_MAX], shown[512];
+        snprintf(msg, sizeof msg, "%s: %.1500s", cli_brief(m->file, shown, sizeof shown), err.message);
         memcpy(err.message, msg, sizeof msg);
         material_failed(R, m, &err);
         return NULL;
@@ -123,8 +157,8 @@ static brdffit_samples *file_samples(runner *R, const cli_material *m)
     return samples;
 }
 
-/* Fit and report one file; -1 when no backend can be set up (nothing else can be fitted). */
-static int fit_file(runner *R, const char *path, int first)
+/* Fit and report one file (its failures reported, whatever they are). */
+static void fit_file(runner *R, const char *path, int first)
 {
     const cli_options *o = R->o;
     char name[1024];
@@ -132,10 +166,10 @@ static int fit_file(runner *R, const char *path, int first)
     double t0 = brdffit_seconds();
     brdffit_samples *samples = file_samples(R, &m);
     if (!samples)
-        return 0;
+        return;
     if (ensure_context(R, &m) != 0) {
         brdffit_samples_free(samples);
-        return -1;
+        return;
     }
     if (!o->json) {
         if (!first)
@@ -148,15 +182,15 @@ static int fit_file(runner *R, const char *path, int first)
         print_best(&best, o->nmodels, brdffit_seconds() - t0);
     }
     brdffit_samples_free(samples);
-    return 0;
 }
 
 static int run_fit(const cli_options *o)
 {
-    runner R = { o, NULL, 0, 0 };
+    runner R;
+    memset(&R, 0, sizeof R);
+    R.o = o;
     for (int fi = 0; fi < o->nfiles; fi++)
-        if (fit_file(&R, o->files[fi], fi == 0) != 0)
-            break;
+        fit_file(&R, o->files[fi], fi == 0);
     brdffit_context_free(R.ctx);
     if (R.failures)
         fprintf(stderr, "brdffit: %d failure%s (see above); %d fit%s done\n", R.failures,
@@ -168,7 +202,9 @@ static int run_fit(const cli_options *o)
 
 static int run_demo(const cli_options *o)
 {
-    runner R = { o, NULL, 0, 0 };
+    runner R;
+    memset(&R, 0, sizeof R);
+    R.o = o;
     double t0 = brdffit_seconds();
     brdffit_model demo_model;
     const brdffit_params *truth = cli_demo_truth(&demo_model);
@@ -205,7 +241,7 @@ static int run_demo(const cli_options *o)
         st = brdffit_error_of(R.ctx, samples, demo_model, truth, &e0, &err);
         if (st != BRDFFIT_OK) {
             R.failures++;
-            fprintf(stderr, "brdffit: the Error of the generating parameters: %s\n", err.message);
+            cli_error("the Error of the generating parameters: %s", err.message);
         }
         report_row(stdout, "truth", gi, truth, e0, NULL);
     }

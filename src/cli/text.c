@@ -1,9 +1,88 @@
 /* text.c -- text for the terminal: names and messages that come from files
- * or the command line printed with their control characters made harmless. */
+ * or the command line printed with their control characters made harmless,
+ * and long paths shortened so that what follows them is not cut off. */
 #include "cli.h"
+
+#include <stdarg.h>
+#include <string.h>
+
+/* Length of the well-formed UTF-8 sequence at p (2..4), or 0. */
+static int utf8_len(const unsigned char *p)
+{
+    int n = p[0] >= 0xF0 && p[0] <= 0xF4 ? 4 : p[0] >= 0xE0 ? 3 : p[0] >= 0xC2 && p[0] < 0xE0 ? 2 : 0;
+    if (p[0] >= 0xF5)
+        return 0;
+    for (int i = 1; i < n; i++)
+        if ((p[i] & 0xC0) != 0x80)
+            return 0;
+    if (n == 3 && ((p[0] == 0xE0 && p[1] < 0xA0) || (p[0] == 0xED && p[1] >= 0xA0)))
+        return 0; /* overlong, or a surrogate */
+    if (n == 4 && ((p[0] == 0xF0 && p[1] < 0x90) || (p[0] == 0xF4 && p[1] >= 0x90)))
+        return 0;
+    return n;
+}
+
+/* s with every control character, C1 control and byte outside well-formed
+ * UTF-8 written as \xHH; newlines too unless lines, then as a newline and
+ * an indent (so that no line of it can pass for a line of the program's). */
+static void plain(FILE *f, const char *s, int lines)
+{
+    for (const unsigned char *p = (const unsigned char *)s; *p;) {
+        if (*p >= 0x20 && *p < 0x7F) {
+            putc(*p++, f);
+            continue;
+        }
+        if (lines && *p == '\n') {
+            fputs("\n    ", f);
+            p++;
+            continue;
+        }
+        int n = *p >= 0x80 ? utf8_len(p) : 0;
+        /* C1 controls (U+0080..U+009F) act on terminals as ESC sequences do */
+        if (n == 2 && p[0] == 0xC2 && p[1] < 0xA0)
+            n = 0;
+        if (n > 0) {
+            fwrite(p, 1, (size_t)n, f);
+            p += n;
+        } else {
+            fprintf(f, "\\x%02x", *p++);
+        }
+    }
+}
 
 void plain_string(FILE *f, const char *s)
 {
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++)
-        putc(*p < 0x20 || *p == 0x7F ? '?' : *p, f);
+    plain(f, s, 0);
+}
+
+void plain_lines(FILE *f, const char *s)
+{
+    plain(f, s, 1);
+}
+
+void cli_error(const char *fmt, ...)
+{
+    char msg[3 * BRDFFIT_MESSAGE_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    fputs("brdffit: ", stderr);
+    plain_string(stderr, msg);
+    putc('\n', stderr);
+}
+
+const char *cli_brief(const char *s, char *buf, size_t len)
+{
+    size_t n = strlen(s);
+    if (len < 8 || n < len) {
+        snprintf(buf, len, "%s", s);
+        return buf;
+    }
+    size_t keep = len - 4, head = keep / 3, tail = keep - head;
+    memcpy(buf, s, head);
+    memcpy(buf + head, "...", 3);
+    memcpy(buf + head + 3, s + n - tail, tail);
+    buf[head + 3 + tail] = '\0';
+    return buf;
 }

@@ -299,14 +299,31 @@ typedef struct brdffit_context_options {
 void brdffit_context_options_default(brdffit_context_options *opt);
 
 /* A context is used by one thread at a time (its kernels' arguments are set
- * per pass); use one context per thread to fit in parallel.  Tables, sample
+ * per pass); use one context per thread to fit in parallel: contexts may be
+ * created, used and freed from several threads at once (the library makes
+ * every OpenCL set-up and tear-down call under one lock).  Tables, sample
  * sets and the evaluators are read-only once made and may be shared. */
 typedef struct brdffit_context brdffit_context;
 
 /* Create a context: picks the device, owns the OpenCL state and the per-model
- * program cache.  When POCL_CACHE_DIR is unset it is set to a writable
- * directory ($XDG_CACHE_HOME/brdffit/pocl, ~/.cache/brdffit/pocl or
- * $TMPDIR/brdffit-pocl-UID) so that PoCL works out of the box. */
+ * program cache.
+ * PoCL's kernel cache directory (PoCL loads the kernels it finds there as
+ * shared objects) is settled once per process, by the first context that may
+ * use OpenCL, before the library's first OpenCL call:
+ *   POCL_CACHE_DIR set: it must be a directory a file can be made in (made
+ *     when missing);
+ *   unset: the first PRIVATE one of $XDG_CACHE_HOME/brdffit/pocl,
+ *     ~/.cache/brdffit/pocl, ${TMPDIR:-/tmp}/brdffit-pocl-UID -- made with
+ *     mode 0700, or existing, owned by the user, not a symbolic link, not
+ *     group- or world-writable, in directories only root or the user can
+ *     replace it in -- and POCL_CACHE_DIR is set to it (the library's only
+ *     setenv; a program whose other threads read the environment makes its
+ *     first context before starting them, or sets POCL_CACHE_DIR itself).
+ * Without a usable one: BRDFFIT_E_CACHE_DIR (each directory and why) under
+ * BRDFFIT_BACKEND_OPENCL, the host path under AUTO (brdffit_context_fallback
+ * says why); OpenCL is then not touched.  A device spec that matches nothing
+ * ("P:D" indices out of range included; never wrapped) is
+ * BRDFFIT_E_NO_DEVICE under OPENCL, the host path under AUTO. */
 brdffit_status brdffit_context_create(const brdffit_context_options *opt,
                                       brdffit_context **out, brdffit_error *err);
 void brdffit_context_free(brdffit_context *ctx);
@@ -347,7 +364,11 @@ typedef struct brdffit_fit_result {
     brdffit_backend backend; /* the path used                               */
 } brdffit_fit_result;
 
-/* Fit a model to a sample set.  opt may be NULL for the defaults. */
+/* Fit a model to a sample set.  opt may be NULL for the defaults.  A sample
+ * set with fewer distinct geometries than the model's unknowns per channel
+ * (d, s and the lobe parameters; directions differing only by a turn about
+ * the normal or by exchanging wi and wo count once) is refused with
+ * BRDFFIT_E_TOO_FEW_SAMPLES. */
 brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
                            brdffit_model model, const brdffit_fit_options *opt,
                            brdffit_fit_result *result, brdffit_error *err);

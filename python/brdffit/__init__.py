@@ -20,6 +20,7 @@ from ._lib import Library, load_library
 from ._version import __version__
 from .errors import (
     BrdffitError,
+    CacheDirError,
     FileDimsError,
     FileEmptyError,
     FileError,
@@ -40,7 +41,9 @@ from .errors import (
     OutOfMemoryError,
     ParamRangeError,
     Status,
+    TooFewSamplesError,
     UnknownModelError,
+    ValueRangeError,
 )
 from .evaluate import eval  # noqa: A004 (the C API's name)
 from .fitting import Context, FitResult, error_of, fit
@@ -57,12 +60,13 @@ def library_version():
 
 
 __all__ = [
-    "BrdffitError", "Context", "FileDimsError", "FileEmptyError", "FileError",
+    "BrdffitError", "CacheDirError", "Context", "FileDimsError", "FileEmptyError", "FileError",
     "FileNonfiniteError", "FileNotRegularError", "FileOpenError", "FileReadError",
     "FileTrailingError", "FileTruncatedError", "FileWriteError", "FitFailedError", "FitResult",
     "InvalidArgumentError", "KernelBuildError", "Library", "LibraryError", "Model",
     "NoDeviceError", "NoSamplesError", "OpenCLError", "OutOfMemoryError", "Param", "ParamRangeError",
-    "Params", "Sample", "Samples", "Status", "Table", "UnknownModelError", "__version__",
+    "Params", "Sample", "Samples", "Status", "Table", "TooFewSamplesError", "UnknownModelError",
+    "ValueRangeError", "__version__",
     "error_of", "eval", "fit", "library_version", "load_library", "metric_name", "model",
     "models", "scale_factors",
 ]

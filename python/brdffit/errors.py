@@ -26,6 +26,9 @@ class Status(enum.IntEnum):
     OPENCL = 16
     KERNEL_BUILD = 17
     FIT_FAILED = 18
+    CACHE_DIR = 19
+    TOO_FEW_SAMPLES = 20
+    VALUE_RANGE = 21
 
 
 class BrdffitError(Exception):
@@ -129,6 +132,18 @@ class FitFailedError(BrdffitError):
     """The optimiser could not produce a result."""
 
 
+class CacheDirError(BrdffitError):
+    """PoCL's kernel cache directory is unusable (the message says which and why)."""
+
+
+class TooFewSamplesError(BrdffitError, ValueError):
+    """Fewer distinct sample geometries than the model's unknowns."""
+
+
+class ValueRangeError(BrdffitError, ValueError):
+    """A finite stored value above BRDFFIT_VALUE_MAX (bin and value in the message)."""
+
+
 _CLASSES = {
     Status.INVALID_ARGUMENT: InvalidArgumentError,
     Status.NO_MEMORY: OutOfMemoryError,
@@ -148,6 +163,9 @@ _CLASSES = {
     Status.OPENCL: OpenCLError,
     Status.KERNEL_BUILD: KernelBuildError,
     Status.FIT_FAILED: FitFailedError,
+    Status.CACHE_DIR: CacheDirError,
+    Status.TOO_FEW_SAMPLES: TooFewSamplesError,
+    Status.VALUE_RANGE: ValueRangeError,
 }
 
 

@@ -51,7 +51,8 @@ int main(int argc, char **argv)
     } else if (cmd) {
         rc = cmd->run(argc - 2, argv + 2);
     } else {
-        fprintf(stderr, "brdffit: unknown command '%s'\n\n", name);
+        cli_error("unknown command '%s'", name);
+        putc('\n', stderr);
         cli_usage(stderr, commands, ncommands);
         return CLI_USAGE;
     }

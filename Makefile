@@ -10,6 +10,7 @@
 #   make fuzz        the fuzz targets (tests/fuzz/, libFuzzer), FUZZ_SECONDS each (default 60)
 #   make bench       the benchmark (bench/), figures as in README.md
 #   make bench-python  only its Python part (eval from NumPy against C)
+#   make fidelity    every published material x model against the paper and a stored run
 #   make deps        install the Debian packages the build needs (.ci/install-deps)
 #   make install PREFIX=/usr/local [DESTDIR=...]   headers, libraries, brdffit.pc,
 #                    program, and the Python package (python/brdffit) beside the library
@@ -66,7 +67,7 @@ CLI_SRC  = $(wildcard src/cli/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
-BENCH_SRC = $(wildcard bench/*.c)
+BENCH_SRC = bench/bench.c
 
 all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
 
@@ -239,6 +240,14 @@ LIBDIR     = $(PREFIX)/lib
 INCLUDEDIR = $(PREFIX)/include
 BINDIR     = $(PREFIX)/bin
 DROPIN_HEADERS = $(shell $(CC) -MM -MT x -x c kernels/bf_lobe.h | sed -e 's/^x://' -e 's/\\//g')
+$(BUILD)/bench_fidelity: $(BUILD)/bench/fidelity.o $(BUILD)/libbrdffit-internal.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+
+# Every published material x every model, against the published parameters
+# and the stored run bench/baseline-errors.tsv (README: Fidelity).
+fidelity: $(BUILD)/bench_fidelity
+	@mkdir -p $(BUILD)/pocl-cache
+	$(RUN_ENV) ./$(BUILD)/bench_fidelity --baseline bench/baseline-errors.tsv $(FIDELITY_ARGS)
 
 install: all
 	install -d $(DESTDIR)$(INCLUDEDIR)/brdffit $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(BINDIR)
@@ -297,5 +306,5 @@ clean:
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize tsan fuzz bench bench-python deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan fuzz bench bench-python fidelity deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

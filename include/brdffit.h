@@ -362,7 +362,33 @@ typedef struct brdffit_fit_result {
     double seconds_passes;   /* of which in data passes                     */
     size_t samples;          /* samples fitted                              */
     brdffit_backend backend; /* the path used                               */
+    unsigned at_bound;       /* parameters that ended on a bound: bits of
+                                brdffit_at_bound (lobe parameter k at its lower
+                                or upper bound, d_c = 0, s_c = 0)           */
+    unsigned flags;          /* bits of brdffit_fit_flag                    */
 } brdffit_fit_result;
+
+/* Bits of brdffit_fit_result.at_bound.  A lobe parameter is on its bound when
+ * it lies within 1e-6 of its range (in the fit's coordinate) of lower or
+ * upper: the data may want it beyond, so the fit is not that of the model. */
+typedef enum brdffit_at_bound {
+    BRDFFIT_AT_BOUND_P0 = 1u << 0,  /* lobe parameter k: BRDFFIT_AT_BOUND_P0 << k */
+    BRDFFIT_AT_BOUND_P1 = 1u << 1,
+    BRDFFIT_AT_BOUND_P2 = 1u << 2,
+    BRDFFIT_AT_BOUND_LOBE = 7u,     /* any lobe parameter                       */
+    BRDFFIT_AT_BOUND_D_R = 1u << 8, /* d_c = 0: BRDFFIT_AT_BOUND_D_R << c       */
+    BRDFFIT_AT_BOUND_D_G = 1u << 9,
+    BRDFFIT_AT_BOUND_D_B = 1u << 10,
+    BRDFFIT_AT_BOUND_S_R = 1u << 12, /* s_c = 0: BRDFFIT_AT_BOUND_S_R << c      */
+    BRDFFIT_AT_BOUND_S_G = 1u << 13,
+    BRDFFIT_AT_BOUND_S_B = 1u << 14
+} brdffit_at_bound;
+
+/* Bits of brdffit_fit_result.flags. */
+typedef enum brdffit_fit_flag {
+    BRDFFIT_FIT_LIMIT = 1u << 0     /* the LM run kept stopped on max_evals (cminpack
+                                       info 5) after its restarts: not converged */
+} brdffit_fit_flag;
 
 /* Fit a model to a sample set.  opt may be NULL for the defaults.  A sample
  * set with fewer distinct geometries than the model's unknowns per channel

@@ -12,7 +12,7 @@ static const char *backend_name(const brdffit_context *ctx)
 /* ------------------------------------------------------------------ table */
 
 /* Column layout: model, d_rgb, s_rgb, p0..p2, Error, iterations, seconds. */
-#define ROW_FMT "%-17s  %9s %9s %9s  %9s %9s %9s  %10s %10s %10s  %11s %5s %8s\n"
+#define ROW_FMT "%-17s  %9s %9s %9s  %9s %9s %9s  %10s %10s %10s  %11s %5s %8s%s\n"
 
 static const char *num(char *buf, size_t len, const char *fmt, double x)
 {
@@ -47,8 +47,56 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
         fputs("8 starts screened per model (He: 7, tau = 4..28)", f);
     fprintf(f, ", the best %d refined by Levenberg-Marquardt (cminpack lmder)\n\n", fo->refine);
     fprintf(f, ROW_FMT, "model", "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0", "p1", "p2",
-            "Error", "iter", "seconds");
+            "Error", "iter", "seconds", "");
     fflush(f);
+}
+
+/* The names of the parameters a result has on a bound (lobe ones only, or
+ * also d_c = 0 and s_c = 0), each passed to put(name, user). */
+static void bound_names(const brdffit_fit_result *r, int with_linear,
+                        void (*put)(const char *name, void *user), void *user)
+{
+    const brdffit_model_info *mi = brdffit_model_get(r->model);
+    static const char *const dn[3] = { "d_r", "d_g", "d_b" }, *const sn[3] = { "s_r", "s_g", "s_b" };
+    for (int k = 0; k < mi->nparams; k++)
+        if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_P0 << k))
+            put(mi->param_names[k], user);
+    for (int c = 0; with_linear && c < 3; c++)
+        if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_D_R << c))
+            put(dn[c], user);
+    for (int c = 0; with_linear && c < 3; c++)
+        if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_S_R << c))
+            put(sn[c], user);
+}
+
+typedef struct note_buf {
+    char *buf;
+    size_t len;
+    int n;
+} note_buf;
+
+static void note_put(const char *name, void *user)
+{
+    note_buf *nb = user;
+    size_t o = strlen(nb->buf);
+    snprintf(nb->buf + o, nb->len - o, "%s%s", nb->n++ ? ", " : " on a bound: ", name);
+}
+
+/* The table row's trailing note: "  stopped on the evaluation limit", "  on a bound: m". */
+static const char *row_note(const brdffit_fit_result *r, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (!r)
+        return buf;
+    note_buf nb = { buf, len, 0 };
+    if (r->flags & BRDFFIT_FIT_LIMIT)
+        snprintf(buf, len, "  stopped on the evaluation limit");
+    if (r->at_bound & BRDFFIT_AT_BOUND_LOBE) {
+        size_t o = strlen(buf);
+        snprintf(buf + o, len - o, " ");
+        bound_names(r, 0, note_put, &nb);
+    }
+    return buf;
 }
 
 void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
@@ -74,8 +122,9 @@ void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
         strcpy(it, "-");
         strcpy(sec, "-");
     }
+    char note[256];
     fprintf(f, ROW_FMT, label ? label : mi->name, d[0], d[1], d[2], s[0], s[1], s[2], q[0], q[1],
-            q[2], e, it, sec);
+            q[2], e, it, sec, row_note(r, note, sizeof note));
     fflush(f);
 }
 
@@ -110,6 +159,19 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels)
 
 /* ------------------------------------------------------------------ JSON */
 
+typedef struct json_list {
+    FILE *f;
+    int n;
+} json_list;
+
+static void json_list_put(const char *name, void *user)
+{
+    json_list *l = user;
+    if (l->n++)
+        putc(',', l->f);
+    json_string(l->f, name);
+}
+
 static void json_metric(FILE *f, const cli_material *m)
 {
     fputs("\"metric\":{\"name\":", f);
@@ -138,7 +200,8 @@ void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
     fputs(",\"model\":", f);
     json_string(f, mi->name);
     fputs(",\"status\":", f);
-    json_string(f, st == BRDFFIT_OK ? "ok" : brdffit_strerror(st));
+    json_string(f, st != BRDFFIT_OK ? brdffit_strerror(st)
+                   : r && (r->flags & BRDFFIT_FIT_LIMIT) ? "limit" : "ok");
     if (st != BRDFFIT_OK || !r) {
         fputs(",\"error_message\":", f);
         json_string(f, err ? err->message : "");
@@ -168,11 +231,21 @@ void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
     }
     putc(',', f);
     json_metric(f, m);
-    if (r && st == BRDFFIT_OK)
+    if (r && st == BRDFFIT_OK) {
         fprintf(f, ",\"iterations\":%d,\"evaluations\":%d,\"cminpack_info\":%d", r->iterations,
                 r->evaluations, r->cminpack_info);
-    else
-        fputs(",\"iterations\":null,\"evaluations\":null,\"cminpack_info\":null", f);
+        json_list lst = { f, 0 };
+        fputs(",\"at_bound\":[", f);
+        bound_names(r, 1, json_list_put, &lst);
+        fputs("],\"flags\":[", f);
+        lst.n = 0;
+        if (r->flags & BRDFFIT_FIT_LIMIT)
+            json_list_put("limit", &lst);
+        putc(']', f);
+    } else {
+        fputs(",\"iterations\":null,\"evaluations\":null,\"cminpack_info\":null,"
+              "\"at_bound\":null,\"flags\":null", f);
+    }
     fputs(",\"seconds\":", f);
     json_number(f, r && st == BRDFFIT_OK ? r->seconds : NAN);
     fputs(",\"seconds_solver\":", f);

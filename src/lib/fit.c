@@ -1,22 +1,23 @@
 /* fit.c -- brdffit_fit: start screening and Levenberg-Marquardt (cminpack).
  *
- * Unknowns x (internal coordinates, nx = X_LOBE + nl), offsets named X_*:
- *   x[X_D + c] = sqrt(d_c), x[X_S + c] = sqrt(s_c)      (d, s >= 0)
- *   x[X_LOBE + j] = lobe coordinates u: bounded parameters v = lo + (hi-lo)(1+sin u)/2,
- *             on a log scale for widths and exponents; Lafortune's direction is
- *             an angle phi with (Cxy, Cz) = (cos phi / sqrt 2, sin phi).
+ * The linear unknowns d, s >= 0 are solved exactly at every lobe point from
+ * the pass's moments (variable projection, linear.h): LM moves only the lobe
+ * coordinates u (nx = nl of them): bounded parameters v = lo + (hi-lo)(1+sin u)/2,
+ * on a log scale for widths and exponents; Lafortune's direction is an angle
+ * phi with (Cxy, Cz) = (cos phi / sqrt 2, sin phi).
  *
  * cminpack's own QR would cost far more than a data pass on ~1M rows, so lmder
  * is given an exactly equivalent problem whose size does not grow with the
- * data: from a pass's sums J^T J, J^T r, r^T r form the Cholesky factor R of
- * J^T J, z = R^-T J^T r, t = sqrt(r^T r - |z|^2), and hand lmder the nx+1
- * residuals [z; t] with Jacobian [R; 0].  Then |[z;t]|^2 = r^T r and
- * |[z;t] + [R;0] p|^2 = |r + J p|^2 for every step p, so lmder's steps,
- * scaling and convergence tests are those of the full problem.  Each
- * evaluated point caches both (lmder pairs a trial's residual with the
- * Jacobian it asks for next).
+ * data: from the reduced normal equations H = J^T J, g = J^T r and r^T r form
+ * the Cholesky factor R of H, z = R^-T g, t = sqrt(r^T r - |z|^2), and hand
+ * lmder the nx+1 residuals [z; t] with Jacobian [R; 0].  Then
+ * |[z;t]|^2 = r^T r and |[z;t] + [R;0] p|^2 = |r + J p|^2 for every step p,
+ * so lmder's steps, scaling and convergence tests are those of the full
+ * problem.  Each evaluated point caches both (lmder pairs a trial's residual
+ * with the Jacobian it asks for next).
  */
 #define _DEFAULT_SOURCE /* M_PI, M_SQRT2, M_SQRT1_2 */
+#include "linear.h"
 #include "pass.h"
 #include "samples.h"
 
@@ -24,8 +25,7 @@
 #include <math.h>
 #include <string.h>
 
-enum { X_D = 0, X_S = 3, X_LOBE = 6 }; /* offsets of the unknowns */
-#define NX_MAX (X_LOBE + BF_MAX_NP)
+#define NX_MAX BF_MAX_NP
 #define NM_MAX (NX_MAX + 1)
 #define FD_STEP 1e-7
 
@@ -35,6 +35,7 @@ typedef struct fitmap {
     brdffit_model model;
     int nl;                     /* lobe coordinates */
     int kind[BF_MAX_NP];
+    int param[BF_MAX_NP];       /* the (first) lobe parameter of coordinate j */
     double lo[BF_MAX_NP], hi[BF_MAX_NP]; /* in log units for MAP_LOG */
 } fitmap;
 
@@ -45,6 +46,7 @@ static void fitmap_init(fitmap *fm, brdffit_model model)
     fm->nl = bf_model_ncoords(model);
     int src = 0;
     for (int j = 0; j < fm->nl; j++, src++) {
+        fm->param[j] = src;
         if (model == BRDFFIT_LAFORTUNE && j == 0) {
             fm->kind[0] = MAP_ANGLE;
             fm->lo[0] = fm->hi[0] = 0;
@@ -101,7 +103,8 @@ static void params_to_coords(const fitmap *fm, const double p[3], double *u)
 
 typedef struct point {
     int valid;
-    double x[NX_MAX];
+    double x[NX_MAX];              /* lobe coordinates u */
+    bf_linear lin;                 /* the best d, s at u */
     double fvec[NM_MAX];
     double fjac[NM_MAX * NX_MAX];  /* column-major, leading dimension nx+1 */
     double rr;                     /* r^T r = E^2 */
@@ -112,6 +115,7 @@ typedef struct lmstate {
     fitmap fm;
     int nx;
     double lam[3];
+    bf_linear ref;                 /* d, s the next pass is taken at */
     point cache[2];
     int next;
     double seconds_cb;             /* time inside the callback */
@@ -119,66 +123,38 @@ typedef struct lmstate {
     brdffit_error *err;
 } lmstate;
 
-static void make_pass_par(const lmstate *S, const double *x, int with_fd, bf_pass_par *pp)
+/* The pass at lobe coordinates u, d and s at the reference (S->ref). */
+static void make_pass_par(const lmstate *S, const double *u0, int with_fd, bf_pass_par *pp)
 {
     memset(pp, 0, sizeof *pp);
-    for (int c = 0; c < 3; c++) {
-        pp->d[c] = x[X_D + c] * x[X_D + c];
-        pp->s[c] = x[X_S + c] * x[X_S + c];
-        pp->lam[c] = S->lam[c];
-    }
-    coords_to_params(&S->fm, x + X_LOBE, pp->p[0]);
+    memcpy(pp->d, S->ref.d, sizeof pp->d);
+    memcpy(pp->s, S->ref.s, sizeof pp->s);
+    memcpy(pp->lam, S->lam, sizeof pp->lam);
+    coords_to_params(&S->fm, u0, pp->p[0]);
     if (!with_fd)
         return;
     for (int j = 0; j < S->fm.nl; j++) {
         double u[BF_MAX_NP];
-        memcpy(u, x + X_LOBE, sizeof u);
+        memcpy(u, u0, sizeof u);
         double h = FD_STEP * fmax(1.0, fabs(u[j]));
         u[j] += h;
-        h = u[j] - x[X_LOBE + j]; /* the step actually representable */
+        h = u[j] - u0[j]; /* the step actually representable */
         coords_to_params(&S->fm, u, pp->p[1 + j]);
         pp->inv_h[j] = 1.0 / h;
     }
 }
 
-/* From the moments at x: J^T J (H), J^T r (g), r^T r; then [z; t] and [R; 0]. */
-static void assemble(const lmstate *S, const double *x, const bf_pass_par *pp, const double *mom,
-                     point *pt)
+/* Cholesky H = R^T R (upper R) and z = R^-T g.  A pivot that vanishes (a
+ * direction the data does not see, e.g. s = 0) gives a zero row. */
+static void cholesky_solve(int nx, double H[][BF_MAX_NP], const double *g, const double *hdiag,
+                           double R[][BF_MAX_NP], double *z)
 {
-    const int nx = S->nx, np = S->fm.nl, nk = S->ps->nk, m = nx + 1;
-    double H[NX_MAX][NX_MAX], g[NX_MAX], rr = 0.0;
-    memset(H, 0, sizeof H);
-    memset(g, 0, sizeof g);
-    const double A = mom[BF_MOM_A], ipi = 1.0 / M_PI;
-    for (int c = 0; c < 3; c++) {
-        int k = nk > 1 ? c : 0;
-        const double *mk = mom + bf_mom_lobe(k, np);
-        const double *mc = mom + bf_mom_chan(c, nk, np);
-        const int xd = X_D + c, xs = X_S + c;
-        double jd = 2.0 * x[xd], js = 2.0 * x[xs], s = pp->s[c];
-        H[xd][xd] = jd * jd * A * ipi * ipi;
-        H[xd][xs] = jd * js * mk[BF_MK_SK] * ipi;
-        H[xs][xs] = js * js * mk[BF_MK_SKK];
-        g[xd] = -jd * ipi * mc[BF_MC_SE];
-        g[xs] = -js * mc[BF_MC_SKE];
-        rr += mc[BF_MC_SEE];
-        for (int j = 0; j < np; j++) {
-            H[xd][X_LOBE + j] = jd * ipi * s * mk[bf_mk_sg(j)];
-            H[xs][X_LOBE + j] = js * s * mk[bf_mk_skg(np, j)];
-            g[X_LOBE + j] -= s * mc[bf_mc_sge(j)];
-            for (int l = j; l < np; l++)
-                H[X_LOBE + j][X_LOBE + l] += s * s * mk[bf_mk_sgg(np, j, l)];
-        }
-    }
-    /* Cholesky H = R^T R (upper R); a pivot that vanishes (a direction the
-     * data does not see, e.g. d = 0) gives a zero row, consistent with J. */
-    double R[NX_MAX][NX_MAX], z[NX_MAX];
-    memset(R, 0, sizeof R);
+    memset(R, 0, sizeof(double) * BF_MAX_NP * BF_MAX_NP);
     for (int k = 0; k < nx; k++) {
         double piv = H[k][k];
         for (int i = 0; i < k; i++)
             piv -= R[i][k] * R[i][k];
-        if (!(piv > 1e-13 * H[k][k]) || !(piv > 0)) {
+        if (!(piv > 1e-13 * hdiag[k]) || !(piv > 0)) {
             z[k] = 0.0;
             continue;
         }
@@ -195,10 +171,21 @@ static void assemble(const lmstate *S, const double *x, const bf_pass_par *pp, c
             v -= R[i][k] * z[i];
         z[k] = v / rkk;
     }
+}
+
+/* From the moments at u (taken at S->ref): the best d, s, r^T r, then [z; t]
+ * and [R; 0] of the reduced problem. */
+static void assemble(const lmstate *S, const double *x, const double *mom, point *pt)
+{
+    const int nx = S->nx, m = nx + 1, nk = S->ps->nk;
+    double H[BF_MAX_NP][BF_MAX_NP], g[BF_MAX_NP], hdiag[BF_MAX_NP];
+    double rr = bf_linear_best(mom, nk, nx, &S->ref, &pt->lin);
+    bf_linear_reduce(mom, nk, nx, &S->ref, &pt->lin, H, g, hdiag);
+    double R[BF_MAX_NP][BF_MAX_NP], z[BF_MAX_NP];
+    cholesky_solve(nx, H, g, hdiag, R, z);
     double zz = 0.0;
     for (int k = 0; k < nx; k++)
         zz += z[k] * z[k];
-    rr = fmax(rr, 0.0);
     double t = sqrt(fmax(rr - zz, 0.0));
     if (zz > rr) { /* rounding: keep |[z;t]|^2 = r^T r exactly */
         double f = zz > 0 ? sqrt(rr / zz) : 0.0;
@@ -232,7 +219,8 @@ static const point *evaluate(lmstate *S, const double *x)
         return NULL;
     point *pt = &S->cache[S->next];
     S->next ^= 1;
-    assemble(S, x, &pp, mom, pt);
+    assemble(S, x, mom, pt);
+    S->ref = pt->lin; /* the next pass is taken near the answer */
     return pt;
 }
 
@@ -267,8 +255,9 @@ static int lm_callback(void *user, int m, int n, const double *x, double *fvec, 
 /* ---------------------------------------------------------------- starts */
 
 typedef struct start {
-    double x[NX_MAX];
-    double cost;
+    double x[NX_MAX];   /* lobe coordinates */
+    bf_linear lin;      /* the best d, s there */
+    double cost;        /* r^T r there */
 } start;
 
 /* The lobe parameters of start number i of n (a log grid of the lobe width). */
@@ -314,38 +303,8 @@ static void start_params(brdffit_model model, int i, int n, double p[3])
     }
 }
 
-/* Best non-negative (d, s) for one channel from value moments taken at d = s = 0. */
-static double best_linear(double A, double SK, double SKK, double SE, double SKE, double SEE,
-                          double *d, double *s)
-{
-    const double a11 = A / (M_PI * M_PI), a12 = SK / M_PI, a22 = SKK, b1 = SE / M_PI, b2 = SKE;
-#define COST(dd, ss) (SEE - 2.0 * (b1 * (dd) + b2 * (ss)) + a11 * (dd) * (dd) + \
-                      2.0 * a12 * (dd) * (ss) + a22 * (ss) * (ss))
-    double det = a11 * a22 - a12 * a12;
-    double bd = 0, bs = 0, best = SEE;
-    if (det > 1e-14 * a11 * a22) {
-        double dd = (b1 * a22 - b2 * a12) / det, ss = (a11 * b2 - a12 * b1) / det;
-        if (dd >= 0 && ss >= 0 && COST(dd, ss) < best)
-            bd = dd, bs = ss, best = COST(dd, ss);
-    }
-    if (a11 > 0) {
-        double dd = fmax(b1 / a11, 0.0);
-        if (COST(dd, 0.0) < best)
-            bd = dd, bs = 0, best = COST(dd, 0.0);
-    }
-    if (a22 > 0) {
-        double ss = fmax(b2 / a22, 0.0);
-        if (COST(0.0, ss) < best)
-            bd = 0, bs = ss, best = COST(0.0, ss);
-    }
-#undef COST
-    *d = bd;
-    *s = bs;
-    return best;
-}
-
 /* One value pass at the start's lobe with d = s = 0 gives the exact best
- * linear part; x gets it (kept off 0, where sqrt-coordinates stall). */
+ * linear part there. */
 static brdffit_status screen_start(lmstate *S, const double p[3], start *st)
 {
     bf_pass_par pp;
@@ -356,22 +315,9 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *st)
     brdffit_status rc = bf_driver_run(S->ps, 0, &pp, mom, S->err);
     if (rc != BRDFFIT_OK)
         return rc;
-    const int nk = S->ps->nk;
-    st->cost = 0.0;
-    for (int c = 0; c < 3; c++) {
-        const double *mk = mom + bf_mom_lobe(nk > 1 ? c : 0, 0);
-        const double *mc = mom + bf_mom_chan(c, nk, 0);
-        double d, s, A = mom[BF_MOM_A];
-        st->cost += best_linear(A, mk[BF_MK_SK], mk[BF_MK_SKK], mc[BF_MC_SE], mc[BF_MC_SKE],
-                                mc[BF_MC_SEE], &d, &s);
-        double mean_rho = A > 0 ? fmax(mc[BF_MC_SE] / A, 0.0) : 0.0;
-        double mean_k = A > 0 ? mk[BF_MK_SK] / A : 0.0;
-        double dfloor = 1e-4 * M_PI * mean_rho + 1e-12;
-        double sfloor = (mean_k > 0 ? 1e-4 * mean_rho / mean_k : 0.0) + 1e-12;
-        st->x[X_D + c] = sqrt(fmax(d, dfloor));
-        st->x[X_S + c] = sqrt(fmax(s, sfloor));
-    }
-    params_to_coords(&S->fm, p, st->x + X_LOBE);
+    const bf_linear zero = { { 0, 0, 0 }, { 0, 0, 0 } };
+    st->cost = bf_linear_best(mom, S->ps->nk, 0, &zero, &st->lin);
+    params_to_coords(&S->fm, p, st->x);
     return BRDFFIT_OK;
 }
 
@@ -410,6 +356,118 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
             return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
                            "lambda_um[%d] = %g must be 0 (default) or in [0.1, 10]", c, o->lambda_um[c]);
     return BRDFFIT_OK;
+}
+
+enum { MAX_KEEP = 16, LM_RESTARTS = 2 };
+
+/* Screen nstarts starts; keep the best `refine` of them, cheapest first. */
+static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *keep, int *nkeep)
+{
+    *nkeep = 0;
+    for (int i = 0; i < nstarts; i++) {
+        double p[3];
+        start st;
+        start_params(S->fm.model, i, nstarts, p);
+        brdffit_status rc = screen_start(S, p, &st);
+        if (rc != BRDFFIT_OK)
+            return rc;
+        int pos = *nkeep;
+        while (pos > 0 && st.cost < keep[pos - 1].cost)
+            pos--;
+        if (pos >= refine)
+            continue;
+        if (*nkeep < refine)
+            (*nkeep)++;
+        memmove(keep + pos + 1, keep + pos, (size_t)(*nkeep - 1 - pos) * sizeof *keep);
+        keep[pos] = st;
+    }
+    return BRDFFIT_OK;
+}
+
+/* The outcome of refining one start. */
+typedef struct lmrun {
+    double x[NX_MAX];
+    bf_linear lin;
+    double rr;
+    int info;           /* lmder's info of the last run */
+    int njev;           /* Jacobian evaluations, all runs */
+} lmrun;
+
+/* One lmder run from run->x (updated in place). */
+static brdffit_status lm_once(lmstate *S, const brdffit_fit_options *o, lmrun *run, double *solver_s)
+{
+    const int nx = S->nx, m = nx + 1;
+    double fvec[NM_MAX], fjac[NM_MAX * NX_MAX], diag[NX_MAX], qtf[NX_MAX];
+    double wa1[NX_MAX], wa2[NX_MAX], wa3[NX_MAX], wa4[NM_MAX];
+    int ipvt[NX_MAX], nfev = 0, njev = 0;
+    S->st = BRDFFIT_OK;
+    double cb0 = S->seconds_cb, t0 = bf_now();
+    run->info = lmder(lm_callback, S, m, nx, run->x, fvec, fjac, m, o->ftol, o->xtol, o->gtol,
+                      o->max_evals, diag, 1, 100.0, 0, &nfev, &njev, ipvt, qtf, wa1, wa2, wa3, wa4);
+    *solver_s += (bf_now() - t0) - (S->seconds_cb - cb0);
+    run->njev += njev;
+    if (S->st != BRDFFIT_OK) /* a pass failed: lmder was stopped (info < 0) */
+        return S->st;
+    const point *pt = evaluate(S, run->x); /* cached: the point lmder returned */
+    if (!pt)
+        return S->st;
+    run->rr = pt->rr;
+    run->lin = pt->lin;
+    return BRDFFIT_OK;
+}
+
+/* Refine a start with lmder.  A run that stops on max_evals (info 5) is
+ * restarted from where it stopped, with a fresh trust region, up to
+ * LM_RESTARTS times; run->info is the last run's. */
+static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, const start *st,
+                                   lmrun *run, double *solver_s)
+{
+    memset(run, 0, sizeof *run);
+    memcpy(run->x, st->x, sizeof run->x);
+    S->ref = st->lin;
+    S->cache[0].valid = S->cache[1].valid = 0;
+    for (int k = 0; k <= LM_RESTARTS; k++) {
+        brdffit_status rc = lm_once(S, o, run, solver_s);
+        if (rc != BRDFFIT_OK || run->info != 5)
+            return rc;
+    }
+    return BRDFFIT_OK;
+}
+
+/* Which parameters of the result are on a bound (brdffit_fit_result.at_bound). */
+static unsigned bound_mask(const fitmap *fm, const double *u, const bf_linear *lin)
+{
+    unsigned mask = 0;
+    for (int c = 0; c < 3; c++) {
+        if (lin->d[c] == 0.0)
+            mask |= (unsigned)BRDFFIT_AT_BOUND_D_R << c;
+        if (lin->s[c] == 0.0)
+            mask |= (unsigned)BRDFFIT_AT_BOUND_S_R << c;
+    }
+    for (int j = 0; j < fm->nl; j++) {
+        if (fm->kind[j] == MAP_ANGLE)
+            continue;
+        double t = 0.5 * (1.0 + sin(u[j])); /* position in the range, 0..1 */
+        if (t < 1e-6 || t > 1.0 - 1e-6)
+            mask |= (unsigned)BRDFFIT_AT_BOUND_P0 << fm->param[j];
+    }
+    return mask;
+}
+
+static void fill_result(const lmstate *S, const lmrun *best, brdffit_fit_result *result)
+{
+    memset(result, 0, sizeof *result);
+    result->model = S->fm.model;
+    memcpy(result->params.d, best->lin.d, sizeof result->params.d);
+    memcpy(result->params.s, best->lin.s, sizeof result->params.s);
+    coords_to_params(&S->fm, best->x, result->params.p);
+    if (brdffit_model_get(S->fm.model)->chromatic)
+        memcpy(result->params.lambda_um, S->lam, sizeof S->lam);
+    result->error = sqrt(best->rr);
+    result->cminpack_info = best->info;
+    result->iterations = best->njev;
+    result->flags = best->info == 5 ? BRDFFIT_FIT_LIMIT : 0u;
+    result->at_bound = bound_mask(&S->fm, best->x, &best->lin);
 }
 
 /* Each channel has d, s and the lobe's coordinates to determine: with fewer
@@ -454,104 +512,50 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
 
     bf_pass_driver ps;
     rc = bf_driver_open(&ps, ctx, samples, model, err);
-    if (rc != BRDFFIT_OK) {
-        bf_driver_close(&ps);
-        return rc;
-    }
+    if (rc != BRDFFIT_OK)
+        goto done;
     lmstate S;
     memset(&S, 0, sizeof S);
     S.ps = &ps;
     S.err = err;
     fitmap_init(&S.fm, model);
-    S.nx = X_LOBE + S.fm.nl;
+    S.nx = S.fm.nl;
     brdffit_params lp;
     memset(&lp, 0, sizeof lp);
     memcpy(lp.lambda_um, o.lambda_um, sizeof lp.lambda_um);
     bf_lambdas(&lp, S.lam);
 
-    /* screen the starts, keep the best `refine` */
-    enum { MAX_KEEP = 16 };
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
     int nstarts = o.starts ? o.starts : model == BRDFFIT_HE ? 7 : 8;
-    for (int i = 0; i < nstarts; i++) {
-        double p[3];
-        start st;
-        start_params(model, i, nstarts, p);
-        rc = screen_start(&S, p, &st);
-        if (rc != BRDFFIT_OK) {
-            bf_driver_close(&ps);
-            return rc;
-        }
-        int pos = nkeep;
-        while (pos > 0 && st.cost < keep[pos - 1].cost)
-            pos--;
-        if (pos >= refine)
-            continue;
-        if (nkeep < refine)
-            nkeep++;
-        memmove(keep + pos + 1, keep + pos, (nkeep - 1 - pos) * sizeof *keep);
-        keep[pos] = st;
-    }
-
-    /* refine each kept start with lmder */
-    const int nx = S.nx, m = nx + 1;
-    double best_rr = INFINITY, best_x[NX_MAX];
-    int best_info = 0, best_njev = 0;
+    rc = screen_starts(&S, nstarts, refine, keep, &nkeep);
+    if (rc != BRDFFIT_OK)
+        goto done;
+    lmrun best = { .rr = INFINITY };
     double solver_seconds = 0.0;
     for (int r = 0; r < nkeep; r++) {
-        double x[NX_MAX], fvec[NM_MAX], fjac[NM_MAX * NX_MAX], diag[NX_MAX], qtf[NX_MAX];
-        double wa1[NX_MAX], wa2[NX_MAX], wa3[NX_MAX], wa4[NM_MAX];
-        int ipvt[NX_MAX], nfev = 0, njev = 0;
-        memcpy(x, keep[r].x, sizeof x);
-        S.cache[0].valid = S.cache[1].valid = 0;
-        S.st = BRDFFIT_OK;
-        double cb0 = S.seconds_cb, t0 = bf_now();
-        int info = lmder(lm_callback, &S, m, nx, x, fvec, fjac, m, o.ftol, o.xtol, o.gtol,
-                         o.max_evals, diag, 1, 100.0, 0, &nfev, &njev, ipvt, qtf, wa1, wa2, wa3, wa4);
-        solver_seconds += (bf_now() - t0) - (S.seconds_cb - cb0);
-        if (S.st != BRDFFIT_OK) { /* a pass failed: lmder was stopped (info < 0) */
-            bf_driver_close(&ps);
-            return S.st;
-        }
-        const point *pt = evaluate(&S, x); /* cached: the point lmder returned */
-        if (!pt) {
-            bf_driver_close(&ps);
-            return S.st;
-        }
-        if (pt->rr < best_rr) {
-            best_rr = pt->rr;
-            memcpy(best_x, x, sizeof best_x);
-            best_info = info;
-            best_njev = njev;
-        }
+        lmrun run;
+        rc = refine_start(&S, &o, &keep[r], &run, &solver_seconds);
+        if (rc != BRDFFIT_OK)
+            goto done;
+        if (run.rr < best.rr)
+            best = run;
     }
-    if (!isfinite(best_rr)) {
-        bf_driver_close(&ps);
-        return bf_fail(err, BRDFFIT_E_FIT_FAILED, "no start gave a finite Error");
+    if (!isfinite(best.rr)) {
+        rc = bf_fail(err, BRDFFIT_E_FIT_FAILED, "no start gave a finite Error");
+        goto done;
     }
-
-    memset(result, 0, sizeof *result);
-    result->model = model;
-    for (int c = 0; c < 3; c++) {
-        result->params.d[c] = best_x[X_D + c] * best_x[X_D + c];
-        result->params.s[c] = best_x[X_S + c] * best_x[X_S + c];
-    }
-    coords_to_params(&S.fm, best_x + X_LOBE, result->params.p);
-    if (model == BRDFFIT_HE)
-        memcpy(result->params.lambda_um, S.lam, sizeof S.lam);
-    result->error = sqrt(best_rr);
-    result->cminpack_info = best_info;
-    result->iterations = best_njev;
+    fill_result(&S, &best, result);
     result->evaluations = ps.passes;
     result->samples = samples->n;
     result->backend = brdffit_context_backend(ctx);
     result->seconds_passes = ps.seconds;
     result->seconds_solver = solver_seconds;
-    bf_driver_close(&ps);
     result->seconds = bf_now() - t_start;
     bf_ok(err);
-    return BRDFFIT_OK;
+done:
+    bf_driver_close(&ps);
+    return rc;
 }
 
 brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *samples,

@@ -15,17 +15,17 @@ _Static_assert(BF_WARD == BRDFFIT_WARD && BF_WARD_DUER == BRDFFIT_WARD_DUER &&
 
 /* Bounds are inclusive: brdffit_eval accepts exactly these, and fits stay in them. */
 static const brdffit_model_info model_table[BRDFFIT_MODEL_COUNT] = {
-    { BRDFFIT_WARD, "ward", "Ward", 1, { "alpha" }, { 1e-4 }, { 0.5 }, { 0.1 }, 0 },
-    { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", 1, { "alpha" }, { 1e-4 }, { 0.5 }, { 0.1 }, 0 },
+    { BRDFFIT_WARD, "ward", "Ward", 1, { "alpha" }, { 1e-4 }, { 1.0 }, { 0.1 }, 0 },
+    { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", 1, { "alpha" }, { 1e-4 }, { 1.0 }, { 0.1 }, 0 },
     { BRDFFIT_BLINN_PHONG, "blinn-phong", "Blinn-Phong", 1, { "n" }, { 0.1 }, { 1e6 }, { 100 }, 0 },
     { BRDFFIT_LAFORTUNE, "lafortune", "Lafortune", 3, { "Cxy", "Cz", "n" },
       { -100, -100, 0.1 }, { 100, 100, 1e6 }, { -0.57735026918962576, 0.57735026918962576, 100 }, 0 },
     { BRDFFIT_COOK_TORRANCE, "cook-torrance", "Cook-Torrance", 2, { "F0", "m" },
-      { 0, 1e-4 }, { 1, 0.5 }, { 0.5, 0.1 }, 0 },
+      { 0, 1e-4 }, { 1, 2.0 }, { 0.5, 0.1 }, 0 },
     { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley", "Ashikhmin-Shirley", 2, { "F0", "n" },
       { 0, 0.1 }, { 1, 1e6 }, { 0.5, 100 }, 0 },
     { BRDFFIT_HE, "he", "He", 3, { "tau", "sigma0", "n" },
-      { 1, 0.001, 1 }, { 200, 10, 15 }, { 16, 0.5, 2 }, 1 },
+      { 1, 0.001, 1 }, { 200, 30, 30 }, { 16, 0.5, 2 }, 1 },
 };
 
 const brdffit_model_info *brdffit_model_get(brdffit_model model)

@@ -87,6 +87,8 @@ class FitResult(C.Structure):
         ("seconds_passes", C.c_double),
         ("samples", C.c_size_t),
         ("backend", c_enum),
+        ("at_bound", C.c_uint),
+        ("flags", C.c_uint),
     ]
 
 

@@ -78,7 +78,9 @@ class FitResult:
     ``iterations`` its Jacobian evaluations, ``evaluations`` all data passes
     of the fit, ``seconds`` its wall time (``seconds_solver`` inside
     cminpack, ``seconds_passes`` in data passes), ``samples`` fitted,
-    ``backend`` "opencl" or "host"."""
+    ``backend`` "opencl" or "host", ``at_bound`` the brdffit_at_bound bits
+    (lobe parameter k on a bound: bit k; d_c = 0: bit 8 + c; s_c = 0: bit
+    12 + c), ``flags`` the brdffit_fit_flag bits (1: stopped on max_evals)."""
 
     model: Model
     params: Params
@@ -92,11 +94,14 @@ class FitResult:
     seconds_passes: float
     samples: int
     backend: str
+    at_bound: int = 0
+    flags: int = 0
 
     @property
     def converged(self):
-        """cminpack reported convergence (info 1..4)."""
-        return 1 <= self.cminpack_info <= 4
+        """cminpack reported convergence (info 1..4) and the fit did not stop
+        on its evaluation limit."""
+        return 1 <= self.cminpack_info <= 4 and not self.flags & 1
 
 
 _OPTION_FIELDS = tuple(f[0] for f in _abi.FitOptions._fields_ if f[0] != "size")
@@ -161,6 +166,8 @@ def fit(ctx, samples, model, **options):
         seconds_passes=r.seconds_passes,
         samples=r.samples,
         backend=_BACKEND_NAMES.get(r.backend, "unknown"),
+        at_bound=r.at_bound,
+        flags=r.flags,
     )
 
 

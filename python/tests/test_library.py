@@ -191,17 +191,17 @@ def test_mirror_that_drifted_is_refused(brdffit, lib_path, monkeypatch):
                     for f in _abi.FitResult._fields_]
 
     class Longer(ctypes.Structure):
-        _fields_ = _abi.FitResult._fields_ + [("at_bound", ctypes.c_double)]
+        _fields_ = _abi.FitResult._fields_ + [("extra", ctypes.c_double)]
 
     class InPadding(ctypes.Structure):  # an int in the tail padding: the same size
-        _fields_ = _abi.FitResult._fields_ + [("at_bound", ctypes.c_int)]
+        _fields_ = _abi.FitResult._fields_ + [("extra", ctypes.c_int)]
 
     assert ctypes.sizeof(InPadding) == ctypes.sizeof(_abi.FitResult)
     kinds = dict(_abi.STRUCT_KINDS)
     kinds.pop(_abi.FitResult)
     for mirror, problem in ((Swapped, "member 'iterations' at offset"),
                             (Longer, "bytes in the library"),
-                            (InPadding, "the library has no member 'at_bound'")):
+                            (InPadding, "the library has no member 'extra'")):
         monkeypatch.setattr(_abi, "STRUCT_KINDS", {**kinds, mirror: 7})
         with pytest.raises(brdffit.LibraryError, match=problem):
             brdffit.load_library(lib_path)

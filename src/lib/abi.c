@@ -66,6 +66,8 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, seconds_passes),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, samples),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, backend),
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, at_bound),
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, flags),
 };
 
 #undef M

@@ -416,21 +416,61 @@ static brdffit_status lm_once(lmstate *S, const brdffit_fit_options *o, lmrun *r
     return BRDFFIT_OK;
 }
 
-/* Refine a start with lmder.  A run that stops on max_evals (info 5) is
- * restarted from where it stopped, with a fresh trust region, up to
- * LM_RESTARTS times; run->info is the last run's. */
+/* Where lobe coordinate j stands in its range: 0 at the lower bound, 1 at
+ * the upper; -1 for a direction (no bounds). */
+static double coord_position(const fitmap *fm, int j, double u)
+{
+    return fm->kind[j] == MAP_ANGLE ? -1.0 : 0.5 * (1.0 + sin(u));
+}
+
+/* A coordinate within this of an end of its range is on its bound. */
+#define ON_BOUND 1e-6
+
+/* lmder from run->x (updated in place).  A run that stops on max_evals
+ * (info 5) is restarted from where it stopped, with a fresh trust region,
+ * up to LM_RESTARTS times; run->info is the last run's. */
+static brdffit_status lm_converge(lmstate *S, const brdffit_fit_options *o, lmrun *run,
+                                  double *solver_s)
+{
+    for (int k = 0; k <= LM_RESTARTS; k++) {
+        brdffit_status rc = lm_once(S, o, run, solver_s);
+        if (rc != BRDFFIT_OK || run->info != 5)
+            return rc;
+    }
+    return BRDFFIT_OK;
+}
+
+/* Refine a start.  A lobe coordinate that ends on its bound is stuck there
+ * whether or not the data's optimum is inside (v = lo + (hi-lo)(1+sin u)/2
+ * has no gradient at the bounds), so such a run is repeated from a point a
+ * quarter of the range inside on those coordinates, and the better kept. */
 static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, const start *st,
                                    lmrun *run, double *solver_s)
 {
     memset(run, 0, sizeof *run);
     memcpy(run->x, st->x, sizeof run->x);
     S->ref = st->lin;
-    S->cache[0].valid = S->cache[1].valid = 0;
-    for (int k = 0; k <= LM_RESTARTS; k++) {
-        brdffit_status rc = lm_once(S, o, run, solver_s);
-        if (rc != BRDFFIT_OK || run->info != 5)
-            return rc;
+    brdffit_status rc = lm_converge(S, o, run, solver_s);
+    if (rc != BRDFFIT_OK)
+        return rc;
+    lmrun again = *run;
+    int moved = 0;
+    for (int j = 0; j < S->fm.nl; j++) {
+        double t = coord_position(&S->fm, j, run->x[j]);
+        if (t >= 0.0 && (t < ON_BOUND || t > 1.0 - ON_BOUND)) {
+            again.x[j] = asin(t < 0.5 ? -0.5 : 0.5); /* t = 1/4 or 3/4 */
+            moved = 1;
+        }
     }
+    if (!moved)
+        return BRDFFIT_OK;
+    rc = lm_converge(S, o, &again, solver_s);
+    if (rc != BRDFFIT_OK)
+        return rc;
+    if (again.rr < run->rr)
+        *run = again;
+    else
+        run->njev = again.njev;
     return BRDFFIT_OK;
 }
 
@@ -445,10 +485,8 @@ static unsigned bound_mask(const fitmap *fm, const double *u, const bf_linear *l
             mask |= (unsigned)BRDFFIT_AT_BOUND_S_R << c;
     }
     for (int j = 0; j < fm->nl; j++) {
-        if (fm->kind[j] == MAP_ANGLE)
-            continue;
-        double t = 0.5 * (1.0 + sin(u[j])); /* position in the range, 0..1 */
-        if (t < 1e-6 || t > 1.0 - 1e-6)
+        double t = coord_position(fm, j, u[j]);
+        if (t >= 0.0 && (t < ON_BOUND || t > 1.0 - ON_BOUND))
             mask |= (unsigned)BRDFFIT_AT_BOUND_P0 << fm->param[j];
     }
     return mask;

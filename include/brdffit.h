@@ -340,8 +340,9 @@ brdffit_status brdffit_context_fallback(const brdffit_context *ctx, brdffit_erro
 
 typedef struct brdffit_fit_options {
     int starts;          /* starting points screened; 0 (default): the model's
-                            own, 8 (a log grid of the lobe width), He 7 (tau =
-                            4, 8, ..., 28 as Ngan et al.)                    */
+                            own, 8 (a log grid of the lobe width), He 14 (tau =
+                            4, 8, ..., 28 as Ngan et al., at sigma0 = 0.5
+                            and at sigma0 = 2)                               */
     int refine;          /* best starts refined by LM; default 1             */
     double ftol, xtol, gtol; /* cminpack tolerances; default 1e-8, 1e-8, 0    */
     int max_evals;       /* data passes per LM run; default 200              */

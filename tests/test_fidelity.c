@@ -193,12 +193,17 @@ Suite *fidelity_suite(void)
 {
     Suite *su = suite_create("fidelity");
     TCase *tb = tcase_create("bounds");
+    tcase_set_tags(tb, TU_NEEDS_SHARED);
     tcase_add_loop_test(tb, bounds_admit_published, 0, BRDFFIT_MODEL_COUNT);
     suite_add_tcase(su, tb);
     TCase *tf = tcase_create("flags");
     tcase_set_timeout(tf, 300);
     tcase_add_test(tf, bound_is_flagged);
-    tcase_add_test(tf, zero_diffuse_channel);
     suite_add_tcase(su, tf);
+    TCase *tz = tcase_create("zero_d");
+    tcase_set_tags(tz, TU_NEEDS_SHARED);
+    tcase_set_timeout(tz, 300);
+    tcase_add_test(tz, zero_diffuse_channel);
+    suite_add_tcase(su, tz);
     return su;
 }

@@ -286,7 +286,7 @@ static void settings_table(xml_writer *w, const rp_report *rep)
     if (rep->settings.starts > 0)
         snprintf(starts, sizeof starts, "%d per model", rep->settings.starts);
     else
-        snprintf(starts, sizeof starts, "each model's default (8; He 7)");
+        snprintf(starts, sizeof starts, "each model's default (8; He 14)");
     const char *more[][2] = {
         { "scale", rep->settings.scale },
         { "starts", starts },

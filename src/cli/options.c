@@ -16,7 +16,7 @@ void cli_options_help(FILE *f)
             "                                (1, 1.15, 1.66)/1500; flat = 1/1500, as Ngan et al.)\n"
             "  --cutoff DEG                  fit directions with theta_i, theta_o <= DEG, in (0, 90]\n"
             "                                (default 80)\n"
-            "  --starts N                    starting points screened per model, 1..1000 (default 8; He 7)\n"
+            "  --starts N                    starting points screened per model, 1..1000 (default 8; He 14)\n"
             "  --backend auto|opencl|host    where the data passes run (default auto: OpenCL when a\n"
             "                                device is found, else C on the host)\n"
             "  --device SPEC                 OpenCL device, PLATFORM:DEVICE by index or name\n"

@@ -44,7 +44,7 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
     if (fo->starts > 0)
         fprintf(f, "%d starts screened per model", fo->starts);
     else
-        fputs("8 starts screened per model (He: 7, tau = 4..28)", f);
+        fputs("8 starts screened per model (He: 14, tau = 4..28 x sigma0 = 0.5, 2)", f);
     fprintf(f, ", the best %d refined by Levenberg-Marquardt (cminpack lmder)\n\n", fo->refine);
     fprintf(f, ROW_FMT, "model", "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0", "p1", "p2",
             "Error", "iter", "seconds", "");

@@ -326,7 +326,7 @@ void brdffit_fit_options_default(brdffit_fit_options *opt)
     if (!opt)
         return;
     memset(opt, 0, sizeof *opt);
-    opt->starts = 0; /* the model's own: 8, He 7 */
+    opt->starts = 0; /* the model's own: 8, He 14 */
     opt->refine = 1;
     opt->ftol = 1e-8;
     opt->xtol = 1e-8;
@@ -565,7 +565,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
 
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
-    int nstarts = o.starts ? o.starts : model == BRDFFIT_HE ? 7 : 8;
+    int nstarts = o.starts ? o.starts : model == BRDFFIT_HE ? 14 : 8;
     rc = screen_starts(&S, nstarts, refine, keep, &nkeep);
     if (rc != BRDFFIT_OK)
         goto done;

@@ -5,13 +5,14 @@
  * no fit is worse than published, none stopped on a limit and none is worse
  * than the stored run.
  *
- *   bench_fidelity [--fits FILE] [--baseline FILE] [--materials all|A,B,...]
+ *   bench_fidelity [--fits FILE] [--baseline FILE] [--write FILE] [--materials all|A,B,...]
  *                  [--models A,B,...] [--backend auto|opencl|host]
  *                  [--starts N] [--refine N] [--max-evals N] [--ftol X] [--xtol X]
  *                  (brdffit_fit_options)
  *
  * --fits       published parameters (default ../shared/data/ngan2005-fits.tsv)
  * --baseline   a stored run: TSV of material, model, Error (bench/baseline-errors.tsv)
+ * --write      also store this run's Errors in the --baseline format
  * --materials  the fits file's materials (default), `all` (the 100 of
  *              merl-table --list) or a comma-separated list
  * Tables come from ../shared/tools/merl-table (or $BRDFFIT_SHARED/tools). */
@@ -45,6 +46,7 @@ typedef struct rowset {
 } rowset;
 
 typedef struct tally {
+    FILE *write;            /* --write: this run's Errors, in the stored-run format */
     int fits, failed, scored, worse_published, limit, at_lobe_bound;
     int compared, worse_baseline, better_baseline, above_baseline;
     double worst_ratio, worst_base_ratio;
@@ -55,7 +57,7 @@ typedef struct tally {
 } tally;
 
 typedef struct config {
-    char fits[1024], baseline[1024], tools[1024];
+    char fits[1024], baseline[1024], tools[1024], write[1024];
     const char *materials;   /* NULL: the fits file's */
     int use_model[BRDFFIT_MODEL_COUNT];
     brdffit_context_options ctx;
@@ -264,6 +266,9 @@ static void one_fit(brdffit_context *ctx, const brdffit_samples *s, const char *
         return;
     }
     T->fit_seconds += r.seconds;
+    if (T->write)
+        fprintf(T->write, "%s\t%s\t%.17g\t%d\t%d\t%d\t%.3f\n", material, mi->name, r.error,
+                r.cminpack_info, r.iterations, r.evaluations, r.seconds);
     T->seconds[m][T->nseconds[m]++] = r.seconds;
     char pubtxt[64] = "-", basetxt[64] = "-", note[128];
     const row *pr = find_row(pub, material, m);
@@ -352,6 +357,8 @@ static int parse_args(int argc, char **argv, config *c)
             snprintf(c->fits, sizeof c->fits, "%s", v);
         } else if (strcmp(a, "--baseline") == 0) {
             snprintf(c->baseline, sizeof c->baseline, "%s", v);
+        } else if (strcmp(a, "--write") == 0) {
+            snprintf(c->write, sizeof c->write, "%s", v);
         } else if (strcmp(a, "--materials") == 0) {
             c->materials = v;
         } else if (strcmp(a, "--starts") == 0) {
@@ -386,7 +393,8 @@ static int parse_args(int argc, char **argv, config *c)
     }
     return 0;
 usage:
-    fprintf(stderr, "usage: bench_fidelity [--fits FILE] [--baseline FILE] [--materials all|A,B,...]\n"
+    fprintf(stderr, "usage: bench_fidelity [--fits FILE] [--baseline FILE] [--write FILE]\n"
+                    "                      [--materials all|A,B,...]\n"
                     "                      [--models A,B,...] [--backend auto|opencl|host]\n"
                     "                      [--starts N] [--refine N] [--max-evals N] [--ftol X] [--xtol X]\n");
     return -1;
@@ -411,6 +419,16 @@ int main(int argc, char **argv)
     for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++)
         if (!(T.seconds[m] = calloc(MAX_MATERIALS, sizeof(double))))
             goto done;
+    if (c.write[0]) {
+        if (!(T.write = fopen(c.write, "w"))) {
+            fprintf(stderr, "bench_fidelity: cannot write %s\n", c.write);
+            goto done;
+        }
+        fprintf(T.write, "# Errors of a bench_fidelity run (flat scale, cutoff 80 deg, fit options starts %d,"
+                         " refine %d, max_evals %d)\n"
+                         "material\tmodel\terror\tcminpack_info\titerations\tevaluations\tseconds\n",
+                c.fit.starts, c.fit.refine, c.fit.max_evals);
+    }
     if (brdffit_context_create(&c.ctx, &ctx, &err) != BRDFFIT_OK) {
         fprintf(stderr, "bench_fidelity: %s\n", err.message);
         goto done;
@@ -433,6 +451,10 @@ int main(int argc, char **argv)
     }
     rc = summary(&T, nmat, now() - t0, c.baseline[0] != 0);
 done:
+    if (T.write && fclose(T.write) != 0) {
+        fprintf(stderr, "bench_fidelity: writing %s failed\n", c.write);
+        rc = 2;
+    }
     brdffit_context_free(ctx);
     for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++)
         free(T.seconds[m]);

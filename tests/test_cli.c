@@ -486,7 +486,7 @@ static const char *const bad_evals[] = {
     "eval phong 0.1 0.1 0.1 0.1 0.1 0.1 10 --wi 0 0 1 --wo 0 0 1",
     "eval ward 0.1 0.1 0.1 0.1 0.1 0.1 --wi 0 0 1 --wo 0 0 1",          /* alpha missing */
     "eval ward 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.2 --wi 0 0 1 --wo 0 0 1",  /* one too many */
-    "eval ward 0.1 0.1 0.1 0.1 0.1 0.1 0.9 --wi 0 0 1 --wo 0 0 1",      /* alpha > 0.5 */
+    "eval ward 0.1 0.1 0.1 0.1 0.1 0.1 1.5 --wi 0 0 1 --wo 0 0 1",      /* alpha > 1 */
     "eval ward 0.1 0.1 0.1 0.1 0.1 0.1 abc --wi 0 0 1 --wo 0 0 1",
     "eval ward 0.1 0.1 0.1 0.1 0.1 0.1 0.1 --wi 0 0 1",
     "eval ward 0.1 0.1 0.1 0.1 0.1 0.1 0.1 --wi 0 0 0 --wo 0 0 1",

@@ -492,6 +492,27 @@ static unsigned bound_mask(const fitmap *fm, const double *u, const bf_linear *l
     return mask;
 }
 
+/* r^T r of the result from one value pass at its own d, s, p: the fit's
+ * Error is then brdffit_error_of's of the returned parameters, to the bit
+ * (the LM's r^T r comes from moments taken near, not at, the point). */
+static brdffit_status exact_error(lmstate *S, lmrun *best)
+{
+    bf_pass_par pp;
+    memset(&pp, 0, sizeof pp);
+    memcpy(pp.d, best->lin.d, sizeof pp.d);
+    memcpy(pp.s, best->lin.s, sizeof pp.s);
+    memcpy(pp.lam, S->lam, sizeof pp.lam);
+    coords_to_params(&S->fm, best->x, pp.p[0]);
+    double mom[BF_NMOM_MAX], rr = 0.0;
+    brdffit_status rc = bf_driver_run(S->ps, 0, &pp, mom, S->err);
+    if (rc != BRDFFIT_OK)
+        return rc;
+    for (int c = 0; c < 3; c++)
+        rr += mom[bf_mom_chan(c, S->ps->nk, 0) + BF_MC_SEE];
+    best->rr = fmax(rr, 0.0);
+    return BRDFFIT_OK;
+}
+
 static void fill_result(const lmstate *S, const lmrun *best, brdffit_fit_result *result)
 {
     memset(result, 0, sizeof *result);
@@ -583,6 +604,9 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
         rc = bf_fail(err, BRDFFIT_E_FIT_FAILED, "no start gave a finite Error");
         goto done;
     }
+    rc = exact_error(&S, &best);
+    if (rc != BRDFFIT_OK)
+        goto done;
     fill_result(&S, &best, result);
     result->evaluations = ps.passes;
     result->samples = samples->n;

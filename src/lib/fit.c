@@ -360,17 +360,37 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
 
 enum { MAX_KEEP = 16, LM_RESTARTS = 2 };
 
-/* Screen nstarts starts; keep the best `refine` of them, cheapest first. */
+/* Starts come in rounds: He's are 7 values of tau at one sigma0, then 7 at
+ * the next; the other models' starts are one round. */
+static int start_round(brdffit_model model, int i)
+{
+    return model == BRDFFIT_HE ? i / 7 : 0;
+}
+
+/* Screen nstarts starts; keep the best `refine` of them, cheapest first, and
+ * then the best start of every other round (the cheapest start of the
+ * screening is not always in the best basin: measured on He, where each
+ * round's best finds a minimum the other misses). */
 static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *keep, int *nkeep)
 {
+    start round_best[MAX_KEEP];
+    int nrounds = 0;
     *nkeep = 0;
     for (int i = 0; i < nstarts; i++) {
         double p[3];
         start st;
+        memset(&st, 0, sizeof st);
         start_params(S->fm.model, i, nstarts, p);
         brdffit_status rc = screen_start(S, p, &st);
         if (rc != BRDFFIT_OK)
             return rc;
+        int r = start_round(S->fm.model, i);
+        if (r < MAX_KEEP) {
+            if (r >= nrounds || st.cost < round_best[r].cost)
+                round_best[r] = st;
+            if (r >= nrounds)
+                nrounds = r + 1;
+        }
         int pos = *nkeep;
         while (pos > 0 && st.cost < keep[pos - 1].cost)
             pos--;
@@ -380,6 +400,13 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
             (*nkeep)++;
         memmove(keep + pos + 1, keep + pos, (size_t)(*nkeep - 1 - pos) * sizeof *keep);
         keep[pos] = st;
+    }
+    for (int r = 0; r < nrounds && *nkeep < MAX_KEEP; r++) {
+        int kept = 0;
+        for (int k = 0; k < *nkeep && !kept; k++)
+            kept = memcmp(keep[k].x, round_best[r].x, sizeof keep[k].x) == 0;
+        if (!kept)
+            keep[(*nkeep)++] = round_best[r];
     }
     return BRDFFIT_OK;
 }

@@ -27,7 +27,7 @@
 
 /* A fit is worse than the stored run's when its Error exceeds it by more than
  * this (relative): two runs' LM stop anywhere within their convergence
- * tolerance, measured up to ~2e-8 apart at the same minimum. */
+ * tolerance, measured up to ~1e-7 apart at the same minimum. */
 #define WORSE_TOL 1e-7
 
 enum { MAX_ROWS = 2048, MAX_MATERIALS = 256, NAME_MAX_LEN = 64, LINE_MAX_LEN = 4096 };

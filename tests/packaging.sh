@@ -171,7 +171,9 @@ chmod +x "$T/fakebin/"*
 nodeps() { env PATH="$T/fakebin:$PATH" "$@" >"$T/out" 2>&1; }
 rm -f "$T/apt-calls"
 nodeps $MAKE -n BUILD="$T/b1" all test install
-nodeps $MAKE BUILD="$T/b1" clean
+# (`make clean` in a copy of the Makefile: here it would remove the checkout's build folders)
+mkdir -p "$T/tree" && cp -R Makefile .ci "$T/tree/"
+nodeps $MAKE -C "$T/tree" BUILD=b1 clean
 nodeps $MAKE install BUILD="$T/b2" DESTDIR="$T/r2" PREFIX=$P
 if [ ! -e "$T/apt-calls" ]; then pass; else
     fail "make -n / clean / install called: $(cat "$T/apt-calls")"

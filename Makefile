@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # brdffit -- library (libbrdffit.a, libbrdffit.so), program (brdffit), tests, benchmark.
 #
 #   make             build/libbrdffit.a build/libbrdffit.so build/brdffit

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench.c -- `make bench`: the figures README.md reports.
  *
  *  1. per model, on the full alum-bronze table: one OpenCL data pass (value +

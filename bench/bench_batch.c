@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_batch.c -- `make bench` part 4: `brdffit batch` over the bench's
  * materials end to end (the program, $BRDFFIT_CLI, into a fresh directory),
  * and the share of its time spent outside fitting (reading and hashing the

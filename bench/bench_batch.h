@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_batch.h -- part 4 of `make bench`: the batch program end to end (bench_batch.c). */
 #ifndef BRDFFIT_BENCH_BATCH_H
 #define BRDFFIT_BENCH_BATCH_H

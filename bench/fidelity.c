@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fidelity.c -- `make fidelity`: fit every material of the published Ngan et al.
  * fits with every model (flat scale, as they fitted), score the published
  * parameters on the same tables, and compare each fit with them and with a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * brdffit.h -- fit analytic BRDF models to measured (MERL) reflectance data.
  *

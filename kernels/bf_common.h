@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bf_common.h -- the portability layer of the model maths.
  *

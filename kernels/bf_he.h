@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bf_he.h -- the He et al. 1991 directional-diffuse lobe as Ngan et al. fitted
  * it: p0 = tau (autocorrelation length, um), p1 = sigma0 (rms roughness, um),

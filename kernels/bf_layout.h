@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bf_layout.h -- what the host and the kernel exchange in a data pass, and
  * nothing of the model maths: the fields of a prepared sample set, the point

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bf_lobe.h -- one entry point to the lobes of every model, for the C library
  * and the OpenCL kernel alike.  In the kernel `model` is a compile-time

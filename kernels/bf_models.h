@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bf_models.h -- the closed-form BRDF lobes K(wi, wo; p) (He's lobe is
  * bf_he.h), the model ids and the geometry of a direction pair, written once

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bf_pass.cl -- the OpenCL data pass: the kernel side (src/lib/pass.c is the
  * host side that enqueues it).  The library prepends the kernel headers, in

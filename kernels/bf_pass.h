@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bf_pass.h -- the work of one data pass on one sample (or one vector of
  * samples), shared by the host C loop (src/lib/pass_host.c) and the OpenCL

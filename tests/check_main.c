@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* check_main.c -- runs every suite listed in tests/suites.def (Check, CK_ENV verbosity).
  *
  * The test cases that read ../shared carry the Check tag "shared"

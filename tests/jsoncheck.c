@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* jsoncheck.c -- a small strict JSON parser for the tests: it checks that a
  * line is one well-formed JSON object (RFC 8259 grammar: no NaN, no trailing
  * comma, no raw control characters) and reads members out of it.  Written

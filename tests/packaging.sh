@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tests/packaging.sh -- run by `make test` after the Check suite: what the
 # built and installed libraries promise a caller.
 #
@@ -18,6 +19,8 @@
 #   no data    without ../shared the suite says so in one line, runs the
 #              tests that need no data, and fails
 #   deps       `make -n`, `make clean` and `make install` never call apt-get
+#   licence    every .c/.h/.cl/.py file has an SPDX-License-Identifier line,
+#              and LICENSE is the MIT licence
 #
 # Environment: BUILD (default build), CC, CXX.  Exit 0 when all pass.
 set -u
@@ -182,6 +185,22 @@ fi
 nodeps $MAKE BUILD="$T/b3" "$T/b3/.deps-ok"
 if grep -q 'apt-get install' "$T/apt-calls" 2>/dev/null; then pass; else
     fail "a first build with the packages missing did not run apt-get install"
+fi
+
+# ------------------------------------------------------------------ licence
+
+# Every source file says its licence (SPDX) near its top; a file added
+# without the line fails here.  Build folders and hidden folders are skipped.
+missing=$(find . \( -path './.*' -o -name 'build*' -o -name __pycache__ \) -prune -o \
+               -type f \( -name '*.c' -o -name '*.h' -o -name '*.cl' -o -name '*.py' \) -print |
+          while read -r f; do
+              head -n 3 "$f" | grep -q 'SPDX-License-Identifier: MIT' || echo "$f"
+          done)
+if [ -z "$missing" ]; then pass; else
+    fail "no 'SPDX-License-Identifier: MIT' line in the first 3 lines of: $(echo $missing)"
+fi
+if [ -f LICENSE ] && grep -q '^MIT License' LICENSE && grep -q 'brdffit developers' LICENSE; then pass; else
+    fail "LICENSE is not the MIT licence of the brdffit developers"
 fi
 
 echo "packaging: $PASSED passed, $FAILED failed"

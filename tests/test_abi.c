@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_abi.c -- the ABI introspection an FFI mirror checks itself against
  * (sizes and member offsets of the public structs), and the batch lookup. */
 #include "testutil.h"

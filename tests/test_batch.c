@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_batch.c -- `brdffit batch`, `report` and `score` ($BRDFFIT_CLI): every
  * file of the report written, its HTML checked by a strict parser written
  * here and every link followed, resume after SIGKILL at several points equal

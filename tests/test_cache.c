@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cache.c -- PoCL's kernel cache directory: a directory the library
  * chooses is private (made 0700, or existing and owned by the user, not a
  * symbolic link, not group- or world-writable, in a parent nobody else can

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cli.c -- the brdffit program ($BRDFFIT_CLI, default ./build/brdffit):
  * exit statuses, usage errors, failed files beside fitted ones, the JSON
  * Lines records (checked by a small JSON parser), demo, models, eval. */

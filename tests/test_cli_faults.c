@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cli_faults.c -- the brdffit program under faults: no device under
  * --backend opencl (every file gets its failure record), a --device that
  * matches nothing (an error under opencl, a warning under auto), an unusable

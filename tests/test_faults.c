@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_faults.c -- degenerate data and hostile input get a clear status and
  * a message that says what is wrong: a huge finite stored value (named at
  * read time and by the sample set), sample sets too small for a model's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_fidelity.c -- the fit's bounds and limits: every published parameter
  * inside the bounds, a parameter stuck on its bound is flagged (library and
  * program), a channel whose true d is 0 fits back without stalling. */

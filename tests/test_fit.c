@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_fit.c -- acceptance of brdffit_fit: recovery of known parameters, the
  * published Ngan et al. fits as a bar to clear, degenerate data, bad input. */
 #define _DEFAULT_SOURCE /* M_PI */

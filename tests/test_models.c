@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_models.c -- the six closed-form lobes: reference values, reciprocity,
  * finiteness at the edges of the hemisphere and of the parameter ranges. */
 #define _DEFAULT_SOURCE

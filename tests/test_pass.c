@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_pass.c -- the OpenCL data pass against the host C loop, device
  * selection, the host fallback, PoCL set-up and kernel build failures. */
 #define _POSIX_C_SOURCE 200809L

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_svg.c -- the program's XML/SVG writer (src/cli/svg.c): documents parse
  * as XML (expat), escaped text reads back as given, failures are reported. */
 #define _POSIX_C_SOURCE 200809L

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_table.c -- MERL tables (read/write/validation, bins, weights, scales,
  * lookup) and sample sets. */
 #define _POSIX_C_SOURCE 200809L

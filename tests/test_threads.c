@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_threads.c -- one context per thread, as the header says: four threads
  * create their FIRST contexts at the same moment (in a fresh process, where
  * PoCL's set-up has not happened yet) and fit at once; each gets the backend

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* testutil.c -- see testutil.h. */
 #define _XOPEN_SOURCE 700 /* nftw */
 #define _DEFAULT_SOURCE  /* M_PI */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* testutil.h -- helpers the test files share (and bench/ reuses the data ones):
  *
  *   testutil.c   ../shared data, MERL tables and sample sets, contexts,

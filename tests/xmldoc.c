@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* xmldoc.c -- an XML file parsed by expat into a flat list of elements (see testutil.h):
  * the independent check that what the program writes is well-formed XML. */
 #define _POSIX_C_SOURCE 200809L

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* eval_c.c -- the C side of the Python eval benchmark (eval_numpy.py): time
  * brdffit_eval_batch over the direction pairs in a file, through the same
  * shared library the Python package loads.

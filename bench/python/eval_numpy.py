@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`make bench` (Python part): brdffit.eval on 1,000,000 direction pairs from
 NumPy against the same brdffit_eval_batch call from C (bench_eval_c, linked to
 the same libbrdffit.so), per model, on the same pairs.

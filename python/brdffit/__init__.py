@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """brdffit: fit analytic BRDF models to measured MERL reflectance tables.
 
 A NumPy interface to libbrdffit (ctypes; no compiler needed).  The library is

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The C ABI of libbrdffit, written once: struct mirrors, enums, signatures.
 
 Every ctypes struct here mirrors one struct of include/brdffit.h member by

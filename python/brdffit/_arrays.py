@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """NumPy arrays in and out of the C calls: (..., 3) direction pairs, no copy
 when the caller's arrays are already float64 and C-contiguous."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Finding, loading and checking libbrdffit; the one handle every call uses.
 
 Where the library comes from, first match wins:

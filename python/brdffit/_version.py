@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The package's version, and the library version it was written for."""
 
 # The package follows the library it wraps: the same version.  The library

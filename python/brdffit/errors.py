@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Exceptions: every failing library call raises one, with the status and the
 library's message ("path: truncated at byte N (...)" and the like)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """eval: a model's BRDF at many direction pairs in one C call."""
 
 import ctypes

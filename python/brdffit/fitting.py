@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Contexts (device and kernels), fits and Errors."""
 
 import ctypes

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The models of the library's registry, and parameter sets."""
 
 import ctypes

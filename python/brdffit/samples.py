@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Sample sets: the valid bins of a table, as a fit uses them."""
 
 import ctypes

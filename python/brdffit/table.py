@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """MERL tables: read, write, make from NumPy or from a model, look up."""
 
 import ctypes

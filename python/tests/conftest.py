@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Fixtures of the Python tests: the package from this source tree, the library
 built beside it ($BRDFFIT_LIBRARY, else ../build/libbrdffit.so.0), the brdffit
 program ($BRDFFIT_CLI, else ../build/brdffit) and ../shared ($BRDFFIT_SHARED)."""

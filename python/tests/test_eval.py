@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """eval: one C call for all pairs, equal to the C evaluator and to the
 reference values of ../shared/data/model-reference.tsv."""
 

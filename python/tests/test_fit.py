@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Context, fit, error_of: a fit from Python equals `brdffit fit --json` on the
 same table to the last digit."""
 

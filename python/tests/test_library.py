@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Finding and checking the library: the four places, version and layout
 checks that refuse a mismatched library, the mirrors equal to the header,
 pip install and make install."""

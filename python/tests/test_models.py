@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """models(), model(), Params, metric_name: the registry as the library has it."""
 
 import subprocess

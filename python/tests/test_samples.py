@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Samples: counts, options, single samples as the C library gives them."""
 
 import ctypes

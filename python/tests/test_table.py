@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Table: read, bad files raising the right exception, values as a view,
 from_array, from_model, write, lookup equal to the C lookup."""
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* args.c -- what every subcommand's argument parsing uses: strict numbers,
  * --help, usage errors, the list of model names. */
 #include "cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* assets.c -- the renders and plots of one material for the batch report. */
 #include "batch.h"
 

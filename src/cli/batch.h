@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* batch.h -- what the files of `brdffit batch`, `report` and `score` share.
  *
  *   journal.c      the journal DIR/journal.jsonl: records, settings, material

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* brdffit.c -- the brdffit program: the table of subcommands and main.
  * Exit status 0 success, 1 a file or fit failed, 2 a usage error.
  * A new subcommand is one line in commands[] (and its cmd_NAME.c). */

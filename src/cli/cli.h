@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cli.h -- what the source files of the brdffit program share.
  *
  *   brdffit.c     main: the table of subcommands, --help, --version

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_batch.c -- `brdffit batch INPUT... --out DIR`: every model fitted to every
  * material, each fit journaled (fsync'd) before the next starts, the report
  * (pages, index, headline figure) rebuilt from the journal.  Re-running the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_eval.c -- `brdffit eval MODEL d_r d_g d_b s_r s_g s_b p... --wi X Y Z --wo X Y Z`:
  * one BRDF value per channel (1/sr, no cosine factor). */
 #include "cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_fit.c -- `brdffit fit` and `brdffit demo`: read (or synthesise) each
  * table, make its sample set, and fit the requested models with ONE context. */
 #include "cli.h"

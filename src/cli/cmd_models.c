@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_models.c -- `brdffit models`: the models, their lobe parameters and bounds. */
 #include "cli.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_report.c -- `brdffit report DIR... --out OUT`: the journals of several
  * batch directories (the shards of one job) merged into one report: the same
  * pages, index, fits.tsv and headline figure as `batch` writes, with the

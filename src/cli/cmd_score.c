@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_score.c -- `brdffit score TABLE --model M --params d_r,d_g,d_b,s_r,s_g,s_b,p0[,p1,p2]`
  * or `--fits FITS.tsv`: the Error of given parameters on a table, as a
  * researcher checks a published number.  With --fits, every row of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* demo_material.c -- the embedded synthetic material of `demo` and `batch --demo`:
  * a Cook-Torrance lobe plus Lambertian diffuse at the published Ngan et al.
  * 2005 Cook-Torrance fit of MERL alum-bronze, stored as a MERL table. */

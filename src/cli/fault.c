@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fault.c -- fault injection for the tests of the batch: with
  * BRDFFIT_FAULT=POINT:N in the environment, the N-th time the program passes
  * POINT it is killed (SIGKILL) there, as a power cut or `kill -9` would.

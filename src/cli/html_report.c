@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* html_report.c -- the report of a batch as static files with relative links:
  * per material DIR/<material>/params.tsv, params.json and index.html (the
  * parameter table, renders, plots); DIR/index.html (settings, per-model

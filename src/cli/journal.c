@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* journal.c -- the batch journal DIR/journal.jsonl: one JSON object per line,
  * one line per finished fit (and per failed material, published Error and
  * written renders), appended with one write() and fsync'd before the batch

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* json.c -- JSON text for the --json records: escaped strings, numbers that round-trip. */
 #include "cli.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* jsonread.c -- a small strict reader for the flat JSON objects of the journal:
  * members with null, booleans, numbers, strings, arrays of numbers (or nulls,
  * read as NAN) and one level of nested flat objects. */

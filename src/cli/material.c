@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* material.c -- what a fit report is about: a material's name from its path. */
 #include "cli.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* options.c -- the options of `fit` and `demo`: parsing them into a
  * cli_options, and their block of the --help text. */
 #include "cli.h"

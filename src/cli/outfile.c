@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* outfile.c -- files of the batch report: written whole (a temporary renamed
  * over the name), directories made and synced, every failure turned into
  * "cannot write PATH: reason". */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* published.c -- a table of published fits (the format of ngan2005-fits.tsv):
  * '#' comment lines, a header "material model d_r d_g d_b s_r s_g s_b p0 p1 p2",
  * then one row per material and model, tab-separated; an empty p is 0. */

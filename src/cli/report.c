@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* report.c -- the paper-style table and the JSON Lines records of the fits. */
 #include "cli.h"
 

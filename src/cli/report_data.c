@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* report_data.c -- the materials of a report chosen from journal records: per
  * material the records of one identity and the report's settings, the last of
  * each kind and model; and the summary figures (median Error, how often best). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* svg.c -- the XML/SVG text writer of svg.h: escaping, element stack, SVG shapes. */
 #include "svg.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* svg.h -- a small XML text writer (SVG figures, HTML pages) with escaping.
  *
  * The writer keeps a stack of open elements and writes start tags,

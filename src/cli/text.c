@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* text.c -- text for the terminal: names and messages that come from files
  * or the command line printed with their control characters made harmless,
  * and long paths shortened so that what follows them is not cut off. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* usage.c -- the --help text: the subcommands, the options
  * of fit and demo, the exit statuses. */
 #include "cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* abi.c -- the layout of the public structs as compiled, for FFI mirrors. */
 #include "brdffit.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* context.c -- brdffit_context: device selection, PoCL set-up and the
  * per-model program cache (kernel sources embedded at build time).
  *

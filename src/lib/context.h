@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* context.h -- the fitting context inside the library: OpenCL state and the
  * per-model program cache (context.c). */
 #ifndef BRDFFIT_CONTEXT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fit.c -- brdffit_fit: start screening and Levenberg-Marquardt (cminpack).
  *
  * The linear unknowns d, s >= 0 are solved exactly at every lobe point from

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* grid.c -- the MERL grid: bin index, bin <-> direction mapping (both ways)
  * and the bins' solid-angle weights. */
 #define _DEFAULT_SOURCE /* M_PI */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* grid.h -- the MERL grid inside the library: bins <-> directions, the
  * bins' solid-angle weights, the table object's layout.  The public side of
  * the same mapping is brdffit_bin_index / _directions / _weight. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* internal.h -- what the library's source files share and the API does not show. */
 #ifndef BRDFFIT_INTERNAL_H
 #define BRDFFIT_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* linear.c -- the linear unknowns d, s of a fit, solved exactly from a pass's
  * moments, and the normal equations of the lobe coordinates with d, s
  * projected out (see linear.h). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* linear.h -- the linear unknowns of a fit (d, s per channel), solved exactly
  * at every lobe point from one data pass's moments (variable projection).
  *

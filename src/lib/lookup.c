@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lookup.c -- brdffit_table_lookup: a table's value at a direction pair,
  * nearest bin or trilinear in the grid coordinates. */
 #include "internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lookup_batch.c -- brdffit_table_lookup over n direction pairs in one call. */
 #include "brdffit.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* merl_file.c -- reading and writing MERL .binary files.
  *
  * Format: three int32 (90, 90, 180), then 3 x 1,458,000 float64, R plane,

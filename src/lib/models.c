@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* models.c -- the model table, parameter checks and the plain-C evaluators.
  * The maths itself is kernels/bf_lobe.h (shared with the OpenCL kernel). */
 #include "internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pass.c -- the pass driver: a sample set bound to a context, each pass run
  * as the OpenCL kernel (enqueued here) or as bf_host_loop (pass_host.c).
  * Both return the moments of kernels/bf_layout.h in double. */

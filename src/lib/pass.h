@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pass.h -- the host side of a data pass.  A pass computes the moments of
  * kernels/bf_layout.h over a sample set at one point bf_pass_par; it runs
  * either as the OpenCL kernel (kernels/bf_pass.cl, enqueued by the driver)

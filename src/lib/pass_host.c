@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pass_host.c -- bf_host_loop: a data pass as a plain C loop, the same maths
  * as the kernel (kernels/bf_pass.h) one sample at a time. */
 #include "pass.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pocl_cache.c -- PoCL's kernel cache directory.  PoCL loads the compiled
  * kernels it finds there as shared objects, so a directory the library
  * chooses must be one no other user can write to or replace; and PoCL reads

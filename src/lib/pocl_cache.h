@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pocl_cache.h -- the directory PoCL keeps compiled kernels in: chosen (or
  * checked) once per process, before the library's first OpenCL call. */
 #ifndef BRDFFIT_POCL_CACHE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* samples.c -- the valid samples of a MERL table, prepared for a data pass
  * (struct brdffit_samples in samples.h). */
 #include "internal.h"

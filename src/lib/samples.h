@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* samples.h -- the inside of a sample set: the prepared geometry and
  * values a data pass reads (samples.c makes it). */
 #ifndef BRDFFIT_SAMPLES_H

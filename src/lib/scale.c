@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scale.c -- the channel scales: stored value x factor = BRDF value (1/sr). */
 #include "internal.h"
 

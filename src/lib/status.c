@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* status.c -- status texts, error reports, and the small utilities every file uses. */
 #define _POSIX_C_SOURCE 200809L
 #include "internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* table.c -- the MERL table object: create, free, and its stored values. */
 #include "internal.h"
 #include "grid.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* table_fill.c -- brdffit_table_fill_model: a table made from a model. */
 #include "internal.h"
 #include "grid.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_options.c -- libFuzzer target: the brdffit program's argument
  * parsers, with argv made from the input.
  *

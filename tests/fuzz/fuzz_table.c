@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_table.c -- libFuzzer target: the MERL table reader (brdffit_table_read)
  * and, for a table it accepts, the sample set made from it.
  *

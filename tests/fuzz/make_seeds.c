@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* make_seeds.c -- the seed corpora of the fuzz targets, written by `make fuzz`:
  *   make_seeds DIR   writes the files of DIR/table (fuzz_table.c) and of DIR/options
  *                    (fuzz_options.c); existing files are overwritten.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* collide.c -- a caller whose own functions have the names of the library's
  * internals (bf_fail, bf_now, bf_ok, bf_kernel_sources): it links against
  * libbrdffit.a and libbrdffit.so without a clash, each side calls its own,

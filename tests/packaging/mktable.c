@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mktable.c -- write a MERL table made by a Cook-Torrance lobe (F0 0.4,
  * m 0.15, plus a Lambertian term) for README's example to fit back
  * (tests/packaging.sh; needs no ../shared).  Usage: mktable OUT.binary */

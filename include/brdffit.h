@@ -57,6 +57,11 @@
  *   over the valid samples (all channels >= 0, theta_i and theta_o <= the
  *   cutoff, default 80 deg), w_s = the bin's solid angle
  *   (cos th_lo - cos th_hi)(sin^2 td_hi - sin^2 td_lo)/2.
+ *
+ *   Renders and incidence-plane curves: the sphere, camera, shading frame,
+ *   lights, environment map, coverage and image-error conventions are at
+ *   brdffit_render_options below, the curves' directions at
+ *   brdffit_curve_options.
  */
 #ifndef BRDFFIT_H
 #define BRDFFIT_H
@@ -441,6 +446,132 @@ size_t brdffit_struct_size(brdffit_struct_kind kind);
  * unknown. */
 size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member);
 
+/* ------------------------------------------------------------------ renders
+ *
+ * Render conventions (README.md repeats them):
+ *   Scene.  A unit sphere at the origin seen by an orthographic camera looking
+ *   down -z: camera frame x right, y up, z toward the viewer, so the view
+ *   direction wo = (0, 0, 1) at every pixel.  The sphere fills the N x N image
+ *   exactly: pixel (col, row), row 0 at the TOP, has centre
+ *   x = 2 (col + 0.5) / N - 1, y = 1 - 2 (row + 0.5) / N and lies on the sphere
+ *   when x^2 + y^2 < 1; its normal n = (x, y, sqrt(1 - x^2 - y^2)).
+ *   Shading frame of a pixel: z = n, x = t = normalize((0, 1, 0) x n) =
+ *   (n_z, 0, -n_x)/|.|, y = n x t; wi and wo are expressed in it before the
+ *   BRDF is evaluated (every model and the table are isotropic, so t only
+ *   fixes the frame).
+ *   Radiance.  L_c = sum_lights f_c(wi, wo) E_c max(0, n.l)
+ *                  + integral over the hemisphere of f_c(wi, wo) L_env,c(wi) cos(theta_i) dwi,
+ *   in the units of E (or of L_env) per steradian, linear, no tone mapping.
+ *   Lights are directional: dir points FROM the surface TOWARD the light, in
+ *   the camera frame.  Default lights (brdffit_render_default_lights): a key
+ *   light from the upper left front, dir (-1, 1, 1.5), E = (1, 1, 1), and a
+ *   grazing rim light from the right behind the sphere, dir (1, 0.25, -0.6),
+ *   E = (0.5, 0.5, 0.5): the key shows the highlight, the rim lights a
+ *   crescent at the right edge where theta_o > ~60 deg and theta_d is large
+ *   (Fresnel, shadowing and the 1/cos terms, where models differ).
+ *   Environment.  A latitude-longitude map of RGB radiance, env_width x
+ *   env_height texels, row 0 at the top: texel centre (i + 0.5, j + 0.5) is
+ *   direction (sin th sin ph, cos th, -sin th cos ph), th = pi (j + 0.5) / H
+ *   from +y (up), ph = 2 pi ((i + 0.5) / W - 0.5), so the map's centre is the
+ *   direction -z (behind the sphere as the camera sees it) and +x is at
+ *   three quarters of the width.  Bilinear between texel centres (wrapping
+ *   in longitude, clamped in latitude).  The integral is a fixed quadrature:
+ *   env_samples cosine-distributed directions per pixel from a Hammersley
+ *   set, shifted per pixel by a fixed hash of the pixel's index (Cranley-
+ *   Patterson rotation): estimate = pi / S sum_s f(wi_s, wo) L_env(wi_s).  No
+ *   random state: the same inputs give the same bytes, with any number of
+ *   threads.  A constant environment of radiance 1 gives a Lambertian
+ *   surface exactly d (up to rounding).  Sharp lobes under a small bright
+ *   source are noisy at low sample counts (BRDF-unaware sampling).
+ *   Output.  RGBA float, row-major, stride floats from one row to the next
+ *   (0: 4 N).  A is the coverage: 0 off the sphere (RGB 0), 1 on the sphere,
+ *   BRDFFIT_COVERAGE_MASKED (0.5) on the sphere where the table lookup of some
+ *   light or environment sample hit a masked bin (brdffit_table_lookup's -1
+ *   in some channel): that contribution counts as 0 in every channel, so RGB
+ *   there is a lower bound.  Model renders have no masked pixels.
+ *   Image error (brdffit_image_error): over the pixels whose reference A is
+ *   1, sqrt(sum_pixels sum_c (img - ref)^2 / sum_pixels sum_c ref^2), i.e.
+ *   the RMS difference relative to the reference's RMS.
+ */
+
+typedef struct brdffit_light {
+    double dir[3];   /* toward the light, camera frame; finite, non-zero (normalised) */
+    double rgb[3];   /* irradiance E per channel, finite, >= 0                       */
+} brdffit_light;
+
+#define BRDFFIT_RENDER_MAX_LIGHTS 16
+#define BRDFFIT_RENDER_DEFAULT_LIGHTS (-1) /* nlights: use the two default lights */
+#define BRDFFIT_COVERAGE_MASKED 0.5f
+
+/* The default key and rim lights (above) into out[0], out[1]; returns 2. */
+int brdffit_render_default_lights(brdffit_light out[2]);
+
+typedef struct brdffit_render_options {
+    size_t size;            /* sizeof(brdffit_render_options), set by _default()        */
+    int width;              /* N: the image is N x N; default 256, in 1..16384          */
+    int nlights;            /* BRDFFIT_RENDER_DEFAULT_LIGHTS (default), or 0..16: lights[] */
+    brdffit_light lights[BRDFFIT_RENDER_MAX_LIGHTS];
+    const float *env;       /* lat-long RGB radiance (finite, >= 0), or NULL (default)  */
+    int env_width, env_height; /* texels, >= 1 each when env is set                     */
+    size_t env_stride;      /* floats from one env row to the next; 0: 3 env_width      */
+    int env_samples;        /* quadrature directions per pixel; default 256, 1..65536   */
+    brdffit_interp interp;  /* table lookup; default BRDFFIT_INTERP_TRILINEAR            */
+    brdffit_scale scale;    /* table channel scale; default BRDFFIT_SCALE_STANDARD       */
+    int threads;            /* worker threads; 0 (default): the online CPUs, at most 16 */
+} brdffit_render_options;
+
+void brdffit_render_options_default(brdffit_render_options *opt);
+
+/* Render the measured table (brdffit_table_lookup) / a model (the evaluators
+ * at params) into rgba (see the conventions).  opt NULL: the defaults.
+ * Thread-safe: nothing but rgba is written. */
+brdffit_status brdffit_render_table(const brdffit_table *table, const brdffit_render_options *opt,
+                                    float *rgba, size_t stride, brdffit_error *err);
+brdffit_status brdffit_render_model(brdffit_model model, const brdffit_params *params,
+                                    const brdffit_render_options *opt, float *rgba,
+                                    size_t stride, brdffit_error *err);
+
+/* The image error of img against ref (both RGBA as rendered, width x height,
+ * the same stride, 0: 4 width) over the pixels whose ref A is 1; covered
+ * (may be NULL) gets their number.  BRDFFIT_E_NO_SAMPLES when no pixel is
+ * covered or the reference is black on all of them (the error is undefined). */
+brdffit_status brdffit_image_error(const float *ref, const float *img, int width, int height,
+                                   size_t stride, double *error, size_t *covered);
+
+/* ------------------------------------------------------------------ incidence-plane curves
+ *
+ * For each incidence angle theta_i (degrees), wi = (-sin ti, 0, cos ti) in
+ * the x-z plane of the local frame and wo = (sin to, 0, cos to) swept over
+ * theta_o = -90 + 180 (k + 0.5) / npoints degrees, k = 0..npoints-1 (cell
+ * centres: no sample on the horizon); theta_o > 0 is the mirror side
+ * (theta_o = theta_i is the mirror direction).  Values are f per channel in
+ * 1/sr (no cosine factor, no cube root: plots apply it).  A measured value
+ * whose lookup hits a masked bin is -1 in that channel (as the lookup).
+ * Output rgb: ntheta_i rows of npoints x 3 doubles, row a at rgb + a stride
+ * (stride in doubles, 0: 3 npoints).
+ */
+
+#define BRDFFIT_CURVE_MAX_THETA_I 16
+
+typedef struct brdffit_curve_options {
+    size_t size;            /* sizeof(brdffit_curve_options), set by _default()   */
+    int ntheta_i;           /* 1..16; default 4                                     */
+    double theta_i_deg[BRDFFIT_CURVE_MAX_THETA_I]; /* each in [0, 90); default 20, 40, 60, 75 */
+    int npoints;            /* theta_o samples, 2..100000; default 180 (1 deg apart) */
+    brdffit_interp interp;  /* table lookup; default BRDFFIT_INTERP_TRILINEAR      */
+    brdffit_scale scale;    /* table channel scale; default BRDFFIT_SCALE_STANDARD */
+} brdffit_curve_options;
+
+void brdffit_curve_options_default(brdffit_curve_options *opt);
+
+/* The theta_o of the npoints samples, in degrees, into theta_o_deg. */
+brdffit_status brdffit_curve_theta_o(const brdffit_curve_options *opt, double *theta_o_deg);
+/* The measured curves (brdffit_table_lookup) / a model's (brdffit_eval). */
+brdffit_status brdffit_curve_table(const brdffit_table *table, const brdffit_curve_options *opt,
+                                   double *rgb, size_t stride, brdffit_error *err);
+brdffit_status brdffit_curve_model(brdffit_model model, const brdffit_params *params,
+                                   const brdffit_curve_options *opt, double *rgb, size_t stride,
+                                   brdffit_error *err);
 #if defined(__GNUC__)
 #pragma GCC visibility pop
 #endif

@@ -1,0 +1,477 @@
+/* render.c -- images of a sphere lit by directional lights and an environment
+ * map, shaded by a measured table or by a model, into caller buffers; the
+ * image error between two renders.  Conventions: include/brdffit.h. */
+#define _POSIX_C_SOURCE 200809L
+#include "internal.h"
+
+#include "bf_lobe.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <string.h>
+#include <unistd.h>
+
+#define MAX_WIDTH 16384
+#define MAX_ENV_SAMPLES 65536
+#define MAX_THREADS 16
+
+int brdffit_render_default_lights(brdffit_light out[2])
+{
+    static const brdffit_light dflt[2] = {
+        { { -1.0, 1.0, 1.5 }, { 1.0, 1.0, 1.0 } },   /* key: upper left front   */
+        { { 1.0, 0.25, -0.6 }, { 0.5, 0.5, 0.5 } },  /* rim: right, from behind */
+    };
+    if (out)
+        memcpy(out, dflt, sizeof dflt);
+    return 2;
+}
+
+void brdffit_render_options_default(brdffit_render_options *opt)
+{
+    if (!opt)
+        return;
+    memset(opt, 0, sizeof *opt);
+    opt->size = sizeof *opt;
+    opt->width = 256;
+    opt->nlights = BRDFFIT_RENDER_DEFAULT_LIGHTS;
+    opt->env_samples = 256;
+    opt->interp = BRDFFIT_INTERP_TRILINEAR;
+    opt->scale = BRDFFIT_SCALE_STANDARD;
+    opt->threads = 0;
+}
+
+/* ------------------------------------------------------------------ shading */
+
+/* What shades a pixel: a table lookup or a model.  Returns 1 for a valid
+ * value, 0 when the lookup hit a masked bin (rgb then holds the channels
+ * that were valid, 0 in the others). */
+typedef struct shader {
+    const brdffit_table *table;   /* the reference, or NULL for a model */
+    brdffit_scale scale;
+    brdffit_interp interp;
+    brdffit_model model;
+    const brdffit_params *params;
+    double lam[3];
+} shader;
+
+static int shade(const shader *sh, const double wi[3], const double wo[3], double rgb[3])
+{
+    if (sh->table) {
+        if (brdffit_table_lookup(sh->table, wi, wo, sh->scale, sh->interp, rgb) != BRDFFIT_OK) {
+            rgb[0] = rgb[1] = rgb[2] = 0;
+            return 0;
+        }
+        int ok = 1;
+        for (int c = 0; c < 3; c++)
+            if (rgb[c] < 0) {
+                rgb[c] = 0;
+                ok = 0;
+            }
+        return ok;
+    }
+    /* wi, wo are unit and above the horizon (the caller's frame makes them so) */
+    bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
+    bf_geom_derive(&g);
+    double K[3];
+    bf_lobe((int)sh->model, &g, sh->params->p, sh->lam, K);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = sh->params->d[c] / BF_PI + sh->params->s[c] * K[c];
+    return 1;
+}
+
+/* ------------------------------------------------------------------ the scene */
+
+typedef struct scene {
+    int n;                        /* image width = height                   */
+    int nlights;
+    double ldir[BRDFFIT_RENDER_MAX_LIGHTS][3];  /* unit, camera frame     */
+    double lrgb[BRDFFIT_RENDER_MAX_LIGHTS][3];
+    const float *env;             /* NULL: no environment                   */
+    int ew, eh;
+    size_t estride;
+    int samples;
+    double (*hammersley)[2];      /* samples points in [0, 1)^2              */
+} scene;
+
+/* Bilinear radiance of the environment in camera-frame direction d (unit). */
+static void env_radiance(const scene *sc, const double d[3], double L[3])
+{
+    double th = acos(fmin(fmax(d[1], -1.0), 1.0));
+    double ph = atan2(d[0], -d[2]);
+    double u = (ph / (2 * BF_PI) + 0.5) * sc->ew - 0.5; /* texel-centre coordinates */
+    double v = th / BF_PI * sc->eh - 0.5;
+    double fu = floor(u), fv = floor(v);
+    double au = u - fu, av = v - fv;
+    int i0 = (int)fu, j0 = (int)fv;
+    int i1 = i0 + 1, j1 = j0 + 1;
+    i0 = ((i0 % sc->ew) + sc->ew) % sc->ew;
+    i1 = ((i1 % sc->ew) + sc->ew) % sc->ew;
+    j0 = j0 < 0 ? 0 : j0 >= sc->eh ? sc->eh - 1 : j0;
+    j1 = j1 < 0 ? 0 : j1 >= sc->eh ? sc->eh - 1 : j1;
+    const float *r0 = sc->env + (size_t)j0 * sc->estride;
+    const float *r1 = sc->env + (size_t)j1 * sc->estride;
+    for (int c = 0; c < 3; c++) {
+        double top = (1 - au) * r0[3 * i0 + c] + au * r0[3 * i1 + c];
+        double bot = (1 - au) * r1[3 * i0 + c] + au * r1[3 * i1 + c];
+        L[c] = (1 - av) * top + av * bot;
+    }
+}
+
+/* A fixed hash of a pixel index to two numbers in [0, 1) (splitmix64). */
+static void pixel_shift(uint64_t index, double out[2])
+{
+    uint64_t z = index * 0x9E3779B97F4A7C15ull + 0x2545F4914F6CDD1Dull;
+    for (int k = 0; k < 2; k++) {
+        z += 0x9E3779B97F4A7C15ull;
+        uint64_t x = z;
+        x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+        x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+        x ^= x >> 31;
+        out[k] = (double)(x >> 11) * (1.0 / 9007199254740992.0);
+    }
+}
+
+static void to_local(const double t[3], const double b[3], const double n[3], const double d[3],
+                     double out[3])
+{
+    out[0] = t[0] * d[0] + t[1] * d[1] + t[2] * d[2];
+    out[1] = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+    out[2] = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+}
+
+/* One pixel: RGB radiance and coverage into px[0..3]. */
+static void render_pixel(const scene *sc, const shader *sh, int col, int row, float *px)
+{
+    int N = sc->n;
+    double x = 2.0 * (col + 0.5) / N - 1.0, y = 1.0 - 2.0 * (row + 0.5) / N;
+    double r2 = x * x + y * y;
+    if (!(r2 < 1.0)) {
+        px[0] = px[1] = px[2] = px[3] = 0.0f;
+        return;
+    }
+    double n[3] = { x, y, sqrt(1.0 - r2) };
+    double tl = sqrt(n[2] * n[2] + n[0] * n[0]); /* > 0: n_z > 0 */
+    double t[3] = { n[2] / tl, 0.0, -n[0] / tl };
+    double b[3] = { n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2],
+                    n[0] * t[1] - n[1] * t[0] };
+    const double view[3] = { 0.0, 0.0, 1.0 };
+    double wo[3], wi[3], f[3];
+    to_local(t, b, n, view, wo);
+    double L[3] = { 0, 0, 0 };
+    int masked = 0;
+    for (int k = 0; k < sc->nlights; k++) {
+        to_local(t, b, n, sc->ldir[k], wi);
+        if (wi[2] <= 0)
+            continue;
+        if (!shade(sh, wi, wo, f))
+            masked = 1;
+        for (int c = 0; c < 3; c++)
+            L[c] += f[c] * sc->lrgb[k][c] * wi[2];
+    }
+    if (sc->env) {
+        double shift[2], Ls[3], Le[3] = { 0, 0, 0 };
+        pixel_shift((uint64_t)row * (uint64_t)N + (uint64_t)col, shift);
+        for (int s = 0; s < sc->samples; s++) {
+            double u1 = sc->hammersley[s][0] + shift[0], u2 = sc->hammersley[s][1] + shift[1];
+            u1 -= floor(u1);
+            u2 -= floor(u2);
+            /* cosine-distributed: pdf cos(theta)/pi, so f L cos / pdf = pi f L */
+            double rr = sqrt(u1), phi = 2.0 * BF_PI * u2;
+            wi[0] = rr * cos(phi);
+            wi[1] = rr * sin(phi);
+            wi[2] = sqrt(fmax(1.0 - u1, 0.0));
+            if (!(wi[2] > 0))
+                continue;
+            double d[3];
+            for (int c = 0; c < 3; c++)
+                d[c] = wi[0] * t[c] + wi[1] * b[c] + wi[2] * n[c];
+            env_radiance(sc, d, Ls);
+            if (!shade(sh, wi, wo, f))
+                masked = 1;
+            for (int c = 0; c < 3; c++)
+                Le[c] += f[c] * Ls[c];
+        }
+        for (int c = 0; c < 3; c++)
+            L[c] += Le[c] * (BF_PI / sc->samples);
+    }
+    for (int c = 0; c < 3; c++)
+        px[c] = (float)L[c];
+    px[3] = masked ? BRDFFIT_COVERAGE_MASKED : 1.0f;
+}
+
+/* ------------------------------------------------------------------ threads */
+
+typedef struct job {
+    const scene *sc;
+    const shader *sh;
+    float *rgba;
+    size_t stride;
+    int first, step; /* rows first, first + step, ... */
+} job;
+
+static void *render_rows(void *arg)
+{
+    const job *j = arg;
+    for (int row = j->first; row < j->sc->n; row += j->step) {
+        float *line = j->rgba + (size_t)row * j->stride;
+        for (int col = 0; col < j->sc->n; col++)
+            render_pixel(j->sc, j->sh, col, row, line + 4 * (size_t)col);
+    }
+    return NULL;
+}
+
+static int thread_count(int asked, int rows)
+{
+    int n = asked;
+    if (n <= 0) {
+        long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+        n = cpus > 0 ? (int)cpus : 1;
+    }
+    if (n > MAX_THREADS)
+        n = MAX_THREADS;
+    if (n > rows)
+        n = rows;
+    return n < 1 ? 1 : n;
+}
+
+/* Rows are dealt round-robin to the threads; every pixel is computed the
+ * same way whichever thread does it, so the bytes do not depend on threads. */
+static brdffit_status run_jobs(const scene *sc, const shader *sh, int threads, float *rgba,
+                               size_t stride, brdffit_error *err)
+{
+    int nt = thread_count(threads, sc->n);
+    job jobs[MAX_THREADS];
+    pthread_t tid[MAX_THREADS];
+    int started = 0;
+    for (int k = 0; k < nt; k++)
+        jobs[k] = (job){ sc, sh, rgba, stride, k, nt };
+    for (int k = 1; k < nt; k++) {
+        if (pthread_create(&tid[k], NULL, render_rows, &jobs[k]) != 0)
+            break;
+        started++;
+    }
+    render_rows(&jobs[0]);
+    for (int k = 1; k <= started; k++)
+        pthread_join(tid[k], NULL);
+    /* rows of threads that could not start: done here */
+    for (int k = started + 1; k < nt; k++)
+        render_rows(&jobs[k]);
+    (void)err;
+    return BRDFFIT_OK;
+}
+
+/* ------------------------------------------------------------------ options */
+
+/* The options in effect: opt's members inside opt->size over the defaults. */
+static brdffit_status read_options(const brdffit_render_options *opt, brdffit_render_options *o,
+                                   brdffit_error *err)
+{
+    brdffit_render_options_default(o);
+    if (!opt)
+        return BRDFFIT_OK;
+    if (opt->size == 0 || opt->size > sizeof *o)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "render options: size %zu (expected 1..%zu: set it with "
+                       "brdffit_render_options_default)",
+                       opt->size, sizeof *o);
+    memcpy(o, opt, opt->size);
+    o->size = sizeof *o;
+    return BRDFFIT_OK;
+}
+
+static int finite3(const double v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static brdffit_status make_lights(const brdffit_render_options *o, scene *sc, brdffit_error *err)
+{
+    brdffit_light dflt[2];
+    const brdffit_light *src = o->lights;
+    int n = o->nlights;
+    if (n == BRDFFIT_RENDER_DEFAULT_LIGHTS) {
+        n = brdffit_render_default_lights(dflt);
+        src = dflt;
+    }
+    if (n < 0 || n > BRDFFIT_RENDER_MAX_LIGHTS)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "render: nlights = %d (0..%d or %d)",
+                       n, BRDFFIT_RENDER_MAX_LIGHTS, BRDFFIT_RENDER_DEFAULT_LIGHTS);
+    sc->nlights = n;
+    for (int k = 0; k < n; k++) {
+        const double *d = src[k].dir, *e = src[k].rgb;
+        double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!finite3(d) || !isfinite(len) || !(len > 0))
+            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                           "render: light %d: direction (%g, %g, %g) must be finite and non-zero",
+                           k, d[0], d[1], d[2]);
+        if (!finite3(e) || e[0] < 0 || e[1] < 0 || e[2] < 0)
+            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                           "render: light %d: irradiance (%g, %g, %g) must be finite and >= 0", k,
+                           e[0], e[1], e[2]);
+        for (int c = 0; c < 3; c++) {
+            sc->ldir[k][c] = d[c] / len;
+            sc->lrgb[k][c] = e[c];
+        }
+    }
+    return BRDFFIT_OK;
+}
+
+static brdffit_status make_env(const brdffit_render_options *o, scene *sc, brdffit_error *err)
+{
+    sc->env = NULL;
+    sc->hammersley = NULL;
+    if (!o->env)
+        return BRDFFIT_OK;
+    if (o->env_width < 1 || o->env_height < 1 || o->env_width > (1 << 20) ||
+        o->env_height > (1 << 20))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "render: environment %d x %d texels",
+                       o->env_width, o->env_height);
+    size_t stride = o->env_stride ? o->env_stride : 3 * (size_t)o->env_width;
+    if (stride < 3 * (size_t)o->env_width)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "render: environment stride %zu < 3 x width %d", stride, o->env_width);
+    if (o->env_samples < 1 || o->env_samples > MAX_ENV_SAMPLES)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "render: env_samples = %d (1..%d)",
+                       o->env_samples, MAX_ENV_SAMPLES);
+    for (int j = 0; j < o->env_height; j++) {
+        const float *r = o->env + (size_t)j * stride;
+        for (int i = 0; i < 3 * o->env_width; i++)
+            if (!isfinite(r[i]) || r[i] < 0)
+                return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                               "render: environment texel (%d, %d) channel %d is %g (radiance "
+                               "must be finite and >= 0)",
+                               i / 3, j, i % 3, (double)r[i]);
+    }
+    sc->hammersley = bf_alloc_aligned((size_t)o->env_samples * sizeof *sc->hammersley);
+    if (!sc->hammersley)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "render: no memory for %d samples",
+                       o->env_samples);
+    for (int s = 0; s < o->env_samples; s++) {
+        /* (s + 1/2) / S and the radical inverse of s in base 2 */
+        uint32_t bits = (uint32_t)s;
+        bits = (bits << 16) | (bits >> 16);
+        bits = ((bits & 0x55555555u) << 1) | ((bits & 0xAAAAAAAAu) >> 1);
+        bits = ((bits & 0x33333333u) << 2) | ((bits & 0xCCCCCCCCu) >> 2);
+        bits = ((bits & 0x0F0F0F0Fu) << 4) | ((bits & 0xF0F0F0F0u) >> 4);
+        bits = ((bits & 0x00FF00FFu) << 8) | ((bits & 0xFF00FF00u) >> 8);
+        sc->hammersley[s][0] = (s + 0.5) / o->env_samples;
+        sc->hammersley[s][1] = bits * (1.0 / 4294967296.0);
+    }
+    sc->env = o->env;
+    sc->ew = o->env_width;
+    sc->eh = o->env_height;
+    sc->estride = stride;
+    sc->samples = o->env_samples;
+    return BRDFFIT_OK;
+}
+
+/* Check the options and the output buffer; build the scene (free its
+ * hammersley set with bf_free_aligned). */
+static brdffit_status prepare(const brdffit_render_options *opt, float *rgba, size_t *stride,
+                              brdffit_render_options *o, scene *sc, brdffit_error *err)
+{
+    memset(sc, 0, sizeof *sc);
+    brdffit_status st = read_options(opt, o, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    if (o->width < 1 || o->width > MAX_WIDTH)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "render: width %d (1..%d)", o->width,
+                       MAX_WIDTH);
+    if (!rgba)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "render: rgba is NULL");
+    if (*stride == 0)
+        *stride = 4 * (size_t)o->width;
+    if (*stride < 4 * (size_t)o->width)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "render: stride %zu < 4 x width %d",
+                       *stride, o->width);
+    if ((o->interp != BRDFFIT_INTERP_NEAREST && o->interp != BRDFFIT_INTERP_TRILINEAR) ||
+        (o->scale != BRDFFIT_SCALE_STANDARD && o->scale != BRDFFIT_SCALE_FLAT))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "render: unknown interp %d or scale %d",
+                       (int)o->interp, (int)o->scale);
+    sc->n = o->width;
+    st = make_lights(o, sc, err);
+    if (st == BRDFFIT_OK)
+        st = make_env(o, sc, err);
+    return st;
+}
+
+static brdffit_status render(const shader *sh, const brdffit_render_options *opt, float *rgba,
+                             size_t stride, brdffit_error *err)
+{
+    brdffit_render_options o;
+    scene sc;
+    brdffit_status st = prepare(opt, rgba, &stride, &o, &sc, err);
+    if (st == BRDFFIT_OK) {
+        shader s = *sh;
+        s.scale = o.scale;
+        s.interp = o.interp;
+        st = run_jobs(&sc, &s, o.threads, rgba, stride, err);
+    }
+    bf_free_aligned(sc.hammersley);
+    if (st == BRDFFIT_OK)
+        bf_ok(err);
+    return st;
+}
+
+brdffit_status brdffit_render_table(const brdffit_table *table, const brdffit_render_options *opt,
+                                    float *rgba, size_t stride, brdffit_error *err)
+{
+    if (!table)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_render_table: table is NULL");
+    shader sh;
+    memset(&sh, 0, sizeof sh);
+    sh.table = table;
+    return render(&sh, opt, rgba, stride, err);
+}
+
+brdffit_status brdffit_render_model(brdffit_model model, const brdffit_params *params,
+                                    const brdffit_render_options *opt, float *rgba,
+                                    size_t stride, brdffit_error *err)
+{
+    brdffit_status st = brdffit_params_check(model, params, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    shader sh;
+    memset(&sh, 0, sizeof sh);
+    sh.model = model;
+    sh.params = params;
+    bf_lambdas(params, sh.lam);
+    return render(&sh, opt, rgba, stride, err);
+}
+
+/* ------------------------------------------------------------------ image error */
+
+brdffit_status brdffit_image_error(const float *ref, const float *img, int width, int height,
+                                   size_t stride, double *error, size_t *covered)
+{
+    if (!ref || !img || !error || width < 1 || height < 1)
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    if (stride == 0)
+        stride = 4 * (size_t)width;
+    if (stride < 4 * (size_t)width)
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    double sd = 0, sr = 0;
+    size_t n = 0;
+    for (int row = 0; row < height; row++) {
+        const float *a = ref + (size_t)row * stride, *b = img + (size_t)row * stride;
+        for (int col = 0; col < width; col++, a += 4, b += 4) {
+            if (a[3] != 1.0f)
+                continue;
+            n++;
+            for (int c = 0; c < 3; c++) {
+                double d = (double)b[c] - (double)a[c];
+                sd += d * d;
+                sr += (double)a[c] * (double)a[c];
+            }
+        }
+    }
+    if (covered)
+        *covered = n;
+    if (n == 0 || !(sr > 0) || !isfinite(sd) || !isfinite(sr)) {
+        *error = 0;
+        return BRDFFIT_E_NO_SAMPLES;
+    }
+    *error = sqrt(sd / sr);
+    return BRDFFIT_OK;
+}

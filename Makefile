@@ -44,6 +44,10 @@ PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null || echo -I/usr/incl
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lcminpack)
 CHECK_CFLAGS = $(shell pkg-config --cflags check 2>/dev/null)
 CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null || echo -lcheck -lsubunit -lrt -lpthread -lm)
+# The program's image files: OpenEXR's C API (only its Core library) and libpng.
+CLI_CFLAGS = $(shell pkg-config --cflags OpenEXR libpng 2>/dev/null)
+CLI_LIBS   = $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/dev/null)),-lOpenEXRCore) \
+             $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 
 # Include paths: the library sees its own internals and the kernel headers;
 # the program sees the public header and its own; the tests, which reach
@@ -124,24 +128,25 @@ $(BUILD)/libbrdffit.so: $(BUILD)/$(SOFILE)
 	ln -sf $(SOFILE) $(BUILD)/$(SONAME) && ln -sf $(SONAME) $@
 
 $(BUILD)/cli/%.o: src/cli/%.c | $(BUILD)/cli
-	$(CC) $(CPPFLAGS) $(CLI_INC) $(CFLAGS) -c -o $@ $<
+	$(CC) $(CPPFLAGS) $(CLI_INC) $(CLI_CFLAGS) $(CFLAGS) -c -o $@ $<
 
 $(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
-	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
-	$(CC) $(CPPFLAGS) $(TEST_INC) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
+	$(CC) $(CPPFLAGS) $(TEST_INC) $(CLI_CFLAGS) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
 
 # expat: the tests' independent XML parser
 $(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit-internal.a
-	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) -lexpat $(LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) -lexpat $(CLI_LIBS) $(LDLIBS)
 
 # The benchmark reads its tables with the tests' helpers (tests/testutil.c).
 $(BUILD)/bench/%.o: bench/%.c | $(BUILD)/bench
-	$(CC) $(CPPFLAGS) $(LIB_INC) -Itests $(CFLAGS) -c -o $@ $<
+	$(CC) $(CPPFLAGS) $(LIB_INC) $(CLI_INC) -Itests $(CFLAGS) -c -o $@ $<
 
-$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(BUILD)/libbrdffit-internal.a
-	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+# it also times the program's per-material render and plot files (src/cli)
+$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit-internal.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
 # libFuzzer targets (tests/fuzz/) and their seed writer.
 $(BUILD)/fuzz:

@@ -1,0 +1,358 @@
+/* render_files.c -- a material's renders (EXR + PNG), difference images,
+ * incidence-plane plots (SVG) and renders.json in one directory.  What the
+ * files are and the display conventions: render_files.h. */
+#define _POSIX_C_SOURCE 200809L
+#include "render_files.h"
+#include "cli.h"
+#include "image_io.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+void rf_settings_default(rf_settings *s, brdffit_scale scale)
+{
+    memset(s, 0, sizeof *s);
+    s->render = 1;
+    s->plot = 1;
+    brdffit_render_options_default(&s->render_opt);
+    brdffit_curve_options_default(&s->curve_opt);
+    s->render_opt.scale = scale;
+    s->curve_opt.scale = scale;
+}
+
+/* ------------------------------------------------------------------ helpers */
+
+/* err gets st and the message (truncated to fit); returns -1. */
+static int failf(brdffit_error *err, brdffit_status st, const char *fmt, ...) CLI_PRINTF(3, 4);
+static int failf(brdffit_error *err, brdffit_status st, const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        va_start(ap, fmt);
+        err->status = st;
+        vsnprintf(err->message, sizeof err->message, fmt, ap);
+        va_end(ap);
+    }
+    return -1;
+}
+
+/* s into buf[len], cut at len - 1 bytes. */
+static void copy_text(char *buf, size_t len, const char *s)
+{
+    size_t n = strlen(s);
+    if (n >= len)
+        n = len - 1;
+    memcpy(buf, s, n);
+    buf[n] = '\0';
+}
+
+static int join(char *buf, size_t len, const char *dir, const char *name, brdffit_error *err)
+{
+    int n = snprintf(buf, len, "%s/%s", dir, name);
+    if (n < 0 || (size_t)n >= len)
+        return failf(err, BRDFFIT_E_FILE_WRITE, "%s/%s: path too long", dir, name);
+    return 0;
+}
+
+/* dir exists as a writable directory (made when missing). */
+static int ensure_dir(const char *dir, brdffit_error *err)
+{
+    struct stat st;
+    if (stat(dir, &st) != 0) {
+        if (errno != ENOENT || mkdir(dir, 0777) != 0)
+            return failf(err, BRDFFIT_E_FILE_WRITE, "%s: cannot make the directory: %s", dir,
+                         strerror(errno));
+    } else if (!S_ISDIR(st.st_mode)) {
+        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: not a directory", dir);
+    }
+    if (access(dir, W_OK | X_OK) != 0)
+        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: cannot write into the directory: %s", dir,
+                     strerror(errno));
+    return 0;
+}
+
+static void add_file(rf_result *r, const char *file, const char *caption, rf_kind kind, int fit)
+{
+    if (r->nfiles >= RF_MAX_FILES)
+        return;
+    rf_file *f = &r->files[r->nfiles++];
+    copy_text(f->file, sizeof f->file, file);
+    copy_text(f->caption, sizeof f->caption, caption);
+    f->kind = kind;
+    f->fit = fit;
+}
+
+static const char *stem_of(const rf_fit *f)
+{
+    return f->stem ? f->stem : brdffit_model_get(f->model)->name;
+}
+
+static const char *label_of(const rf_fit *f)
+{
+    return f->label ? f->label : brdffit_model_get(f->model)->title;
+}
+
+/* "Ward: 0.0562" (the paper's caption), or "Ward" when the Error is unknown. */
+static void caption_of(const rf_fit *f, char *buf, size_t len)
+{
+    if (isfinite(f->error))
+        snprintf(buf, len, "%s: %.3g", label_of(f), f->error);
+    else
+        snprintf(buf, len, "%s", label_of(f));
+}
+
+/* ------------------------------------------------------------------ renders */
+
+typedef struct render_job {
+    const char *dir;
+    int n;                   /* image width = height */
+    float *ref, *img;        /* RGBA, 4 n^2 floats each */
+    unsigned char *rgb8;     /* 3 n^2 */
+    rf_result *r;
+    brdffit_error *err;
+} render_job;
+
+/* name.exr (linear) and name.png (display) of rgba. */
+static int write_pair(render_job *j, const float *rgba, const char *stem, const char *caption,
+                      int fit)
+{
+    char name[160], path[4096];
+    snprintf(name, sizeof name, "%s.exr", stem);
+    if (join(path, sizeof path, j->dir, name, j->err) != 0 ||
+        exr_write_rgba(path, rgba, j->n, j->n, 0, j->err) != 0)
+        return -1;
+    add_file(j->r, name, caption, RF_DATA, fit);
+    tm_to_srgb8(rgba, j->n, j->n, 0, j->r->exposure, j->rgb8);
+    snprintf(name, sizeof name, "%s.png", stem);
+    if (join(path, sizeof path, j->dir, name, j->err) != 0 ||
+        png_write_rgb8(path, j->rgb8, j->n, j->n, j->err) != 0)
+        return -1;
+    add_file(j->r, name, caption, RF_IMAGE, fit);
+    return 0;
+}
+
+static int write_model(render_job *j, const rf_fit *f, int k, const rf_settings *s)
+{
+    char caption[256], name[160], path[4096];
+    brdffit_error lerr;
+    if (brdffit_render_model(f->model, &f->params, &s->render_opt, j->img, 0, &lerr) != BRDFFIT_OK)
+        return failf(j->err, lerr.status, "render %s: %s", stem_of(f), lerr.message);
+    caption_of(f, caption, sizeof caption);
+    if (write_pair(j, j->img, stem_of(f), caption, k) != 0)
+        return -1;
+    double e;
+    j->r->image_error[k] = brdffit_image_error(j->ref, j->img, j->n, j->n, 0, &e, NULL) ==
+                                   BRDFFIT_OK ? e : NAN;
+    tm_difference8(j->ref, j->img, j->n, j->n, 0, j->r->diff_scale, j->rgb8);
+    snprintf(name, sizeof name, "%s-diff.png", stem_of(f));
+    if (join(path, sizeof path, j->dir, name, j->err) != 0 ||
+        png_write_rgb8(path, j->rgb8, j->n, j->n, j->err) != 0)
+        return -1;
+    snprintf(caption, sizeof caption, "%s |model - reference|, image error %.3g (white = %.3g)",
+             label_of(f), j->r->image_error[k], j->r->diff_scale);
+    add_file(j->r, name, caption, RF_IMAGE, k);
+    return 0;
+}
+
+static int write_renders(const char *dir, const brdffit_table *table, const rf_fit *fits,
+                         int nfits, const rf_settings *s, rf_result *r, brdffit_error *err)
+{
+    int n = s->render_opt.width, rc = -1;
+    size_t px = (size_t)n * (size_t)n;
+    render_job j = { dir, n, malloc(16 * px), malloc(16 * px), malloc(3 * px), r, err };
+    brdffit_error lerr;
+    if (!j.ref || !j.img || !j.rgb8) {
+        failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", dir);
+        goto done;
+    }
+    if (brdffit_render_table(table, &s->render_opt, j.ref, 0, &lerr) != BRDFFIT_OK) {
+        failf(err, lerr.status, "render reference: %s", lerr.message);
+        goto done;
+    }
+    r->covered = r->masked = 0;
+    for (size_t i = 0; i < px; i++) {
+        r->covered += j.ref[4 * i + 3] == 1.0f;
+        r->masked += j.ref[4 * i + 3] == BRDFFIT_COVERAGE_MASKED;
+    }
+    r->exposure = s->exposure > 0 ? s->exposure : tm_auto_exposure(j.ref, n, n, 0);
+    r->diff_scale = RF_DIFF_FRACTION / r->exposure;
+    if (write_pair(&j, j.ref, "reference", "Reference (measured)", -1) != 0)
+        goto done;
+    for (int k = 0; k < nfits; k++)
+        if (write_model(&j, &fits[k], k, s) != 0)
+            goto done;
+    rc = 0;
+done:
+    free(j.ref);
+    free(j.img);
+    free(j.rgb8);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ renders.json */
+
+static void json_light_list(FILE *f, const brdffit_render_options *o)
+{
+    brdffit_light dflt[2];
+    const brdffit_light *l = o->lights;
+    int n = o->nlights;
+    if (n == BRDFFIT_RENDER_DEFAULT_LIGHTS)
+        n = brdffit_render_default_lights(dflt), l = dflt;
+    fputc('[', f);
+    for (int k = 0; k < n; k++) {
+        fputs(k ? ",{\"dir\":" : "{\"dir\":", f);
+        json_numbers(f, l[k].dir, 3);
+        fputs(",\"rgb\":", f);
+        json_numbers(f, l[k].rgb, 3);
+        fputc('}', f);
+    }
+    fputc(']', f);
+}
+
+static void json_body(FILE *f, const char *material, const rf_fit *fits, int nfits,
+                      const rf_settings *s, const rf_result *r)
+{
+    const brdffit_render_options *o = &s->render_opt;
+    fputs("{\"material\":", f);
+    json_string(f, material);
+    fprintf(f, ",\"size\":%d,\"lights\":", o->width);
+    json_light_list(f, o);
+    fputs(",\"env\":", f);
+    json_string(f, o->env ? (s->env_file ? s->env_file : "") : NULL);
+    fprintf(f, ",\"env_samples\":%d,\"interp\":\"%s\",\"scale\":", o->env ? o->env_samples : 0,
+            o->interp == BRDFFIT_INTERP_NEAREST ? "nearest" : "trilinear");
+    json_string(f, brdffit_scale_name(o->scale));
+    fputs(",\"exposure\":", f);
+    json_number(f, r->exposure);
+    fprintf(f, ",\"exposure_rule\":\"%s\",\"transfer\":\"sRGB (IEC 61966-2-1) of exposure x "
+               "radiance, clamped to [0, 1], 8-bit\"",
+            s->exposure > 0 ? "given" : "1 / 99th percentile of max(R, G, B) over the sphere");
+    fputs(",\"difference\":{\"value\":\"max over R, G, B of |model - reference|\","
+          "\"full_scale\":", f);
+    json_number(f, r->diff_scale);
+    fputs(",\"colours\":\"black 0, blue 1/4, red 1/2, yellow 3/4, white 1 of full scale; grey: "
+          "masked reference pixel\"}", f);
+    fprintf(f, ",\"image_error\":\"RMS of model - reference over covered pixels / RMS of the "
+               "reference\",\"covered\":%zu,\"masked\":%zu,\"models\":[", r->covered, r->masked);
+    for (int k = 0; k < nfits; k++) {
+        fputs(k ? ",{\"model\":" : "{\"model\":", f);
+        json_string(f, brdffit_model_get(fits[k].model)->name);
+        fputs(",\"stem\":", f);
+        json_string(f, stem_of(&fits[k]));
+        fputs(",\"error\":", f);
+        json_number(f, fits[k].error);
+        fputs(",\"image_error\":", f);
+        json_number(f, r->image_error[k]);
+        fputc('}', f);
+    }
+    fputs("]}\n", f);
+}
+
+static int write_json(const char *dir, const char *material, const rf_fit *fits, int nfits,
+                      const rf_settings *s, rf_result *r, brdffit_error *err)
+{
+    char path[4096];
+    if (join(path, sizeof path, dir, "renders.json", err) != 0)
+        return -1;
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: %s", path, strerror(errno));
+    json_body(f, material, fits, nfits, s, r);
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad) {
+        remove(path);
+        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: write error", path);
+    }
+    add_file(r, "renders.json", "render settings and image errors", RF_DATA, -1);
+    return 0;
+}
+
+/* ------------------------------------------------------------------ plots */
+
+static int write_plots(const char *dir, const char *material, const brdffit_table *table,
+                       const rf_fit *fits, int nfits, const rf_settings *s, rf_result *r,
+                       brdffit_error *err)
+{
+    const brdffit_curve_options *o = &s->curve_opt;
+    brdffit_error lerr;
+    int rc = -1;
+    size_t row = 3 * (size_t)o->npoints;
+    double *th = malloc(sizeof(double) * (size_t)o->npoints);
+    double *meas = malloc(sizeof(double) * row * (size_t)o->ntheta_i);
+    double *mod = malloc(sizeof(double) * row * (size_t)o->ntheta_i);
+    char path[4096], name[160], title[512], caption[256];
+    if (!th || !meas || !mod) {
+        failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the curves", dir);
+        goto done;
+    }
+    if (brdffit_curve_theta_o(o, th) != BRDFFIT_OK ||
+        brdffit_curve_table(table, o, meas, 0, &lerr) != BRDFFIT_OK) {
+        failf(err, BRDFFIT_E_INVALID_ARGUMENT, "curves measured: %s", lerr.message);
+        goto done;
+    }
+    snprintf(title, sizeof title, "%s: measured (incidence plane, cube root)", material);
+    if (join(path, sizeof path, dir, "plot-measured.svg", err) != 0 ||
+        plot_write_svg(path, title, o, th, meas, NULL, 0, err) != 0)
+        goto done;
+    add_file(r, "plot-measured.svg", "Measured (incidence plane, cube root)", RF_PLOT, -1);
+    for (int k = 0; k < nfits; k++) {
+        if (brdffit_curve_model(fits[k].model, &fits[k].params, o, mod, 0, &lerr) != BRDFFIT_OK) {
+            failf(err, lerr.status, "curves %s: %s", stem_of(&fits[k]), lerr.message);
+            goto done;
+        }
+        caption_of(&fits[k], caption, sizeof caption);
+        if (isfinite(fits[k].error))
+            snprintf(title, sizeof title, "%s: Error %.3g \xe2\x80\x94 %s", label_of(&fits[k]),
+                     fits[k].error, material);
+        else
+            snprintf(title, sizeof title, "%s \xe2\x80\x94 %s", label_of(&fits[k]), material);
+        snprintf(name, sizeof name, "plot-%s.svg", stem_of(&fits[k]));
+        if (join(path, sizeof path, dir, name, err) != 0 ||
+            plot_write_svg(path, title, o, th, meas, mod, 0, err) != 0)
+            goto done;
+        add_file(r, name, caption, RF_PLOT, k);
+    }
+    rc = 0;
+done:
+    free(th);
+    free(meas);
+    free(mod);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ the material */
+
+int rf_write_material(const char *dir, const char *material, const brdffit_table *table,
+                      const rf_fit *fits, int nfits, const rf_settings *s, rf_result *out,
+                      brdffit_error *err)
+{
+    rf_result scratch;
+    rf_result *r = out ? out : &scratch;
+    memset(r, 0, sizeof *r);
+    for (int k = 0; k < RF_MAX_FITS; k++)
+        r->image_error[k] = NAN;
+    if (!dir || !material || !table || !s || nfits < 0 || nfits > RF_MAX_FITS ||
+        (nfits > 0 && !fits))
+        return failf(err, BRDFFIT_E_INVALID_ARGUMENT, "rf_write_material: bad arguments");
+    for (int k = 0; k < nfits; k++)
+        if (!brdffit_model_get(fits[k].model))
+            return failf(err, BRDFFIT_E_UNKNOWN_MODEL, "%s: unknown model", material);
+    if (ensure_dir(dir, err) != 0)
+        return -1;
+    double t0 = brdffit_seconds();
+    if (s->render && (write_renders(dir, table, fits, nfits, s, r, err) != 0 ||
+                      write_json(dir, material, fits, nfits, s, r, err) != 0))
+        return -1;
+    double t1 = brdffit_seconds();
+    if (s->plot && write_plots(dir, material, table, fits, nfits, s, r, err) != 0)
+        return -1;
+    r->seconds_render = t1 - t0;
+    r->seconds_plot = brdffit_seconds() - t1;
+    return 0;
+}

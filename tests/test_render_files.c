@@ -1,0 +1,385 @@
+/* test_render_files.c -- a material's render and plot files (src/cli/render_files.c):
+ * EXR read back through OpenEXR, PNG decoded through libpng and compared with
+ * the sRGB curve written here, SVG parsed as XML (expat); bad directories and
+ * bad EXR files. */
+#define _POSIX_C_SOURCE 200809L
+#include "testutil.h"
+#include "image_io.h"
+#include "render_files.h"
+
+#include <check.h>
+#include <math.h>
+#include <openexr.h>
+#include <png.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static brdffit_params ct_params(void)
+{
+    brdffit_params p;
+    memset(&p, 0, sizeof p);
+    const double d[3] = { 0.05, 0.08, 0.12 }, s[3] = { 0.3, 0.25, 0.2 };
+    memcpy(p.d, d, sizeof d);
+    memcpy(p.s, s, sizeof s);
+    p.p[0] = 0.6, p.p[1] = 0.3;
+    return p;
+}
+
+static brdffit_table *ct_table(void)
+{
+    brdffit_table *t = NULL;
+    brdffit_params p = ct_params();
+    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_table_fill_model(t, BRDFFIT_COOK_TORRANCE, &p,
+                                              BRDFFIT_SCALE_STANDARD, NULL), BRDFFIT_OK);
+    return t;
+}
+
+/* A fresh empty directory path into buf. */
+static const char *tmpdir(char *buf, size_t len)
+{
+    const char *dir = getenv("TMPDIR");
+    snprintf(buf, len, "%s/brdffit-test-XXXXXX", dir && *dir ? dir : "/tmp");
+    ck_assert_ptr_nonnull(mkdtemp(buf));
+    return buf;
+}
+
+static void rm_tree(const char *dir)
+{
+    char cmd[4200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+
+/* The sRGB encoding, written from IEC 61966-2-1 for the test. */
+static int srgb8(double v)
+{
+    v = v < 0 ? 0 : v > 1 ? 1 : v;
+    double e = v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1 / 2.4) - 0.055;
+    return (int)floor(e * 255 + 0.5);
+}
+
+/* A PNG through libpng's simplified reader: RGB bytes (malloc'd), size. */
+static unsigned char *read_png(const char *path, int *w, int *h)
+{
+    png_image im;
+    memset(&im, 0, sizeof im);
+    im.version = PNG_IMAGE_VERSION;
+    ck_assert_msg(png_image_begin_read_from_file(&im, path), "%s: %s", path, im.message);
+    im.format = PNG_FORMAT_RGB;
+    unsigned char *buf = malloc(PNG_IMAGE_SIZE(im));
+    ck_assert_ptr_nonnull(buf);
+    ck_assert_msg(png_image_finish_read(&im, NULL, buf, 0, NULL), "%s: %s", path, im.message);
+    *w = (int)im.width, *h = (int)im.height;
+    return buf;
+}
+
+static const rf_file *find_file(const rf_result *r, const char *name)
+{
+    for (int i = 0; i < r->nfiles; i++)
+        if (strcmp(r->files[i].file, name) == 0)
+            return &r->files[i];
+    return NULL;
+}
+
+START_TEST(material_files_read_back)
+{
+    char dir[512], path[1024];
+    tmpdir(dir, sizeof dir);
+    brdffit_table *t = ct_table();
+    rf_fit fits[2];
+    memset(fits, 0, sizeof fits);
+    fits[0].model = BRDFFIT_COOK_TORRANCE;
+    fits[0].params = ct_params();
+    fits[0].error = 0.0123;
+    fits[1].model = BRDFFIT_WARD;
+    fits[1].params = ct_params();
+    fits[1].params.p[0] = 0.2;
+    fits[1].error = NAN;
+    rf_settings s;
+    rf_settings_default(&s, BRDFFIT_SCALE_STANDARD);
+    s.render_opt.width = 64;
+    rf_result r;
+    brdffit_error err;
+    ck_assert_msg(rf_write_material(dir, "ct-test <&>", t, fits, 2, &s, &r, &err) == 0, "%s",
+                  err.message);
+    const char *names[] = { "reference.exr", "reference.png", "cook-torrance.exr",
+                            "cook-torrance.png", "cook-torrance-diff.png", "ward.exr", "ward.png",
+                            "ward-diff.png", "renders.json", "plot-measured.svg",
+                            "plot-cook-torrance.svg", "plot-ward.svg" };
+    ck_assert_int_eq(r.nfiles, 12);
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        struct stat st;
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        ck_assert_msg(stat(path, &st) == 0 && st.st_size > 0, "%s missing", path);
+        ck_assert_msg(find_file(&r, names[i]) != NULL, "%s not listed", names[i]);
+    }
+    ck_assert_str_eq(find_file(&r, "cook-torrance.png")->caption, "Cook-Torrance: 0.0123");
+    ck_assert_str_eq(find_file(&r, "ward.png")->caption, "Ward");
+    ck_assert_int_eq(find_file(&r, "ward.png")->fit, 1);
+    ck_assert(r.image_error[0] < 0.01 && r.image_error[1] > 0.05);
+
+    /* EXR: the pixels the library renders, A the coverage */
+    float *want = malloc(sizeof(float) * 4 * 64 * 64);
+    ck_assert_int_eq(brdffit_render_table(t, &s.render_opt, want, 0, NULL), BRDFFIT_OK);
+    float *rgb = NULL, *a = NULL;
+    int w = 0, h = 0;
+    snprintf(path, sizeof path, "%s/reference.exr", dir);
+    ck_assert_msg(exr_read_rgb(path, &rgb, &a, &w, &h, &err) == 0, "%s", err.message);
+    ck_assert_int_eq(w, 64);
+    ck_assert_int_eq(h, 64);
+    for (int i = 0; i < 64 * 64; i++) {
+        for (int c = 0; c < 3; c++)
+            ck_assert(rgb[3 * i + c] == want[4 * i + c]);
+        ck_assert(a[i] == want[4 * i + 3]);
+    }
+    free(rgb);
+    free(a);
+
+    /* PNG: 64 x 64, sRGB of exposure x radiance; the exposure from the reference */
+    snprintf(path, sizeof path, "%s/reference.png", dir);
+    unsigned char *png = read_png(path, &w, &h);
+    ck_assert_int_eq(w, 64);
+    ck_assert_int_eq(h, 64);
+    int bright = 0;
+    for (int i = 0; i < 64 * 64; i++)
+        for (int c = 0; c < 3; c++) {
+            int v = want[4 * i + 3] > 0 ? srgb8(r.exposure * want[4 * i + c]) : 0;
+            ck_assert_msg(abs(png[3 * i + c] - v) <= 0, "pixel %d ch %d: %d want %d", i, c,
+                          png[3 * i + c], v);
+            bright += png[3 * i + c] == 255;
+        }
+    ck_assert(bright > 0 && bright < 64 * 64 / 10); /* ~1% of the sphere may clip */
+    free(png);
+    /* the difference image of a poor fit is brighter than that of the exact model */
+    long sum[2] = { 0, 0 };
+    for (int k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, "%s/%s-diff.png", dir, k ? "ward" : "cook-torrance");
+        png = read_png(path, &w, &h);
+        for (int i = 0; i < 64 * 64; i++) {
+            if (want[4 * i + 3] == BRDFFIT_COVERAGE_MASKED)
+                ck_assert(png[3 * i] == 128 && png[3 * i + 1] == 128 && png[3 * i + 2] == 128);
+            else if (want[4 * i + 3] == 0)
+                ck_assert(png[3 * i] == 0 && png[3 * i + 1] == 0 && png[3 * i + 2] == 0);
+            else
+                sum[k] += png[3 * i] + png[3 * i + 1] + png[3 * i + 2];
+        }
+        free(png);
+    }
+    ck_assert(sum[1] > 5 * sum[0]);
+
+    /* SVG: well-formed XML; title with model and Error; dashed model curves, one colour per theta_i */
+    tu_xml_doc doc;
+    snprintf(path, sizeof path, "%s/plot-cook-torrance.svg", dir);
+    ck_assert_msg(tu_xml_load(path, &doc) == 0, "%s", doc.error);
+    ck_assert_str_eq(doc.e[0].name, "svg");
+    int title = 0, dashed = 0, solid = 0, legend = 0;
+    const char *colours[4] = { NULL };
+    for (int i = 0; i < doc.n; i++) {
+        const tu_xml_elem *e = &doc.e[i];
+        if (strcmp(e->name, "title") == 0) {
+            ck_assert_ptr_nonnull(strstr(e->text, "Cook-Torrance: Error 0.0123"));
+            ck_assert_ptr_nonnull(strstr(e->text, "ct-test <&>")); /* escaped, read back */
+            title++;
+        }
+        if (strcmp(e->name, "polyline") == 0) {
+            const char *d = tu_xml_attr(e, "stroke-dasharray");
+            *(d ? &dashed : &solid) += 1;
+            if (!d && solid <= 4)
+                colours[solid - 1] = tu_xml_attr(e, "stroke");
+        }
+        if (strcmp(e->name, "text") == 0 && strstr(e->text, "\xce\xb8i = "))
+            legend++;
+    }
+    ck_assert_int_eq(title, 1);
+    ck_assert_int_eq(legend, 4);
+    ck_assert(dashed >= 4 && solid >= 4);
+    ck_assert_str_ne(colours[0], colours[1]);
+    tu_xml_free(&doc);
+    snprintf(path, sizeof path, "%s/plot-measured.svg", dir);
+    ck_assert_msg(tu_xml_load(path, &doc) == 0, "%s", doc.error);
+    for (int i = 0; i < doc.n; i++)
+        if (strcmp(doc.e[i].name, "polyline") == 0)
+            ck_assert_ptr_null(tu_xml_attr(&doc.e[i], "stroke-dasharray"));
+    tu_xml_free(&doc);
+
+    free(want);
+    brdffit_table_free(t);
+    rm_tree(dir);
+}
+END_TEST
+
+START_TEST(unwritable_directory)
+{
+    char dir[512], path[1024];
+    tmpdir(dir, sizeof dir);
+    brdffit_table *t = ct_table();
+    rf_settings s;
+    rf_settings_default(&s, BRDFFIT_SCALE_STANDARD);
+    s.render_opt.width = 16;
+    brdffit_error err;
+    /* a path under a regular file */
+    snprintf(path, sizeof path, "%s/file", dir);
+    ck_assert_int_eq(tu_write_bytes(path, "x", 1), 0);
+    snprintf(path, sizeof path, "%s/file/sub", dir);
+    ck_assert_int_eq(rf_write_material(path, "m", t, NULL, 0, &s, NULL, &err), -1);
+    ck_assert_int_eq(err.status, BRDFFIT_E_FILE_WRITE);
+    ck_assert_ptr_nonnull(strstr(err.message, path));
+    snprintf(path, sizeof path, "%s/file", dir);
+    ck_assert_int_eq(rf_write_material(path, "m", t, NULL, 0, &s, NULL, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.message, "not a directory"));
+    /* a directory without write permission (root may write anyway) */
+    snprintf(path, sizeof path, "%s/ro", dir);
+    ck_assert_int_eq(mkdir(path, 0555), 0);
+    if (geteuid() != 0) {
+        ck_assert_int_eq(rf_write_material(path, "m", t, NULL, 0, &s, NULL, &err), -1);
+        ck_assert_ptr_nonnull(strstr(err.message, path));
+    }
+    /* a full device: the EXR cannot be written */
+    if (access("/dev/full", W_OK) == 0) {
+        ck_assert_int_eq(exr_write_rgba("/dev/full", (float[4]){ 0, 0, 0, 1 }, 1, 1, 0, &err), -1);
+        ck_assert_int_eq(err.status, BRDFFIT_E_FILE_WRITE);
+    }
+    brdffit_table_free(t);
+    rm_tree(dir);
+}
+END_TEST
+
+/* An RGB EXR of w x h half floats through OpenEXR's C API, value(i, j, c). */
+static void write_half_exr(const char *path, int w, int h, float (*value)(int, int, int))
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t f;
+    int part;
+    ck_assert_int_eq(exr_start_write(&f, path, EXR_WRITE_FILE_DIRECTLY, &init), EXR_ERR_SUCCESS);
+    ck_assert_int_eq(exr_add_part(f, "env", EXR_STORAGE_SCANLINE, &part), EXR_ERR_SUCCESS);
+    ck_assert_int_eq(exr_initialize_required_attr_simple(f, part, w, h, EXR_COMPRESSION_PIZ),
+                     EXR_ERR_SUCCESS);
+    const char *ch[3] = { "B", "G", "R" };
+    for (int c = 0; c < 3; c++)
+        ck_assert_int_eq(exr_add_channel(f, part, ch[c], EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LINEAR, 1, 1), 0);
+    ck_assert_int_eq(exr_write_header(f), EXR_ERR_SUCCESS);
+    float *px = malloc(sizeof(float) * 3 * (size_t)w * (size_t)h);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            for (int c = 0; c < 3; c++)
+                px[3 * (j * w + i) + c] = value(i, j, c);
+    int32_t lines;
+    ck_assert_int_eq(exr_get_scanlines_per_chunk(f, part, &lines), EXR_ERR_SUCCESS);
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    for (int y = 0; y < h; y += lines) {
+        exr_chunk_info_t ci;
+        ck_assert_int_eq(exr_write_scanline_chunk_info(f, part, y, &ci), EXR_ERR_SUCCESS);
+        ck_assert_int_eq(y ? exr_encoding_update(f, part, &ci, &enc)
+                           : exr_encoding_initialize(f, part, &ci, &enc), EXR_ERR_SUCCESS);
+        for (int k = 0; k < enc.channel_count; k++) {
+            int c = enc.channels[k].channel_name[0] == 'R' ? 0 : enc.channels[k].channel_name[0] == 'G' ? 1 : 2;
+            enc.channels[k].encode_from_ptr = (const uint8_t *)(px + 3 * (size_t)y * w + c);
+            enc.channels[k].user_pixel_stride = 12;
+            enc.channels[k].user_line_stride = 12 * w;
+            enc.channels[k].user_data_type = EXR_PIXEL_FLOAT;
+            enc.channels[k].user_bytes_per_element = 4;
+        }
+        if (y == 0)
+            ck_assert_int_eq(exr_encoding_choose_default_routines(f, part, &enc), EXR_ERR_SUCCESS);
+        ck_assert_int_eq(exr_encoding_run(f, part, &enc), EXR_ERR_SUCCESS);
+    }
+    exr_encoding_destroy(f, &enc);
+    ck_assert_int_eq(exr_finish(&f), EXR_ERR_SUCCESS);
+    free(px);
+}
+
+static float ramp(int i, int j, int c)
+{
+    return 0.25f * (float)(i % 8) + 0.5f * (float)j + (float)c; /* exact in half */
+}
+
+static float with_inf(int i, int j, int c)
+{
+    return (i == 3 && j == 2 && c == 1) ? INFINITY : 1.0f;
+}
+
+START_TEST(env_exr_reading)
+{
+    char path[512];
+    ck_assert_ptr_nonnull(tu_tmpfile(path, sizeof path));
+    write_half_exr(path, 37, 19, ramp); /* odd sizes, half floats */
+    float *rgb = NULL;
+    int w, h;
+    brdffit_error err;
+    ck_assert_msg(exr_read_rgb(path, &rgb, NULL, &w, &h, &err) == 0, "%s", err.message);
+    ck_assert_int_eq(w, 37);
+    ck_assert_int_eq(h, 19);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++)
+            for (int c = 0; c < 3; c++)
+                ck_assert(rgb[3 * (j * w + i) + c] == ramp(i, j, c));
+    free(rgb);
+    /* a non-finite texel is refused, named */
+    write_half_exr(path, 8, 4, with_inf);
+    ck_assert_int_eq(exr_read_rgb(path, &rgb, NULL, &w, &h, &err), -1);
+    ck_assert_int_eq(err.status, BRDFFIT_E_FILE_NONFINITE);
+    ck_assert_ptr_nonnull(strstr(err.message, "pixel (3, 2) channel G"));
+    ck_assert_ptr_null(rgb);
+    /* not an EXR; a truncated one; a missing file */
+    ck_assert_int_eq(tu_write_bytes(path, "P6\n1 1\n255\nabc", 14), 0);
+    ck_assert_int_eq(exr_read_rgb(path, &rgb, NULL, &w, &h, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.message, path));
+    write_half_exr(path, 64, 64, ramp);
+    FILE *f = fopen(path, "rb");
+    char buf[4096];
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    ck_assert(n > 600);
+    ck_assert_int_eq(tu_write_bytes(path, buf, n / 2), 0);
+    ck_assert_int_eq(exr_read_rgb(path, &rgb, NULL, &w, &h, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.message, path));
+    unlink(path);
+    ck_assert_int_eq(exr_read_rgb(path, &rgb, NULL, &w, &h, &err), -1);
+    ck_assert_int_eq(err.status, BRDFFIT_E_FILE_OPEN);
+}
+END_TEST
+
+START_TEST(srgb_and_false_colour)
+{
+    for (int i = 0; i <= 1000; i++) {
+        double v = i / 1000.0;
+        ck_assert_int_eq(tm_srgb8(v), srgb8(v));
+    }
+    ck_assert_int_eq(tm_srgb8(-1), 0);
+    ck_assert_int_eq(tm_srgb8(NAN), 0);
+    ck_assert_int_eq(tm_srgb8(7), 255);
+    unsigned char c[3];
+    tm_false_colour(0, c);
+    ck_assert(c[0] == 0 && c[1] == 0 && c[2] == 0);
+    tm_false_colour(0.25, c);
+    ck_assert(c[0] == 0 && c[1] == 0 && c[2] == 255);
+    tm_false_colour(0.5, c);
+    ck_assert(c[0] == 255 && c[1] == 0 && c[2] == 0);
+    tm_false_colour(3, c);
+    ck_assert(c[0] == 255 && c[1] == 255 && c[2] == 255);
+    /* exposure: 1 / the 99th percentile of max(R, G, B) over pixels with A > 0 */
+    float img[4 * 200];
+    for (int i = 0; i < 200; i++) {
+        img[4 * i] = (float)(i + 1), img[4 * i + 1] = 0, img[4 * i + 2] = 0;
+        img[4 * i + 3] = i < 100 ? 1.0f : 0.0f;
+    }
+    ck_assert_double_eq_tol(tm_auto_exposure(img, 200, 1, 0), 1.0 / 99.0, 1e-12);
+}
+END_TEST
+
+Suite *render_files_suite(void)
+{
+    Suite *s = suite_create("render_files");
+    TCase *tc = tcase_create("render_files");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, material_files_read_back);
+    tcase_add_test(tc, unwritable_directory);
+    tcase_add_test(tc, env_exr_reading);
+    tcase_add_test(tc, srgb_and_false_colour);
+    suite_add_tcase(s, tc);
+    return s;
+}

@@ -238,10 +238,18 @@ START_TEST(unwritable_directory)
         ck_assert_int_eq(rf_write_material(path, "m", t, NULL, 0, &s, NULL, &err), -1);
         ck_assert_ptr_nonnull(strstr(err.message, path));
     }
-    /* a full device: the EXR cannot be written */
-    if (access("/dev/full", W_OK) == 0) {
-        ck_assert_int_eq(exr_write_rgba("/dev/full", (float[4]){ 0, 0, 0, 1 }, 1, 1, 0, &err), -1);
+    /* a full device (through a symlink, so that a bug could only remove the
+     * link): nothing can be written, and the device stays */
+    snprintf(path, sizeof path, "%s/full", dir);
+    if (access("/dev/full", W_OK) == 0 && symlink("/dev/full", path) == 0) {
+        ck_assert_int_eq(exr_write_rgba(path, (float[4]){ 0, 0, 0, 1 }, 1, 1, 0, &err), -1);
         ck_assert_int_eq(err.status, BRDFFIT_E_FILE_WRITE);
+        ck_assert_ptr_nonnull(strstr(err.message, "No space left"));
+        ck_assert_int_eq(png_write_rgb8(path, (unsigned char[3]){ 0, 0, 0 }, 1, 1, &err), -1);
+        ck_assert_int_eq(err.status, BRDFFIT_E_FILE_WRITE);
+        struct stat st;
+        ck_assert_int_eq(stat(path, &st), 0); /* a failed write removes no device */
+        ck_assert(S_ISCHR(st.st_mode));
     }
     brdffit_table_free(t);
     rm_tree(dir);

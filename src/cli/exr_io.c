@@ -1,14 +1,18 @@
 /* exr_io.c -- OpenEXR files through OpenEXR's C API (OpenEXRCore): the
  * renders out (RGBA float) and environment maps in (RGB, any pixel type). */
+#define _POSIX_C_SOURCE 200809L
 #include "image_io.h"
 
 #include <openexr.h>
 
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* The last message OpenEXR reported (its handler has no user pointer before
  * a context exists); the program is single-threaded where it uses files. */
@@ -44,6 +48,29 @@ static int fail(brdffit_error *err, brdffit_status st, const char *path, const c
 
 /* ------------------------------------------------------------------ writing */
 
+/* The file is opened here and written through write_fn, so that OpenEXR never
+ * creates, replaces or unlinks the path itself (its default stream unlinks
+ * the path of a failed write, whatever the path names). */
+static int64_t write_at(exr_const_context_t ctxt, void *user, const void *buf, uint64_t sz,
+                        uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    int fd = *(const int *)user;
+    const char *p = buf;
+    uint64_t done = 0;
+    while (done < sz) {
+        ssize_t n = pwrite(fd, p + done, (size_t)(sz - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            if (error_cb)
+                error_cb(ctxt, EXR_ERR_WRITE_IO, "%s", strerror(n < 0 ? errno : EIO));
+            return -1;
+        }
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
 /* Which of R, G, B, A a channel name is (0..3), or -1. */
 static int rgba_index(const char *name)
 {
@@ -64,7 +91,16 @@ int exr_write_rgba(const char *path, const float *rgba, int width, int height, s
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     int part = 0, have_enc = 0, rc = -1;
     const char *what = "cannot create the file";
-    exr_result_t rv = exr_start_write(&f, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) {
+        snprintf(exr_message, sizeof exr_message, "%s", strerror(errno));
+        rv = EXR_ERR_FILE_ACCESS;
+        goto done;
+    }
+    init.user_data = &fd;
+    init.write_fn = write_at;
+    rv = exr_start_write(&f, path, EXR_WRITE_FILE_DIRECTLY, &init);
     if (rv != EXR_ERR_SUCCESS)
         goto done;
     what = "cannot write the header";
@@ -118,8 +154,13 @@ done:
             what = "cannot finish the file";
         }
     }
+    if (fd >= 0 && close(fd) != 0 && rc == 0) {
+        snprintf(exr_message, sizeof exr_message, "%s", strerror(errno));
+        rc = -1, rv = EXR_ERR_WRITE_IO;
+        what = "cannot finish the file";
+    }
     if (rc != 0) {
-        remove(path);
+        io_remove_partial(path);
         return fail(err, BRDFFIT_E_FILE_WRITE, path, what, rv);
     }
     return 0;

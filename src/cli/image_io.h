@@ -4,6 +4,7 @@
  *   exr_io.c    linear RGBA float EXR out; RGB (half, float or uint) EXR in
  *   png_io.c    8-bit RGB PNG out
  *   tonemap.c   exposure, the sRGB transfer curve, the difference false colour
+ *   partial.c   removing a file a failed write left behind
  *
  * Failures fill a brdffit_error (status BRDFFIT_E_FILE_*) with the path and
  * the reason, and return -1; nothing is printed. */
@@ -13,6 +14,12 @@
 #include "brdffit.h"
 
 #include <stddef.h>
+
+/* ---- partial.c ---- */
+
+/* Remove path after a failed write when it is a regular file (never a device
+ * node, FIFO or directory the path names). */
+void io_remove_partial(const char *path);
 
 /* ---- exr_io.c ---- */
 

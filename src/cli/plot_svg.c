@@ -3,6 +3,7 @@
  * mean on the y axis with ticks labelled in 1/sr. */
 #include "render_files.h"
 #include "svg.h"
+#include "image_io.h"
 
 #include <errno.h>
 #include <math.h>
@@ -192,7 +193,7 @@ int plot_write_svg(const char *path, const char *title, const brdffit_curve_opti
     if (fclose(f) != 0)
         rc = -1;
     if (rc != 0) {
-        remove(path);
+        io_remove_partial(path);
         if (err) {
             err->status = BRDFFIT_E_FILE_WRITE;
             snprintf(err->message, sizeof err->message, "%s: cannot write the SVG plot", path);

@@ -77,7 +77,7 @@ done:
     }
     if (rc != 0) {
         if (job.f)
-            remove(path);
+            io_remove_partial(path);
         if (err) {
             err->status = BRDFFIT_E_FILE_WRITE;
             snprintf(err->message, sizeof err->message, "%s: cannot write the PNG: %s", path,

@@ -266,7 +266,7 @@ static int write_json(const char *dir, const char *material, const rf_fit *fits,
     json_body(f, material, fits, nfits, s, r);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad) {
-        remove(path);
+        io_remove_partial(path);
         return failf(err, BRDFFIT_E_FILE_WRITE, "%s: write error", path);
     }
     add_file(r, "renders.json", "render settings and image errors", RF_DATA, -1);

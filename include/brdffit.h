@@ -487,7 +487,7 @@ size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member);
  *   (0: 4 N).  A is the coverage: 0 off the sphere (RGB 0), 1 on the sphere,
  *   BRDFFIT_COVERAGE_MASKED (0.5) on the sphere where the table lookup of some
  *   light or environment sample hit a masked bin (brdffit_table_lookup's -1
- *   in some channel): that contribution counts as 0 in every channel, so RGB
+ *   in some channel): the masked channels of that contribution count 0, so RGB
  *   there is a lower bound.  Model renders have no masked pixels.
  *   Image error (brdffit_image_error): over the pixels whose reference A is
  *   1, sqrt(sum_pixels sum_c (img - ref)^2 / sum_pixels sum_c ref^2), i.e.

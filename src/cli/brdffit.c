@@ -22,6 +22,12 @@ static const cli_command commands[] = {
       "renders, plots, the Error matrix; journaled, resumable" },
     { "report", cmd_report, "DIR... --out DIR",
       "merge the journals of batch directories (shards) into one report" },
+    { "render", cmd_render, "TABLE --out DIR [--model LIST|all] [--fits FILE] [OPTIONS]",
+      "render the measured table and each fitted model on a sphere\n"
+      "(EXR + PNG), difference images and image errors" },
+    { "plot", cmd_plot, "TABLE --out DIR [--model LIST|all] [--fits FILE] [--theta-i LIST]",
+      "incidence-plane plots (SVG, cube root) of the measured table\n"
+      "and each fitted model" },
     { "score", cmd_score, "TABLE --model M --params d_r,...,p0[,p1,p2] | --fits FILE",
       "print the Error of given parameters on a table" },
 };

@@ -14,6 +14,8 @@
  *   text.c        text for the terminal: control characters made harmless
  *   demo_material.c  the embedded synthetic material (demo, batch --demo)
  *   cmd_batch.c, cmd_report.c, cmd_score.c and their support files: batch.h
+ *   cmd_render.c, cmd_plot.c and draw.c, material_fits.c: draw.h; the files
+ *   they write: render_files.h; image files: image_io.h; SVG/HTML text: svg.h
  *
  * The library never prints or exits; this program does both. */
 #ifndef BRDFFIT_CLI_H
@@ -60,6 +62,10 @@ int cmd_eval(int argc, char **argv);
 int cmd_batch(int argc, char **argv);
 int cmd_report(int argc, char **argv);
 int cmd_score(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+int cmd_plot(int argc, char **argv);
+/* The "Options of render and plot" block of --help (cmd_render.c). */
+void cli_draw_help(FILE *f);
 /* The "Options of batch" block of --help (cmd_batch.c). */
 void cli_batch_help(FILE *f);
 

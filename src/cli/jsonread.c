@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* jsonread.c -- a small strict reader for the flat JSON objects of the journal:
- * members with null, booleans, numbers, strings, arrays of numbers (or nulls,
- * read as NAN) and one level of nested flat objects. */
+ * members with null, booleans, numbers, strings, arrays of numbers (nulls and
+ * strings in them read as NAN) and one level of nested flat objects. */
 #include "batch.h"
 
 #include <math.h>
@@ -203,6 +203,13 @@ static int value(jr_parser *j, jr_member *m, int depth)
             double x;
             if (*j->p == 'n') {
                 if (literal(j, "null") != 0)
+                    return -1;
+                x = NAN;
+            } else if (*j->p == '"') { /* a string element ("param_names"): read as NAN */
+                char *str = NULL;
+                int bad = string(j, &str);
+                free(str);
+                if (bad)
                     return -1;
                 x = NAN;
             } else if (number(j, &x) != 0) {

@@ -60,8 +60,7 @@ static int join(char *buf, size_t len, const char *dir, const char *name, brdffi
     return 0;
 }
 
-/* dir exists as a writable directory (made when missing). */
-static int ensure_dir(const char *dir, brdffit_error *err)
+int rf_prepare_dir(const char *dir, brdffit_error *err)
 {
     struct stat st;
     if (stat(dir, &st) != 0) {
@@ -343,7 +342,7 @@ int rf_write_material(const char *dir, const char *material, const brdffit_table
     for (int k = 0; k < nfits; k++)
         if (!brdffit_model_get(fits[k].model))
             return failf(err, BRDFFIT_E_UNKNOWN_MODEL, "%s: unknown model", material);
-    if (ensure_dir(dir, err) != 0)
+    if (rf_prepare_dir(dir, err) != 0)
         return -1;
     double t0 = brdffit_seconds();
     if (s->render && (write_renders(dir, table, fits, nfits, s, r, err) != 0 ||

@@ -80,6 +80,10 @@ int rf_write_material(const char *dir, const char *material, const brdffit_table
                       const rf_fit *fits, int nfits, const rf_settings *s, rf_result *out,
                       brdffit_error *err);
 
+/* dir is a directory the program can write into (made when missing: its
+ * parent must exist).  0, or -1 with err (BRDFFIT_E_FILE_WRITE, the path and why). */
+int rf_prepare_dir(const char *dir, brdffit_error *err);
+
 /* ---- plot_svg.c ---- */
 
 /* The plotted y of a point: cube root of the mean of R, G, B; -1 when a

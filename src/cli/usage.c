@@ -43,6 +43,8 @@ void cli_usage(FILE *f, const cli_command *commands, int n)
     cli_options_help(f);
     fputc('\n', f);
     cli_batch_help(f);
+    fputc('\n', f);
+    cli_draw_help(f);
     fputs("\n"
           "  brdffit --help | --version\n"
           "\n"

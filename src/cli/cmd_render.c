@@ -1,0 +1,114 @@
+/* cmd_render.c -- `brdffit render TABLE --out DIR [OPTIONS]`: the measured
+ * reference and every fitted model rendered (EXR, PNG), the difference
+ * images and the image errors (printed, renders.json). */
+#include "draw.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void cli_draw_help(FILE *f)
+{
+    fprintf(f,
+            "Options of render and plot (and the options of fit: --model, --scale, --cutoff,\n"
+            "--starts, --backend, --device):\n"
+            "  --out DIR                     where the files go (made when missing)\n"
+            "  --fits FILE                   the fits to draw: `brdffit fit --json` output (JSON\n"
+            "                                Lines) or an ngan2005-fits.tsv-style TSV; default:\n"
+            "                                fit the models now\n"
+            "  --interp trilinear|nearest    table lookup (default trilinear)\n"
+            "render:\n"
+            "  --size N                      N x N pixels, 1..4096 (default 256)\n"
+            "  --light X,Y,Z[:R,G,B]         a directional light toward X,Y,Z (camera frame: x right,\n"
+            "                                y up, z toward the viewer), irradiance R,G,B (default\n"
+            "                                1,1,1); repeatable, at most 16; default: a key light\n"
+            "                                -1,1,1.5 and a rim light 1,0.25,-0.6:0.5,0.5,0.5\n"
+            "  --env FILE.exr                a latitude-longitude environment (RGB radiance, half\n"
+            "                                or float); without --light it is the only light\n"
+            "  --env-samples N               quadrature directions per pixel, 1..65536 (default 256)\n"
+            "  --exposure E                  PNG exposure (default: 1 / the 99th percentile of the\n"
+            "                                reference's max(R, G, B))\n"
+            "plot:\n"
+            "  --theta-i DEG[,DEG...]        incidence angles in [0, 90), at most 16 (default\n"
+            "                                20,40,60,75)\n"
+            "  --points N                    theta_o samples from -90 to 90, 2..100000 (default 180)\n");
+}
+
+/* --light X,Y,Z[:R,G,B] */
+static int add_light(draw_job *j, const char *v)
+{
+    brdffit_render_options *o = &j->s.render_opt;
+    if (o->nlights == BRDFFIT_RENDER_DEFAULT_LIGHTS)
+        o->nlights = 0;
+    if (o->nlights >= BRDFFIT_RENDER_MAX_LIGHTS)
+        return cli_usage_error("--light: at most %d lights", BRDFFIT_RENDER_MAX_LIGHTS);
+    brdffit_light *l = &o->lights[o->nlights];
+    char dir[192];
+    const char *colon = strchr(v, ':');
+    size_t n = colon ? (size_t)(colon - v) : strlen(v);
+    double rgb[3] = { 1, 1, 1 };
+    int ok = n < sizeof dir;
+    if (ok) {
+        memcpy(dir, v, n);
+        dir[n] = '\0';
+        ok = draw_numbers(dir, l->dir, 3) == 3 && (!colon || draw_numbers(colon + 1, rgb, 3) == 3);
+    }
+    if (!ok)
+        return cli_usage_error("--light '%s': expected X,Y,Z or X,Y,Z:R,G,B (finite numbers)", v);
+    if (l->dir[0] == 0 && l->dir[1] == 0 && l->dir[2] == 0)
+        return cli_usage_error("--light '%s': the direction is zero", v);
+    if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0)
+        return cli_usage_error("--light '%s': the irradiance must be >= 0", v);
+    memcpy(l->rgb, rgb, sizeof rgb);
+    o->nlights++;
+    return CLI_OK;
+}
+
+/* One option of render (or plot): CLI_OK, CLI_USAGE, or 1 when argv[*i] is not ours. */
+static int render_option(draw_job *j, int argc, char **argv, int *i)
+{
+    const char *v;
+    brdffit_render_options *o = &j->s.render_opt;
+    int r;
+    if ((r = draw_option(argc, argv, i, "--size", &v)) != 0)
+        return r != 1 ? r : cli_parse_int(v, 1, 4096, &o->width) == 0
+                                ? CLI_OK : cli_usage_error("--size '%s': expected 1..4096", v);
+    if ((r = draw_option(argc, argv, i, "--light", &v)) != 0)
+        return r != 1 ? r : add_light(j, v);
+    if ((r = draw_option(argc, argv, i, "--env-samples", &v)) != 0)
+        return r != 1 ? r : cli_parse_int(v, 1, 65536, &o->env_samples) == 0
+                                ? CLI_OK : cli_usage_error("--env-samples '%s': expected 1..65536", v);
+    if ((r = draw_option(argc, argv, i, "--env", &v)) != 0) {
+        if (r == 1)
+            j->env = v;
+        return r != 1 ? r : CLI_OK;
+    }
+    if ((r = draw_option(argc, argv, i, "--exposure", &v)) != 0)
+        return r != 1 ? r : cli_parse_double(v, &j->s.exposure) == 0 && j->s.exposure > 0
+                                ? CLI_OK : cli_usage_error("--exposure '%s': expected a number > 0", v);
+    return draw_common_option(j, argc, argv, i);
+}
+
+int cmd_render(int argc, char **argv)
+{
+    draw_job j;
+    int rc = draw_init(&j, argc);
+    j.s.plot = 0;
+    for (int i = 0; i < argc && rc == CLI_OK; i++) {
+        if (cli_is_help(argv[i])) {
+            rc = CLI_HELP;
+            break;
+        }
+        int r = render_option(&j, argc, argv, &i);
+        if (r == 1)
+            draw_keep(&j, argv[i]);
+        else
+            rc = r;
+    }
+    if (rc == CLI_OK && j.env && j.s.render_opt.nlights == BRDFFIT_RENDER_DEFAULT_LIGHTS)
+        j.s.render_opt.nlights = 0; /* the environment alone */
+    if (rc == CLI_OK)
+        rc = draw_run(&j, "render");
+    draw_free(&j);
+    return rc;
+}

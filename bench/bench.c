@@ -18,6 +18,7 @@
 #include "pass.h"
 #include "testutil.h"
 #include "bench_batch.h"
+#include "bench_render.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -103,12 +104,14 @@ int main(int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
             quick = 1, nmat = 2;
+        else if (!strcmp(argv[i], "--renders"))
+            return bench_renders(0) == 0 ? 0 : 1; /* part 5 alone */
         else if (!strcmp(argv[i], "--models") && i + 1 < argc)
             models = argv[++i];
         else if (!strcmp(argv[i], "--materials") && i + 1 < argc)
             nmat = atoi(argv[++i]);
         else {
-            fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N] [--renders]\n", argv[0]);
             return 2;
         }
     }
@@ -231,5 +234,6 @@ int main(int argc, char **argv)
     double total = bf_now() - t0;
     printf("  total %d fits in %.2f s (%.2f s per fit)\n", fits, total, fits ? total / fits : 0.0);
     brdffit_context_free(ctx);
-    return bench_batch(materials, nmat, models) == 0 ? 0 : 1;
+    int rc = bench_batch(materials, nmat, models) == 0 ? 0 : 1;
+    return bench_renders(quick) == 0 ? rc : 1;
 }

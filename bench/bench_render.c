@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_render.c -- part 5 of the bench: a material's renders and plots
  * (library renders, curves, and the program's files), see README.md. */
 #include "bench_render.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_render.h -- part 5 of `make bench`: a material's renders and plots (bench_render.c). */
 #ifndef BRDFFIT_BENCH_RENDER_H
 #define BRDFFIT_BENCH_RENDER_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_draw.c -- `brdffit render` and `brdffit plot` ($BRDFFIT_CLI): files
  * from a FITS.jsonl, the image errors printed, SVG parsed; bad light specs,
  * an unwritable --out and a malformed --env EXR get a message and a status. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_render.c -- renders of the sphere (brdffit_render_table / _model) and
  * the incidence-plane curves, against closed forms written here from the
  * documented conventions, and the image error. */

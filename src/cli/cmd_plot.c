@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_plot.c -- `brdffit plot TABLE --out DIR [OPTIONS]`: the incidence-plane
  * plots (SVG, cube root) of the measured table and of every fitted model. */
 #include "draw.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_render.c -- `brdffit render TABLE --out DIR [OPTIONS]`: the measured
  * reference and every fitted model rendered (EXR, PNG), the difference
  * images and the image errors (printed, renders.json). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* draw.c -- the shared run of `render` and `plot` (see draw.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "draw.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* draw.h -- what `render` and `plot` share (draw.c): their options beside
  * the fit options, the table, the fits, the files and the printed summary. */
 #ifndef BRDFFIT_DRAW_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* exr_io.c -- OpenEXR files through OpenEXR's C API (OpenEXRCore): the
  * renders out (RGBA float) and environment maps in (RGB, any pixel type). */
 #define _POSIX_C_SOURCE 200809L

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* image_io.h -- image files of the program: OpenEXR (OpenEXR's C API) and PNG
  * (libpng), and the transfer from linear radiance to display values.
  *

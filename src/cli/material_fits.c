@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* material_fits.c -- the fitted models `render` and `plot` draw for a table:
  * read from a file of fits (the JSON Lines of `brdffit fit --json`, or a TSV
  * of the ngan2005-fits.tsv format), or fitted now. */

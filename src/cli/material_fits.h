@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* material_fits.h -- the fitted models `render` and `plot` draw for a table
  * (material_fits.c). */
 #ifndef BRDFFIT_MATERIAL_FITS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* partial.c -- removing what a failed write left behind. */
 #define _POSIX_C_SOURCE 200809L
 #include "image_io.h"

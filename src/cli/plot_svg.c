@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* plot_svg.c -- the incidence-plane plot of a material (SVG): measured curves
  * solid, a model's dashed, one colour per theta_i, cube root of the channel
  * mean on the y axis with ticks labelled in 1/sr. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* png_io.c -- 8-bit RGB PNG files through libpng. */
 #include "image_io.h"
 

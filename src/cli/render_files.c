@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render_files.c -- a material's renders (EXR + PNG), difference images,
  * incidence-plane plots (SVG) and renders.json in one directory.  What the
  * files are and the display conventions: render_files.h. */

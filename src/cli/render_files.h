@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render_files.h -- one material's renders and incidence-plane plots as
  * files in a directory: what `brdffit render`, `brdffit plot` and the batch
  * write.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* tonemap.c -- linear radiance to 8-bit display values: the exposure rule,
  * the sRGB transfer curve, the false colour of the difference images. */
 #include "image_io.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* curves.c -- BRDF values along the incidence plane, measured and modelled,
  * into caller buffers (the data of the cube-root plots).  Directions:
  * include/brdffit.h, brdffit_curve_options. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render.c -- images of a sphere lit by directional lights and an environment
  * map, shaded by a measured table or by a model, into caller buffers; the
  * image error between two renders.  Conventions: include/brdffit.h. */

@@ -45,7 +45,7 @@ static size_t table_seed(unsigned char *b, int patch, int delta, int32_t d0, int
                          const double *first, int nfirst)
 {
     size_t n = 0;
-    b[n++] = patch ? 1 : 0;
+    b[n++] = patch ? 1 : 0; /* bit 1 (make a sample set) left to the fuzzer */
     if (patch)
         b[n++] = (unsigned char)(int8_t)delta;
     n += le32(b + n, d0);
@@ -78,6 +78,9 @@ static void table_seeds(void)
     put("table", "patch-truncated", b, table_seed(b, 1, -1, 90, 90, 180, plain, 1));
     put("table", "patch-trailing", b, table_seed(b, 1, 8, 90, 90, 180, plain, 1));
     put("table", "patch-dims", b, table_seed(b, 1, 0, 180, 90, 90, NULL, 0));
+    size_t n = table_seed(b, 1, 0, 90, 90, 180, plain, 4);
+    b[0] = 3; /* and its sample set */
+    put("table", "patch-sampled", b, n);
 }
 
 /* first byte: 0 fit/demo options, 1 eval; then NUL-separated arguments */

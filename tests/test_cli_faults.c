@@ -195,6 +195,34 @@ START_TEST(huge_value_file_named)
 }
 END_TEST
 
+/* A material with no specular part: the JSON record names s_r, s_g, s_b as
+ * ended on their bound. */
+START_TEST(no_specular_bound_in_json)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    brdffit_params p = { { 0.3, 0.2, 0.1 }, { 0, 0, 0 }, { 0.15, 0, 0 }, { 0 } };
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err),
+                     BRDFFIT_OK);
+    char path[512], args[1024];
+    ck_assert_ptr_nonnull(tu_tmpfile(path, sizeof path));
+    ck_assert_int_eq(brdffit_table_write(t, path, &err), BRDFFIT_OK);
+    brdffit_table_free(t);
+    snprintf(args, sizeof args, "fit --json --model ward-duer --cutoff 30 --starts 2 '%s'", path);
+    tu_run_out r = tu_run_cli("", args);
+    expect_exit(r, 0, args);
+    const char *ab = strstr(r.out, "\"at_bound\":[");
+    ck_assert_msg(ab, "%s", r.out);
+    const char *end = strchr(ab, ']');
+    ck_assert_msg(end && strstr(ab, "\"s_r\"") < end && strstr(ab, "\"s_g\"") < end &&
+                      strstr(ab, "\"s_b\"") < end && strstr(ab, "\"s_r\""),
+                  "%s", r.out);
+    tu_run_free(&r);
+    unlink(path);
+}
+END_TEST
+
 /* A file name with an escape sequence and a newline: on stderr as \xHH, one
  * line per message; the JSON record keeps the name exactly (escaped JSON). */
 START_TEST(control_characters_escaped)
@@ -243,6 +271,7 @@ Suite *cli_faults_suite(void)
     tcase_add_test(tc, unwritable_cache_named);
     tcase_add_test(tc, tiny_cutoff_refused);
     tcase_add_test(tc, huge_value_file_named);
+    tcase_add_test(tc, no_specular_bound_in_json);
     tcase_add_test(tc, control_characters_escaped);
     tcase_add_test(tc, long_path_keeps_reason);
     suite_add_tcase(s, tc);

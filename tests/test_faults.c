@@ -183,6 +183,37 @@ START_TEST(geometries_counted_per_model)
 }
 END_TEST
 
+/* A material with no specular part at all: the fit ends with s = 0, on its
+ * bound, and the result says so for each channel (the degenerate case of
+ * brdffit_fit_result.at_bound). */
+START_TEST(no_specular_ends_on_bound)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    brdffit_params p = { { 0.3, 0.2, 0.1 }, { 0, 0, 0 }, { 0.15, 0, 0 }, { 0 } };
+    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err),
+                     BRDFFIT_OK);
+    brdffit_sample_options so;
+    brdffit_sample_options_default(&so);
+    so.cutoff_deg = 30;
+    brdffit_samples *s = NULL;
+    ck_assert_int_eq(brdffit_samples_create(t, &so, &s, &err), BRDFFIT_OK);
+    brdffit_fit_result r;
+    ck_assert_msg(fit_on(s, BRDFFIT_WARD_DUER, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    unsigned sbits = BRDFFIT_AT_BOUND_S_R | BRDFFIT_AT_BOUND_S_G | BRDFFIT_AT_BOUND_S_B;
+    ck_assert_msg((r.at_bound & sbits) == sbits, "at_bound %#x, s %g %g %g", r.at_bound, r.params.s[0],
+                  r.params.s[1], r.params.s[2]);
+    ck_assert_msg((r.at_bound & (BRDFFIT_AT_BOUND_D_R | BRDFFIT_AT_BOUND_D_G | BRDFFIT_AT_BOUND_D_B)) == 0,
+                  "at_bound %#x", r.at_bound);
+    for (int c = 0; c < 3; c++)
+        ck_assert_msg(tu_reldiff(r.params.d[c], p.d[c]) < 1e-6, "d_%d %g", c, r.params.d[c]);
+    ck_assert(r.error < 1e-9);
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+}
+END_TEST
+
 /* ------------------------------------------------------------------ devices */
 
 /* Indices past 2^32 are out of range, not wrapped to 0:0; so are indices
@@ -261,6 +292,7 @@ Suite *faults_suite(void)
     tcase_add_test(tc, one_sample_refused);
     tcase_add_test(tc, tiny_cutoff_refused);
     tcase_add_test(tc, geometries_counted_per_model);
+    tcase_add_test(tc, no_specular_ends_on_bound);
     tcase_add_test(tc, device_index_out_of_range);
     tcase_add_test(tc, long_path_keeps_reason);
     suite_add_tcase(s, tc);

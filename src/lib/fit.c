@@ -502,14 +502,20 @@ static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, con
     return BRDFFIT_OK;
 }
 
+#define ROUNDED_AWAY 1e-12
+
 /* Which parameters of the result are on a bound (brdffit_fit_result.at_bound). */
 static unsigned bound_mask(const fitmap *fm, const double *u, const bf_linear *lin)
 {
     unsigned mask = 0;
+    /* a coefficient round-off left a hair above 0 (below 1e-12 of the
+     * channel's other one: s = 6e-31 beside d = 0.2 on a material with no
+     * specular part) is on its bound as well */
     for (int c = 0; c < 3; c++) {
-        if (lin->d[c] == 0.0)
+        double d = lin->d[c], s = lin->s[c];
+        if (d == 0.0 || d <= ROUNDED_AWAY * s)
             mask |= (unsigned)BRDFFIT_AT_BOUND_D_R << c;
-        if (lin->s[c] == 0.0)
+        if (s == 0.0 || s <= ROUNDED_AWAY * d)
             mask |= (unsigned)BRDFFIT_AT_BOUND_S_R << c;
     }
     for (int j = 0; j < fm->nl; j++) {

@@ -360,13 +360,6 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
     return sum * sc;
 }
 
-BF_FN BF_REAL bf_he_series(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk,
-                           BF_REAL act)
-{
-    return bf_he_series_x(g, lng, a, la, lk, act, 0, (BF_REAL *)0, (BF_REAL *)0, (BF_REAL *)0,
-                          (BF_REAL *)0);
-}
-
 /* The blend weight t of the rough limit (0 below g = 18, 1 above 19) and the
  * limit e^(lk - a/g) / g itself (g clamped to >= 18). */
 BF_FN BF_REAL bf_he_blend_t(BF_REAL g)
@@ -384,19 +377,129 @@ BF_FN BF_REAL bf_he_blend(BF_REAL t, BF_REAL ser, BF_REAL lim)
     return BF_SEL(BF_SEL((1.0 - t) * ser + t * lim, ser, t <= 0.0), lim, t >= 1.0);
 }
 
-/* e^lk D / (pi tau / (2 lam))^2 from g > 0 with lng = ln g and a >= 0 with
- * la ~ ln a: the series below g = 18, the rough limit e^(lk - a/g) / g above
- * 19, linear in g in between.  Finite wherever e^lk D is (lanes on one side
- * never see the other side's value).  (bf_he_fd inlines the same steps.) */
-BF_FN BF_REAL bf_he_dscaled(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk)
+/* The memo of a data pass (bf_he_series_memo, through bf_he_fd).  A data pass
+ * walks the samples in table order, so consecutive vectors mostly share
+ * theta_h and theta_d and differ in phi_d alone; g and a depend on phi_d
+ * only through sigma, which is sigma0 exactly wherever r <= 1e-9 (a smooth
+ * surface away from grazing).  There every lane of a vector has the (g, a) of
+ * the previous vector's last lane to rounding.  With memo != NULL (a pass
+ * keeps one per work-item, zeroed at its start, and gives it vector after
+ * vector), the lanes of a channel whose g and a are within BF_HE_MEMO_TOL
+ * (relative) of the memo's do not sum the series (only the other lanes do,
+ * if any): they take the memo's lpk, sum and partials and carry them to
+ * their own g, a to first order in ln V, as bf_he_fd carries its neighbours
+ * (the remainder is below (m* 1e-12)^2 ~ 1e-19 relative; the carry itself is
+ * ~1e-13).  Values then agree with bf_he to ~1e-13 relative, and depend on
+ * where a work-item's run of samples starts only at that level.  A channel
+ * whose last lane sums its series leaves that lane in the memo; a memo whose
+ * lane was dead (too small to sum) serves only lanes dead as well.  (A vector
+ * that straddles two bins thus sums one bin's window, not the union of
+ * both.) */
+#define BF_HE_FD_MARGIN 1.001
+#define BF_HE_MEMO_TOL 1e-12
+
+typedef struct bf_he_memo {
+    double g[3], a[3];          /* the (clamped) g and a of the stored lane */
+    double ok[3];               /* 1: a lane is stored (active, peak found) */
+    double lpk[3], sum[3];      /* its series e^lpk sum (sum 0: dead)       */
+    double vg[3], va[3];        /* the partials of ln V there               */
+    double hits;                /* channel-vectors served wholly by the memo */
+} bf_he_memo;
+
+BF_FN void bf_he_memo_clear(bf_he_memo *m)
+{
+    for (int c = 0; c < 3; c++) {
+        m->g[c] = m->a[c] = m->ok[c] = 0.0;
+        m->lpk[c] = m->sum[c] = m->vg[c] = m->va[c] = 0.0;
+    }
+    m->hits = 0.0;
+}
+
+/* The series of one channel ch for the lanes where act > 0, at gs = min(g, 19)
+ * with lngs = ln gs (see bf_he_series_x for a, la, lk and deriv).  With a
+ * memo (deriv must then be 1) the lanes it serves take its series carried to
+ * their g and a, the others sum theirs, and the memo takes the last lane if
+ * that one summed (see above).  With deriv, the partials of ln V go to *vg_out
+ * and *va_out (0 where V is 0). */
+BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la, BF_REAL lk,
+                                BF_REAL act, int deriv, bf_he_memo *memo, int ch,
+                                BF_REAL *vg_out, BF_REAL *va_out)
+{
+    /* hl: the lanes the memo serves; the others (that need it) sum */
+    BF_REAL hl = BF_R(0.0), x = BF_R(0.0);
+    if (memo && memo->ok[ch] > 0.0) {
+        x = memo->vg[ch] * (gs - memo->g[ch]) + memo->va[ch] * (aa - memo->a[ch]);
+        /* a memo that was not summed (dead) serves only lanes dead as well */
+        hl = BF_SEL(BF_R(0.0), BF_R(1.0),
+                    (fabs(gs - memo->g[ch]) <= BF_HE_MEMO_TOL * memo->g[ch])
+                        && (fabs(aa - memo->a[ch]) <= BF_HE_MEMO_TOL * memo->a[ch])
+                        && ((memo->sum[ch] > 0.0)
+                            || (memo->lpk[ch] + lk < BF_HE_LN_DEAD)));
+    }
+    BF_REAL need = BF_SEL(act, BF_R(0.0), hl > 0.0);
+    /* the served lanes' values, before the memo takes a new lane */
+    BF_REAL hser = BF_R(0.0);
+    double hvg = 0.0, hva = 0.0;
+    if (BF_ANY(hl > 0.0)) {
+        hser = memo->sum[ch] * exp(fmin(memo->lpk[ch] + lk + x, BF_R(700.0)));
+        hser = BF_SEL(BF_R(0.0), hser, act > 0.0);
+        hvg = memo->vg[ch];
+        hva = memo->va[ch];
+    }
+    BF_REAL ser = BF_R(0.0), vg = BF_R(0.0), va = BF_R(0.0);
+    if (BF_ANY(need > 0.0)) {
+        BF_REAL lpk = BF_R(0.0), sum = BF_R(0.0);
+        ser = bf_he_series_x(gs, lngs, aa, la, lk, need, deriv, &vg, &va, &lpk, &sum);
+        if (memo && BF_LAST(need) > 0.0) {
+            memo->ok[ch] = 1.0;
+            memo->g[ch] = BF_LAST(gs);
+            memo->a[ch] = BF_LAST(aa);
+            memo->lpk[ch] = BF_LAST(lpk);
+            memo->sum[ch] = BF_LAST(sum);
+            memo->vg[ch] = BF_LAST(vg);
+            memo->va[ch] = BF_LAST(va);
+        }
+    } else if (memo && BF_ANY(act > 0.0)) {
+        memo->hits += 1.0;
+    }
+    if (BF_ANY(hl > 0.0)) {
+        ser = BF_SEL(ser, hser, hl > 0.0);
+        vg = BF_SEL(vg, BF_R(hvg), hl > 0.0);
+        va = BF_SEL(va, BF_R(hva), hl > 0.0);
+    }
+    *vg_out = vg;
+    *va_out = va;
+    return ser;
+}
+
+/* e^lk D / (pi tau / (2 lam))^2 of one channel from g > 0 with lng = ln g and
+ * a >= 0 with la ~ ln a: the series below g = 18, the rough limit lim (the
+ * caller's e^(lk - a/g) / g, used where g > 18) above 19, linear in g in
+ * between: the one place the two are blended (bf_he_D and bf_he_fd both
+ * come here).  The series is summed, at min(g, 19), where g < 19 margin:
+ * margin 1 for a value alone, BF_HE_FD_MARGIN when bf_he_fd will carry
+ * neighbours from it.  *V gets the series; memo, ch, deriv, *vg, *va: see
+ * bf_he_series_memo.  Finite wherever e^lk D is (lanes on one side never see
+ * the other side's value). */
+BF_FN BF_REAL bf_he_dblend(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk,
+                           BF_REAL lim, double margin, int deriv, bf_he_memo *memo, int ch,
+                           BF_REAL *V, BF_REAL *vg, BF_REAL *va)
 {
     BF_REAL t = bf_he_blend_t(g);
+    BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), g < BF_HE_G_HI * margin);
+    *V = bf_he_series_memo(fmin(g, BF_HE_G_HI), fmin(lng, BF_R(log(BF_HE_G_HI))), a, la, lk, act,
+                           deriv, memo, ch, vg, va);
+    return bf_he_blend(t, *V, lim);
+}
+
+/* bf_he_dblend of one lane set with its own rough limit, no memo, no partials. */
+BF_FN BF_REAL bf_he_dscaled(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk)
+{
     BF_REAL lim = BF_R(0.0);
-    if (BF_ANY(t > 0.0))
+    if (BF_ANY(bf_he_blend_t(g) > 0.0))
         lim = bf_he_limit(g, lng, a, lk);
-    BF_REAL ser = bf_he_series(fmin(g, BF_HE_G_HI), fmin(lng, BF_R(log(BF_HE_G_HI))), a, la, lk,
-                               BF_SEL(BF_R(0.0), BF_R(1.0), g < BF_HE_G_HI));
-    return bf_he_blend(t, ser, lim);
+    BF_REAL V, vg, va;
+    return bf_he_dblend(g, lng, a, la, lk, lim, 1.0, 0, (bf_he_memo *)0, 0, &V, &vg, &va);
 }
 
 /* The distribution D(g, a) of one wavelength lam (um) for tau (um), g > 0, a >= 0. */
@@ -528,6 +631,136 @@ BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double ta
     r->sigma = sigma0 / sqrt(1.0 + x * x);
 }
 
+/* What bf_he_fd computes at p[0] and its neighbours are carried from. */
+typedef struct bf_he_base {
+    bf_he_dir d;
+    bf_he_rough r;                /* made with deriv                          */
+    BF_REAL F;                    /* Fresnel at n                             */
+    BF_REAL fs, ifs;              /* F S(ti) S(to) / (pi cos ti cos to), 1 / fs */
+    BF_REAL lc;                   /* ln fs + ln G                             */
+    BF_REAL zero;                 /* 1 where fs underflows: K = 0             */
+    BF_REAL sv, lsv2;             /* sigma v_z and 2 ln(sigma v_z)            */
+    double klmax2;                /* the largest (2 pi / lam)^2 of the channels */
+    BF_REAL q0, lim0;             /* a / g and e^lk / g of the rough limit (see bf_he_fd_base) */
+    /* per channel: the value before the zero flag, the series V (summed at
+     * min(g, 19)) and its partials, the limit L, min(g, 19), a, max(g, 18),
+     * a / max(g, 18) */
+    BF_REAL Kr[3], V[3], Vg[3], Va[3], L[3], g0[3], a0[3], gl[3], agl[3];
+} bf_he_base;
+
+/* The direction pair, the shadowing and sigma (with their partials), F and
+ * the rough limit shared by the channels, at p0 = (tau, sigma0, n). */
+BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam, bf_he_base *b)
+{
+    const double tau = p0[0], sigma0 = p0[1], n = p0[2];
+    bf_he_dir_make(g, &b->d);
+    bf_he_rough_make(&b->d, tau, sigma0, 1, &b->r);
+    b->F = bf_he_fresnel(b->d.c, n);
+    b->fs = b->F * b->r.shi * b->r.sho * (1.0 / BF_PI);
+    b->ifs = 1.0 / fmax(b->fs, BF_TINY);
+    b->lc = log(fmax(b->fs, BF_TINY)) + b->d.lg2;
+    b->zero = BF_SEL(BF_R(0.0), BF_R(1.0), b->fs < BF_TINY);
+    b->sv = b->r.sigma * b->d.vz;             /* > 1e-106: g never underflows */
+    b->lsv2 = 2.0 * log(b->sv);
+
+    /* The rough limit e^(lk - a/g) / g is the same in every channel where
+     * g >= 18: a/g = q0 = tau^2 |v_xy|^2 / (4 sv^2) and e^lk / g =
+     * e^lc (tau / 4)^2 / sv^2 do not depend on lam (one exp for the three). */
+    b->klmax2 = 0.0;
+    for (int ch = 0; ch < 3; ch++)
+        b->klmax2 = fmax(b->klmax2, (2.0 * BF_PI / lam[ch]) * (2.0 * BF_PI / lam[ch]));
+    b->q0 = BF_R(0.0);
+    b->lim0 = BF_R(0.0);
+    if (BF_ANY(b->klmax2 * (b->sv * b->sv) > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
+        b->q0 = (0.25 * tau * tau) * b->d.vxy2 / (b->sv * b->sv);
+        b->lim0 = exp(fmin(b->lc - b->q0 - b->lsv2 + log(tau * tau / 16.0), BF_R(700.0)));
+    }
+}
+
+/* K(p0) of channel ch (wavelength lam um): bf_he's operations, with the
+ * partials of the series and what the neighbours need kept in b. */
+BF_FN BF_REAL bf_he_fd_channel(bf_he_base *b, double tau, double lam, int ch, bf_he_memo *memo)
+{
+    double kl = 2.0 * BF_PI / lam;
+    double kt = BF_PI * tau / (2.0 * lam);
+    double kl2 = kl * kl, kt2 = kt * kt;
+    BF_REAL gg = kl2 * (b->sv * b->sv), lng = log(kl2) + b->lsv2, lk = b->lc + log(kt2);
+    BF_REAL aa = (4.0 * kt2) * b->d.vxy2, la = log(4.0 * kt2) + b->d.lvxy2;
+    BF_REAL lim = BF_R(0.0);
+    b->gl[ch] = fmax(gg, BF_HE_G_LO);
+    b->agl[ch] = BF_R(0.0);
+    if (BF_ANY(gg > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
+        /* g in (18 / m, 18): the limit at the clamp g = 18 (for the neighbours) */
+        BF_REAL below = BF_SEL(BF_R(0.0), BF_R(1.0), gg < BF_HE_G_LO);
+        lim = b->lim0;
+        if (BF_ANY((below > 0.0) && (gg > BF_HE_G_LO / BF_HE_FD_MARGIN))) {
+            lim = BF_SEL(lim, bf_he_limit(gg, lng, aa, lk), below > 0.0);
+            b->agl[ch] = aa / b->gl[ch];
+        }
+        lim = BF_SEL(lim, BF_R(0.0), gg <= BF_HE_G_LO / BF_HE_FD_MARGIN);
+    }
+    b->Kr[ch] = bf_he_dblend(gg, lng, aa, la, lk, lim, BF_HE_FD_MARGIN, 1, memo, ch, &b->V[ch],
+                             &b->Vg[ch], &b->Va[ch]);
+    b->L[ch] = lim;
+    b->g0[ch] = fmin(gg, BF_HE_G_HI);
+    b->a0[ch] = aa;
+    return BF_SEL(b->Kr[ch], BF_R(0.0), b->zero > 0.0);
+}
+
+/* K at pj = (tau', sigma0', n'), a small step from p0, carried from b: see bf_he_fd. */
+BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const double *pj,
+                              const double *lam, BF_REAL *Kj)
+{
+    const double tau = p0[0], sigma0 = p0[1], n = p0[2];
+    const double tj = pj[0], s0j = pj[1], nj = pj[2];
+    BF_REAL Fj = b->F;
+    if (nj != n)
+        Fj = bf_he_fresnel(b->d.c, nj);
+    if (tj == tau && s0j == sigma0) {
+        /* n alone: S, sigma, g, a unchanged; K scales with F */
+        BF_REAL fsj = Fj * b->r.shi * b->r.sho * (1.0 / BF_PI);
+        BF_REAL zj = BF_SEL(b->zero, BF_R(1.0), fsj < BF_TINY);
+        BF_REAL rat = fsj * b->ifs;
+        for (int ch = 0; ch < 3; ch++)
+            Kj[ch] = BF_SEL(rat * b->Kr[ch], BF_R(0.0), zj > 0.0);
+        return;
+    }
+    bf_he_rough rj;
+    bf_he_rough_step(&b->d, &b->r, tj, s0j, &rj);
+    BF_REAL fsj = Fj * rj.shi * rj.sho * (1.0 / BF_PI);
+    BF_REAL zj = BF_SEL(b->zero, BF_R(1.0), fsj < BF_TINY);
+    BF_REAL rat = fsj * b->ifs;
+    BF_REAL svj = rj.sigma * b->d.vz;
+    /* e^(a/g - a'/g') g / g' of the limit, shared by the channels where
+     * g, g' >= 18 (see bf_he_fd_base) */
+    BF_REAL ej = BF_R(0.0);
+    if (BF_ANY(b->klmax2 * (svj * svj) > BF_HE_G_LO)) {
+        BF_REAL qj = (0.25 * tj * tj) * b->d.vxy2 / (svj * svj);
+        ej = exp(fmin(b->q0 - qj, BF_R(700.0))) * ((b->sv * b->sv) / (svj * svj));
+    }
+    for (int ch = 0; ch < 3; ch++) {
+        double kl = 2.0 * BF_PI / lam[ch];
+        double kt0 = BF_PI * tau / (2.0 * lam[ch]), kt = BF_PI * tj / (2.0 * lam[ch]);
+        double kl2 = kl * kl, kt2 = kt * kt;
+        BF_REAL gj = kl2 * (svj * svj), aj = (4.0 * kt2) * b->d.vxy2;
+        BF_REAL rc = rat * (kt2 / (kt0 * kt0));     /* e^(lk' - lk) */
+        BF_REAL x = b->Vg[ch] * (gj - b->g0[ch]) + b->Va[ch] * (aj - b->a0[ch]); /* ~ ln(V' / V) */
+        BF_REAL ser = (rc * b->V[ch]) * (1.0 + x * (1.0 + x * (0.5 + x * (1.0 / 6.0))));
+        BF_REAL t = bf_he_blend_t(gj);
+        BF_REAL lim = BF_R(0.0);
+        if (BF_ANY(t > 0.0)) {
+            lim = (b->L[ch] * rc) * ej;
+            BF_REAL up = BF_SEL(BF_R(0.0), BF_R(1.0), (t > 0.0) && (b->g0[ch] < BF_HE_G_LO));
+            if (BF_ANY(up > 0.0)) { /* from below the clamp: the general form */
+                BF_REAL iglj = 1.0 / fmax(gj, BF_HE_G_LO);
+                lim = BF_SEL(lim, (b->L[ch] * rc) * (exp(b->agl[ch] - aj * iglj) * (b->gl[ch] * iglj)),
+                             up > 0.0);
+            }
+        }
+        Kj[ch] = BF_SEL(bf_he_blend(t, ser, lim), BF_R(0.0), zj > 0.0);
+    }
+}
+
 /* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
  * p[j] = (tau, sigma0, n), a small step from p[0]) for one data pass:
  * K0[c] = bf_he(p[0]) bit for bit, Kj[j-1][c] = bf_he(p[j]) to second order
@@ -541,8 +774,8 @@ BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double ta
  *     series  V' = e^(lk' - lk) V e^x,  x = dlnV/dg (g' - g) + dlnV/da (a' - a)
  *             (e^x by its cubic: |x| is ~1e-4 at most where it matters),
  *     limit   L' = L e^(lk' - lk) e^(a/g - a'/g') g / g'   (one exp, exact),
- * blended by the weight t(g') as bf_he_dscaled does; a step in n alone
- * scales K by F' / F.  The series is carried in its log because ln V is
+ * blended by the weight t(g') as bf_he_dblend blends the value; a step in
+ * n alone scales K by F' / F.  The series is carried in its log because ln V is
  * close to linear in g and a where V itself is not (d lnV / d ln tau reaches
  * ~1e3 on smooth materials).  The remainder is O(h^2) in the relative step
  * h ~ 1e-7: of the order of the forward difference's own truncation error
@@ -552,207 +785,20 @@ BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double ta
  * series is also summed for g in [19, 19 m) and the limit made for g in
  * (18 / m, 18], m = BF_HE_FD_MARGIN, where the value does not use them, so
  * that a step across 19 or 18 is covered; a step of 1e-3 relative in g
- * would not be.  np = 0 with no memo is bf_he.
+ * would not be.  np = 0 with no memo is bf_he.  The memo: see bf_he_memo.
  *
- * The memo.  A data pass walks the samples in table order, so consecutive
- * vectors mostly share theta_h and theta_d and differ in phi_d alone; g and
- * a depend on phi_d only through sigma, which is sigma0 exactly wherever
- * r <= 1e-9 (a smooth surface away from grazing).  There every lane of a
- * vector has the (g, a) of the previous vector's last lane to rounding.
- * With memo != NULL (a pass keeps one per work-item, zeroed at its start,
- * and gives it vector after vector), the lanes of a channel whose g and a
- * are within BF_HE_MEMO_TOL (relative) of the memo's do not sum the series
- * (only the other lanes do, if any): they take the memo's lpk, sum and
- * partials and carry them to their own g, a to first order in ln V, as the
- * neighbours above are carried
- * (the remainder is below (m* 1e-12)^2 ~ 1e-19 relative; the carry itself
- * is ~1e-13).  Values then agree with bf_he to ~1e-13 relative, and depend
- * on where a work-item's run of samples starts only at that level.  A
- * channel whose last lane sums its series leaves that lane in the memo; a
- * memo whose lane was dead (too small to sum) serves only lanes dead as
- * well.  (A vector that straddles two bins thus sums one bin's window, not
- * the union of both.) */
-#define BF_HE_FD_MARGIN 1.001
-#define BF_HE_MEMO_TOL 1e-12
-
-typedef struct bf_he_memo {
-    double g[3], a[3];          /* the (clamped) g and a of the stored lane */
-    double ok[3];               /* 1: a lane is stored (active, peak found) */
-    double lpk[3], sum[3];      /* its series e^lpk sum (sum 0: dead)       */
-    double vg[3], va[3];        /* the partials of ln V there               */
-    double hits;                /* channel-vectors served wholly by the memo */
-} bf_he_memo;
-
-BF_FN void bf_he_memo_clear(bf_he_memo *m)
-{
-    for (int c = 0; c < 3; c++) {
-        m->g[c] = m->a[c] = m->ok[c] = 0.0;
-        m->lpk[c] = m->sum[c] = m->vg[c] = m->va[c] = 0.0;
-    }
-    m->hits = 0.0;
-}
-
+ * In steps: bf_he_fd_base (the directions, S, sigma, F), bf_he_fd_channel
+ * per channel (the value, through bf_he_dblend), bf_he_fd_neighbour per
+ * neighbour. */
 BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                     BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {
-    const double tau = p[0][0], sigma0 = p[0][1], n = p[0][2];
-    bf_he_dir d;
-    bf_he_rough r;
-    bf_he_dir_make(g, &d);
-    bf_he_rough_make(&d, tau, sigma0, 1, &r);
-    BF_REAL F = bf_he_fresnel(d.c, n);
-    BF_REAL fs = F * r.shi * r.sho * (1.0 / BF_PI);
-
-    /* The value: bf_he's operations, with the partials of the series. */
-    BF_REAL lc = log(fmax(fs, BF_TINY)) + d.lg2;
-    BF_REAL zero = BF_SEL(BF_R(0.0), BF_R(1.0), fs < BF_TINY);
-    BF_REAL sv = r.sigma * d.vz;             /* > 1e-106: g never underflows */
-    BF_REAL lsv2 = 2.0 * log(sv);
-
-    /* The rough limit e^(lk - a/g) / g is the same in every channel where
-     * g >= 18: a/g = q0 = tau^2 |v_xy|^2 / (4 sv^2) and e^lk / g =
-     * e^lc (tau / 4)^2 / sv^2 do not depend on lam (one exp for the three). */
-    double klmax2 = 0.0;
+    bf_he_base b;
+    bf_he_fd_base(g, p[0], lam, &b);
     for (int ch = 0; ch < 3; ch++)
-        klmax2 = fmax(klmax2, (2.0 * BF_PI / lam[ch]) * (2.0 * BF_PI / lam[ch]));
-    BF_REAL q0 = BF_R(0.0), lim0 = BF_R(0.0);
-    if (BF_ANY(klmax2 * (sv * sv) > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
-        q0 = (0.25 * tau * tau) * d.vxy2 / (sv * sv);
-        lim0 = exp(fmin(lc - q0 - lsv2 + log(tau * tau / 16.0), BF_R(700.0)));
-    }
-
-    /* per channel: the value before the zero flag, the series V (summed at
-     * min(g, 19)) and its partials, the limit L, g, a, max(g, 18), a / max(g, 18) */
-    BF_REAL Kr[3], V[3], Vg[3], Va[3], L[3], g0[3], a0[3], gl[3], agl[3];
-    for (int ch = 0; ch < 3; ch++) {
-        double kl = 2.0 * BF_PI / lam[ch];
-        double kt = BF_PI * tau / (2.0 * lam[ch]);
-        double kl2 = kl * kl, kt2 = kt * kt;
-        BF_REAL gg = kl2 * (sv * sv), lng = log(kl2) + lsv2, lk = lc + log(kt2);
-        BF_REAL aa = (4.0 * kt2) * d.vxy2, la = log(4.0 * kt2) + d.lvxy2;
-        BF_REAL t = bf_he_blend_t(gg);
-        BF_REAL lim = BF_R(0.0);
-        gl[ch] = fmax(gg, BF_HE_G_LO);
-        agl[ch] = BF_R(0.0);
-        if (BF_ANY(gg > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
-            /* g in (18 / m, 18): the limit at the clamp g = 18 (for the neighbours) */
-            BF_REAL below = BF_SEL(BF_R(0.0), BF_R(1.0), gg < BF_HE_G_LO);
-            lim = lim0;
-            if (BF_ANY((below > 0.0) && (gg > BF_HE_G_LO / BF_HE_FD_MARGIN))) {
-                lim = BF_SEL(lim, bf_he_limit(gg, lng, aa, lk), below > 0.0);
-                agl[ch] = aa / gl[ch];
-            }
-            lim = BF_SEL(lim, BF_R(0.0), gg <= BF_HE_G_LO / BF_HE_FD_MARGIN);
-        }
-        BF_REAL vg, va, ser;
-        BF_REAL gs = fmin(gg, BF_HE_G_HI);
-        BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), gg < BF_HE_G_HI * BF_HE_FD_MARGIN);
-        /* hl: the lanes the memo serves; the others (that need it) sum */
-        BF_REAL hl = BF_R(0.0), x = BF_R(0.0);
-        if (memo && memo->ok[ch] > 0.0) {
-            x = memo->vg[ch] * (gs - memo->g[ch]) + memo->va[ch] * (aa - memo->a[ch]);
-            /* a memo that was not summed (dead) serves only lanes dead as well */
-            hl = BF_SEL(BF_R(0.0), BF_R(1.0),
-                        (fabs(gs - memo->g[ch]) <= BF_HE_MEMO_TOL * memo->g[ch])
-                            && (fabs(aa - memo->a[ch]) <= BF_HE_MEMO_TOL * memo->a[ch])
-                            && ((memo->sum[ch] > 0.0)
-                                || (memo->lpk[ch] + lk < BF_HE_LN_DEAD)));
-        }
-        BF_REAL need = BF_SEL(act, BF_R(0.0), hl > 0.0);
-        /* the served lanes' values, before the memo takes a new lane */
-        BF_REAL hser = BF_R(0.0);
-        double hvg = 0.0, hva = 0.0;
-        if (BF_ANY(hl > 0.0)) {
-            hser = memo->sum[ch] * exp(fmin(memo->lpk[ch] + lk + x, BF_R(700.0)));
-            hser = BF_SEL(BF_R(0.0), hser, act > 0.0);
-            hvg = memo->vg[ch];
-            hva = memo->va[ch];
-        }
-        ser = BF_R(0.0);
-        vg = BF_R(0.0);
-        va = BF_R(0.0);
-        if (BF_ANY(need > 0.0)) {
-            BF_REAL lpk, sum;
-            ser = bf_he_series_x(gs, fmin(lng, BF_R(log(BF_HE_G_HI))), aa, la, lk, need, 1, &vg,
-                                 &va, &lpk, &sum);
-            if (memo && BF_LAST(need) > 0.0) {
-                memo->ok[ch] = 1.0;
-                memo->g[ch] = BF_LAST(gs);
-                memo->a[ch] = BF_LAST(aa);
-                memo->lpk[ch] = BF_LAST(lpk);
-                memo->sum[ch] = BF_LAST(sum);
-                memo->vg[ch] = BF_LAST(vg);
-                memo->va[ch] = BF_LAST(va);
-            }
-        } else if (BF_ANY(act > 0.0)) {
-            memo->hits += 1.0; /* (need = act here only when memo != NULL) */
-        }
-        if (BF_ANY(hl > 0.0)) {
-            ser = BF_SEL(ser, hser, hl > 0.0);
-            vg = BF_SEL(vg, BF_R(hvg), hl > 0.0);
-            va = BF_SEL(va, BF_R(hva), hl > 0.0);
-        }
-        Kr[ch] = bf_he_blend(t, ser, lim);
-        K0[ch] = BF_SEL(Kr[ch], BF_R(0.0), zero > 0.0);
-        V[ch] = ser;
-        Vg[ch] = vg;
-        Va[ch] = va;
-        L[ch] = lim;
-        g0[ch] = fmin(gg, BF_HE_G_HI);
-        a0[ch] = aa;
-    }
-
-    /* The neighbours. */
-    BF_REAL ifs = 1.0 / fmax(fs, BF_TINY);
-    for (int j = 0; j < np; j++) {
-        const double tj = p[1 + j][0], s0j = p[1 + j][1], nj = p[1 + j][2];
-        BF_REAL Fj = F;
-        if (nj != n)
-            Fj = bf_he_fresnel(d.c, nj);
-        if (tj == tau && s0j == sigma0) {
-            /* n alone: S, sigma, g, a unchanged; K scales with F */
-            BF_REAL fsj = Fj * r.shi * r.sho * (1.0 / BF_PI);
-            BF_REAL zj = BF_SEL(zero, BF_R(1.0), fsj < BF_TINY);
-            BF_REAL rat = fsj * ifs;
-            for (int ch = 0; ch < 3; ch++)
-                Kj[j][ch] = BF_SEL(rat * Kr[ch], BF_R(0.0), zj > 0.0);
-            continue;
-        }
-        bf_he_rough rj;
-        bf_he_rough_step(&d, &r, tj, s0j, &rj);
-        BF_REAL fsj = Fj * rj.shi * rj.sho * (1.0 / BF_PI);
-        BF_REAL zj = BF_SEL(zero, BF_R(1.0), fsj < BF_TINY);
-        BF_REAL rat = fsj * ifs;
-        BF_REAL svj = rj.sigma * d.vz;
-        /* e^(a/g - a'/g') g / g' of the limit, shared by the channels where
-         * g, g' >= 18 (see q0 above) */
-        BF_REAL ej = BF_R(0.0);
-        if (BF_ANY(klmax2 * (svj * svj) > BF_HE_G_LO)) {
-            BF_REAL qj = (0.25 * tj * tj) * d.vxy2 / (svj * svj);
-            ej = exp(fmin(q0 - qj, BF_R(700.0))) * ((sv * sv) / (svj * svj));
-        }
-        for (int ch = 0; ch < 3; ch++) {
-            double kl = 2.0 * BF_PI / lam[ch];
-            double kt0 = BF_PI * tau / (2.0 * lam[ch]), kt = BF_PI * tj / (2.0 * lam[ch]);
-            double kl2 = kl * kl, kt2 = kt * kt;
-            BF_REAL gj = kl2 * (svj * svj), aj = (4.0 * kt2) * d.vxy2;
-            BF_REAL rc = rat * (kt2 / (kt0 * kt0));     /* e^(lk' - lk) */
-            BF_REAL x = Vg[ch] * (gj - g0[ch]) + Va[ch] * (aj - a0[ch]); /* ~ ln(V' / V) */
-            BF_REAL ser = (rc * V[ch]) * (1.0 + x * (1.0 + x * (0.5 + x * (1.0 / 6.0))));
-            BF_REAL t = bf_he_blend_t(gj);
-            BF_REAL lim = BF_R(0.0);
-            if (BF_ANY(t > 0.0)) {
-                lim = (L[ch] * rc) * ej;
-                BF_REAL up = BF_SEL(BF_R(0.0), BF_R(1.0), (t > 0.0) && (g0[ch] < BF_HE_G_LO));
-                if (BF_ANY(up > 0.0)) { /* from below the clamp: the general form */
-                    BF_REAL iglj = 1.0 / fmax(gj, BF_HE_G_LO);
-                    lim = BF_SEL(lim, (L[ch] * rc) * (exp(agl[ch] - aj * iglj) * (gl[ch] * iglj)),
-                                 up > 0.0);
-                }
-            }
-            Kj[j][ch] = BF_SEL(bf_he_blend(t, ser, lim), BF_R(0.0), zj > 0.0);
-        }
-    }
+        K0[ch] = bf_he_fd_channel(&b, p[0][0], lam[ch], ch, memo);
+    for (int j = 0; j < np; j++)
+        bf_he_fd_neighbour(&b, p[0], p[1 + j], lam, Kj[j]);
 }
 
 /* K per channel into K[0..2] at wavelengths lam[0..2]: bf_he_fd's value. */

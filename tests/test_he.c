@@ -357,6 +357,41 @@ START_TEST(series_brute_force)
 }
 END_TEST
 
+/* bf_he_dblend, the one blend of the series and the limit, gives bf_he_D's
+ * value (what the D tests above check) bit for bit also as bf_he_fd calls
+ * it: with the partials of the series and the margin that keeps the series
+ * for the neighbours; and with a memo, a second lane set at the same g and a
+ * is served from it (the memo counts the hit) within 1e-13. */
+START_TEST(dblend_as_the_pass_calls_it)
+{
+    const double tau = 37.6, lam = 0.526, kk = M_PI * tau / (2 * lam), lk = log(kk * kk);
+    const double gs[] = { 1e-3, 0.5, 3, 12, 17.99, 18, 18.3, 18.999, 19, 19.01, 25 };
+    const double as[] = { 0, 1e-3, 1, 100, 1e4, 1e6 };
+    int served = 0;
+    for (size_t i = 0; i < sizeof gs / sizeof gs[0]; i++)
+        for (size_t j = 0; j < sizeof as / sizeof as[0]; j++) {
+            double g = gs[i], a = as[j], lng = log(g), la = log(fmax(a, 1e-300));
+            double D = bf_he_D(g, a, tau, lam) / (kk * kk) * exp(lk);
+            double lim = bf_he_blend_t(g) > 0 ? bf_he_limit(g, lng, a, lk) : 0.0;
+            double V, vg, va, V2, vg2, va2;
+            double x = bf_he_dblend(g, lng, a, la, lk, lim, BF_HE_FD_MARGIN, 1, NULL, 0, &V, &vg,
+                                    &va);
+            ck_assert_msg(tu_reldiff(x, D) <= 1e-15, "g %g a %g: %.17g vs D %.17g", g, a, x, D);
+            bf_he_memo memo;
+            bf_he_memo_clear(&memo);
+            double y1 = bf_he_dblend(g, lng, a, la, lk, lim, BF_HE_FD_MARGIN, 1, &memo, 1, &V, &vg,
+                                     &va);
+            double y2 = bf_he_dblend(g, lng, a, la, lk, lim, BF_HE_FD_MARGIN, 1, &memo, 1, &V2,
+                                     &vg2, &va2);
+            ck_assert_msg(memcmp(&y1, &x, sizeof x) == 0, "g %g a %g: with a memo %.17g", g, a, y1);
+            ck_assert_msg(tu_reldiff(y2, y1) <= 1e-13 && tu_reldiff(V2, V) <= 1e-13,
+                          "g %g a %g: served %.17g vs %.17g", g, a, y2, y1);
+            served += (int)memo.hits;
+        }
+    ck_assert_int_gt(served, 20); /* where g < 19 m and the series is alive */
+}
+END_TEST
+
 /* 5. g >> 1 at and near the normal: K -> F / (4 pi m^2), m = 2 sigma / tau. */
 START_TEST(rough_normal_limit)
 {
@@ -741,6 +776,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, geometry_limits);
     tcase_add_test(tc, distribution_switch);
     tcase_add_test(tc, series_brute_force);
+    tcase_add_test(tc, dblend_as_the_pass_calls_it);
     tcase_add_test(tc, rough_normal_limit);
     tcase_add_test(tc, shadowing_smooth_limit);
     tcase_add_loop_test(tc, corners_finite, 0, 3);

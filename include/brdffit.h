@@ -333,7 +333,8 @@ typedef struct brdffit_context brdffit_context;
 brdffit_status brdffit_context_create(const brdffit_context_options *opt,
                                       brdffit_context **out, brdffit_error *err);
 void brdffit_context_free(brdffit_context *ctx);
-/* "opencl" or "host" */
+/* The path the context uses: BRDFFIT_BACKEND_OPENCL or BRDFFIT_BACKEND_HOST
+ * (never AUTO; HOST for a NULL context). */
 brdffit_backend brdffit_context_backend(const brdffit_context *ctx);
 /* A human description: "opencl: Portable Computing Language / pthread-haswell..."
  * or "host: C (no OpenCL device: ...)". */

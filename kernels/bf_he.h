@@ -9,7 +9,7 @@
  *
  *   K = F G S D / (pi cos ti cos to)
  *   F  Fresnel, unpolarised, real n, at c = cos theta_b = |v| / 2
- *   G  = (v.v / v_z)^2.  The issue's form
+ *   G  = (v.v / v_z)^2.  He et al.'s vector form
  *        (v.v / v_z)^2 [(s_r.k_i)^2 + (p_r.k_i)^2] [(s_i.k_r)^2 + (p_i.k_r)^2] / |k_r x k_i|^4
  *      is exactly this: (s_r, p_r, k_r) is an orthonormal basis, so
  *      (s_r.k_i)^2 + (p_r.k_i)^2 = 1 - (k_r.k_i)^2 = |k_r x k_i|^2, and likewise

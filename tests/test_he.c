@@ -174,7 +174,7 @@ START_TEST(reciprocity)
 }
 END_TEST
 
-/* G from the issue's vector form, in long double: k_i = -wi, k_r = wo,
+/* G from He et al.'s vector form, in long double: k_i = -wi, k_r = wo,
  * s = (k x n)/|k x n|, p = s x k. */
 typedef long double v3[3];
 static void cross(const v3 a, const v3 b, v3 r)
@@ -205,7 +205,7 @@ static long double geometry_vector_form(const double wi[3], const double wo[3])
     return q * q * b1 * b2 / (c2 * c2);
 }
 
-/* 3. G: the issue's vector form where it is defined, 4 / cos^2 at wi = wo
+/* 3. G: He et al.'s vector form where it is defined, 4 / cos^2 at wi = wo
  * (including the normal), and continuity approaching wi = wo. */
 START_TEST(geometry_limits)
 {
@@ -295,8 +295,8 @@ START_TEST(distribution_switch)
         double ser18 = (double)(pref * series_brute(18, a, 3000));
         ck_assert_msg(tu_reldiff(bf_he_D(18.0, a, tau, lam), ser18) <= 1e-12,
                       "a %g: %.17g vs %.17g", a, bf_he_D(18.0, a, tau, lam), ser18);
-        /* The issue expects the series and the limit to agree at g = 18.  They
-         * do not to 1e-3: the limit is the first term of sum Poisson(m; g) / m
+        /* The series and the limit do not agree at g = 18, not even to 1e-3:
+         * the limit is the first term of sum Poisson(m; g) / m
          * ~ (1 + 1/g + 2/g^2 + ...) / g, so at a = 0 the series is 6.3% above
          * it, and for a >> g the spread of m around g makes e^(-a/m) differ
          * from e^(-a/g) by orders of magnitude.  Measured series/limit at 18:

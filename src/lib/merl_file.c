@@ -36,7 +36,7 @@ static int host_little_endian(void)
 static void swap8(void *p, size_t n)
 {
     unsigned char *b = p;
-    for (size_t s = 0; s < n; s++, b += 8) {
+    for (size_t i = 0; i < n; i++, b += 8) {
         for (int k = 0; k < 4; k++) {
             unsigned char t = b[k];
             b[k] = b[7 - k];
@@ -91,15 +91,15 @@ static long long read_full(int fd, void *buf, size_t len)
 
 static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brdffit_error *err)
 {
-    struct stat st;
-    if (fstat(fd, &st) != 0)
+    struct stat sb;
+    if (fstat(fd, &sb) != 0)
         return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: cannot stat: %s", path, strerror(errno));
-    if (S_ISDIR(st.st_mode))
+    if (S_ISDIR(sb.st_mode))
         return bf_fail(err, BRDFFIT_E_FILE_NOT_REGULAR, "%s: is a directory, not a MERL table",
                        path);
-    if (!S_ISREG(st.st_mode))
+    if (!S_ISREG(sb.st_mode))
         return bf_fail(err, BRDFFIT_E_FILE_NOT_REGULAR, "%s: not a regular file", path);
-    unsigned long long size = (unsigned long long)st.st_size;
+    unsigned long long size = (unsigned long long)sb.st_size;
     if (size == 0)
         return bf_fail(err, BRDFFIT_E_FILE_EMPTY, "%s: empty file (0 bytes, %zu expected)", path,
                        FILE_BYTES);
@@ -201,9 +201,9 @@ brdffit_status brdffit_table_read(const char *path, brdffit_table **out, brdffit
     bf_path_brief(path, shown, sizeof shown);
     if (fd < 0)
         return bf_fail(err, BRDFFIT_E_FILE_OPEN, "%s: cannot open: %s", shown, strerror(errno));
-    brdffit_status s = read_fd(fd, shown, out, err);
+    brdffit_status st = read_fd(fd, shown, out, err);
     close(fd);
-    return s;
+    return st;
 }
 
 /* ------------------------------------------------------------------ write */

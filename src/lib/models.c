@@ -143,14 +143,13 @@ brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *par
         return BRDFFIT_E_INVALID_ARGUMENT;
     double lam[3];
     bf_lambdas(params, lam);
-    brdffit_status result = BRDFFIT_OK;
-    for (size_t s = 0; s < n; s++) {
-        if (!eval_one(model, params, lam, wi + 3 * s, wo + 3 * s, rgb + 3 * s)) {
-            rgb[3 * s] = rgb[3 * s + 1] = rgb[3 * s + 2] = 0;
-            result = BRDFFIT_E_INVALID_ARGUMENT;
+    for (size_t i = 0; i < n; i++) {
+        if (!eval_one(model, params, lam, wi + 3 * i, wo + 3 * i, rgb + 3 * i)) {
+            rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = 0;
+            st = BRDFFIT_E_INVALID_ARGUMENT;
         }
     }
-    return result;
+    return st;
 }
 
 brdffit_status brdffit_eval(brdffit_model model, const brdffit_params *params, const double wi[3],

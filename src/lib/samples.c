@@ -32,6 +32,159 @@ void brdffit_samples_free(brdffit_samples *samples)
     free(samples);
 }
 
+/* The options in force (opt or the defaults), checked. */
+static brdffit_status check_options(const brdffit_sample_options *opt, brdffit_sample_options *o,
+                                    brdffit_error *err)
+{
+    brdffit_sample_options_default(o);
+    if (opt)
+        *o = *opt;
+    if (!isfinite(o->cutoff_deg) || !(o->cutoff_deg > 0) || !(o->cutoff_deg <= 90))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "sample options: cutoff %g deg must be in (0, 90]", o->cutoff_deg);
+    if (!bf_scale_known(o->scale))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "sample options: unknown scale %d",
+                       (int)o->scale);
+    return BRDFFIT_OK;
+}
+
+/* From the values alone: the bins masked (a negative value in some channel)
+ * and the unmasked ones; a non-finite value, or one above BRDFFIT_VALUE_MAX,
+ * is an error naming its bin. */
+static brdffit_status count_bins(const double *v, size_t *masked, size_t *unmasked,
+                                 brdffit_error *err)
+{
+    *masked = *unmasked = 0;
+    for (size_t b = 0; b < BF_NBINS; b++) {
+        double r = v[b], g = v[BF_NBINS + b], bl = v[2 * BF_NBINS + b];
+        if (!isfinite(r) || !isfinite(g) || !isfinite(bl)) {
+            int c = !isfinite(r) ? 0 : !isfinite(g) ? 1 : 2, i, j, k;
+            bf_bin_ijk(b, &i, &j, &k);
+            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                           "table holds a non-finite value (channel %c, bin %d,%d,%d)",
+                           bf_channel_name[c], i, j, k);
+        }
+        if (r > BRDFFIT_VALUE_MAX || g > BRDFFIT_VALUE_MAX || bl > BRDFFIT_VALUE_MAX) {
+            int c = r > BRDFFIT_VALUE_MAX ? 0 : g > BRDFFIT_VALUE_MAX ? 1 : 2, i, j, k;
+            double x = v[(size_t)c * BF_NBINS + b];
+            bf_bin_ijk(b, &i, &j, &k);
+            return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
+                           "table holds %.17g (channel %c, bin %d,%d,%d), above %g, the largest a "
+                           "table may hold",
+                           x, bf_channel_name[c], i, j, k, BRDFFIT_VALUE_MAX);
+        }
+        if (r < 0 || g < 0 || bl < 0)
+            ++*masked;
+        else
+            ++*unmasked;
+    }
+    return BRDFFIT_OK;
+}
+
+static size_t padded(size_t n)
+{
+    size_t np = (n + BF_PAD - 1) / BF_PAD * BF_PAD;
+    return np ? np : BF_PAD;
+}
+
+/* Room for cap samples: fields at stride padded(cap), weights, bins. */
+static brdffit_status alloc_samples(brdffit_samples *samples, size_t cap, brdffit_error *err)
+{
+    samples->npad = padded(cap);
+    samples->data = bf_alloc_aligned((size_t)BF_NFIELDS * samples->npad * sizeof(double));
+    samples->w = malloc((cap ? cap : 1) * sizeof *samples->w);
+    samples->bin = malloc((cap ? cap : 1) * sizeof *samples->bin);
+    if (!samples->data || !samples->w || !samples->bin)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY,
+                       "brdffit_samples_create: cannot allocate %zu samples", cap);
+    return BRDFFIT_OK;
+}
+
+/* Each unmasked bin's directions, computed once: the bins within the cutoff
+ * (both directions above the horizon) become samples 0..n-1, the others
+ * count as beyond it.  Fields at stride samples->npad; sets samples->n and samples->sum_w. */
+static void take_bins(brdffit_samples *samples, const double *v, double cosc)
+{
+    double f[3];
+    bf_scale_factors(samples->opt.scale, f);
+    const size_t stride = samples->npad;
+    double *F = samples->data;
+    size_t m = 0;
+    double sum_w = 0;
+    for (size_t b = 0; b < BF_NBINS; b++) {
+        if (v[b] < 0 || v[BF_NBINS + b] < 0 || v[2 * BF_NBINS + b] < 0)
+            continue;
+        int i, j, k;
+        double wi[3], wo[3];
+        bf_bin_ijk(b, &i, &j, &k);
+        bf_bin_dirs(i, j, k, wi, wo);
+        if (!(wi[2] > 0 && wo[2] > 0 && wi[2] >= cosc && wo[2] >= cosc)) {
+            samples->beyond_cutoff++;
+            continue;
+        }
+        bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
+        bf_geom_derive(&g);
+        F[BF_F_IX * stride + m] = wi[0];
+        F[BF_F_IY * stride + m] = wi[1];
+        F[BF_F_IZ * stride + m] = wi[2];
+        F[BF_F_OX * stride + m] = wo[0];
+        F[BF_F_OY * stride + m] = wo[1];
+        F[BF_F_OZ * stride + m] = wo[2];
+        F[BF_F_NH * stride + m] = g.nh;
+        F[BF_F_VH * stride + m] = g.vh;
+        F[BF_F_R * stride + m] = v[b] * f[0];
+        F[BF_F_G * stride + m] = v[BF_NBINS + b] * f[1];
+        F[BF_F_B * stride + m] = v[2 * BF_NBINS + b] * f[2];
+        samples->bin[m] = (int)b;
+        samples->w[m] = brdffit_bin_weight(i, j);
+        sum_w += samples->w[m];
+        m++;
+    }
+    samples->n = m;
+    samples->sum_w = sum_w;
+}
+
+/* Fields from stride samples->npad down to stride padded(samples->n), in place, and the
+ * block (and the weights and bins) shrunk to fit. */
+static brdffit_status shrink_to_fit(brdffit_samples *samples, brdffit_error *err)
+{
+    size_t npad = padded(samples->n);
+    for (int q = 1; q < BF_NFIELDS; q++) /* field 0 stays; each moves down, after the one before */
+        memmove(samples->data + (size_t)q * npad, samples->data + (size_t)q * samples->npad, samples->n * sizeof(double));
+    samples->npad = npad;
+    samples->data = bf_shrink_aligned(samples->data, (size_t)BF_NFIELDS * npad * sizeof(double));
+    if (!samples->data)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY,
+                       "brdffit_samples_create: cannot allocate %zu samples", samples->n);
+    double *w = realloc(samples->w, samples->n * sizeof *samples->w);
+    int *bin = realloc(samples->bin, samples->n * sizeof *samples->bin);
+    if (w) /* a failed shrink keeps the larger block */
+        samples->w = w;
+    if (bin)
+        samples->bin = bin;
+    return BRDFFIT_OK;
+}
+
+/* The metric weight of each sample, and the padding: harmless samples that
+ * add exactly 0 to every sum. */
+static void finish_fields(brdffit_samples *samples)
+{
+    const size_t stride = samples->npad;
+    double *F = samples->data;
+    for (size_t m = 0; m < samples->n; m++) {
+        double iz = F[BF_F_IZ * stride + m];
+        F[BF_F_A2 * stride + m] = samples->w[m] * iz * iz / (3.0 * samples->sum_w);
+    }
+    bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
+    bf_geom_derive(&pg);
+    const double pad[BF_NFIELDS] = {
+        [BF_F_IZ] = 1, [BF_F_OZ] = 1, [BF_F_NH] = pg.nh, [BF_F_VH] = pg.vh,
+    };
+    for (int q = 0; q < BF_NFIELDS; q++)
+        for (size_t m = samples->n; m < stride; m++)
+            F[q * stride + m] = pad[q];
+}
+
 brdffit_status brdffit_samples_create(const brdffit_table *table,
                                       const brdffit_sample_options *opt,
                                       brdffit_samples **out, brdffit_error *err)
@@ -42,141 +195,41 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_samples_create: %s is NULL",
                        !table ? "table" : "out");
     brdffit_sample_options o;
-    brdffit_sample_options_default(&o);
-    if (opt)
-        o = *opt;
-    if (!isfinite(o.cutoff_deg) || !(o.cutoff_deg > 0) || !(o.cutoff_deg <= 90))
-        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
-                       "sample options: cutoff %g deg must be in (0, 90]", o.cutoff_deg);
-    if (o.scale != BRDFFIT_SCALE_STANDARD && o.scale != BRDFFIT_SCALE_FLAT)
-        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "sample options: unknown scale %d",
-                       (int)o.scale);
-
+    brdffit_status st = check_options(opt, &o, err);
+    if (st != BRDFFIT_OK)
+        return st;
     const double *v = brdffit_table_values_const(table);
-    const double cosc = cos(o.cutoff_deg * (BF_PI / 180.0)) - COS_TOL;
-    static const char ch[3] = { 'R', 'G', 'B' };
+    size_t masked, unmasked;
+    st = count_bins(v, &masked, &unmasked, err);
+    if (st != BRDFFIT_OK)
+        return st;
 
-    brdffit_samples *s = calloc(1, sizeof *s);
-    int *bins = malloc(BF_NBINS * sizeof *bins);
-    if (!s || !bins) {
-        free(s);
-        free(bins);
+    brdffit_samples *samples = calloc(1, sizeof *samples);
+    if (!samples)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "brdffit_samples_create: out of memory");
+    samples->opt = o;
+    samples->masked = masked;
+    st = alloc_samples(samples, unmasked, err);
+    if (st != BRDFFIT_OK)
+        goto done;
+    take_bins(samples, v, cos(o.cutoff_deg * (BF_PI / 180.0)) - COS_TOL);
+    if (samples->n == 0) {
+        st = bf_fail(err, BRDFFIT_E_NO_SAMPLES,
+                     "no valid samples (%zu bins masked, %zu beyond the %g deg cutoff or the "
+                     "horizon)",
+                     samples->masked, samples->beyond_cutoff, o.cutoff_deg);
+        goto done;
     }
-    s->opt = o;
-
-    /* pass 1: classify every bin */
-    size_t n = 0;
-    for (size_t b = 0; b < BF_NBINS; b++) {
-        double r = v[b], g = v[BF_NBINS + b], bl = v[2 * BF_NBINS + b];
-        if (!isfinite(r) || !isfinite(g) || !isfinite(bl)) {
-            int c = !isfinite(r) ? 0 : !isfinite(g) ? 1 : 2, i, j, k;
-            bf_bin_ijk(b, &i, &j, &k);
-            free(s);
-            free(bins);
-            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
-                           "table holds a non-finite value (channel %c, bin %d,%d,%d)", ch[c], i,
-                           j, k);
-        }
-        if (r > BRDFFIT_VALUE_MAX || g > BRDFFIT_VALUE_MAX || bl > BRDFFIT_VALUE_MAX) {
-            int c = r > BRDFFIT_VALUE_MAX ? 0 : g > BRDFFIT_VALUE_MAX ? 1 : 2, i, j, k;
-            double x = v[(size_t)c * BF_NBINS + b];
-            bf_bin_ijk(b, &i, &j, &k);
-            free(s);
-            free(bins);
-            return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
-                           "table holds %.17g (channel %c, bin %d,%d,%d), above %g, the largest a "
-                           "table may hold",
-                           x, ch[c], i, j, k, BRDFFIT_VALUE_MAX);
-        }
-        if (r < 0 || g < 0 || bl < 0) {
-            s->masked++;
-            continue;
-        }
-        int i, j, k;
-        double wi[3], wo[3];
-        bf_bin_ijk(b, &i, &j, &k);
-        brdffit_bin_directions(i, j, k, wi, wo);
-        if (wi[2] > 0 && wo[2] > 0 && wi[2] >= cosc && wo[2] >= cosc)
-            bins[n++] = (int)b;
-        else
-            s->beyond_cutoff++;
+    st = shrink_to_fit(samples, err);
+    if (st != BRDFFIT_OK)
+        goto done;
+    finish_fields(samples);
+done:
+    if (st != BRDFFIT_OK) {
+        brdffit_samples_free(samples);
+        return st;
     }
-    if (n == 0) {
-        size_t masked = s->masked, beyond = s->beyond_cutoff;
-        free(s);
-        free(bins);
-        return bf_fail(err, BRDFFIT_E_NO_SAMPLES,
-                       "no valid samples (%zu bins masked, %zu beyond the %g deg cutoff or the "
-                       "horizon)",
-                       masked, beyond, o.cutoff_deg);
-    }
-
-    /* pass 2: the sample arrays */
-    size_t npad = (n + BF_PAD - 1) / BF_PAD * BF_PAD;
-    s->n = n;
-    s->npad = npad;
-    s->bin = realloc(bins, n * sizeof *bins);
-    if (!s->bin)
-        s->bin = bins; /* shrinking failed: keep the larger block */
-    s->w = malloc(n * sizeof *s->w);
-    s->data = bf_alloc_aligned((size_t)BF_NFIELDS * npad * sizeof(double));
-    if (!s->w || !s->data) {
-        brdffit_samples_free(s);
-        return bf_fail(err, BRDFFIT_E_NO_MEMORY,
-                       "brdffit_samples_create: cannot allocate %zu samples", n);
-    }
-    double f[3];
-    bf_scale_factors(o.scale, f);
-    double *F[BF_NFIELDS];
-    for (int q = 0; q < BF_NFIELDS; q++)
-        F[q] = s->data + (size_t)q * npad;
-
-    double sum_w = 0;
-    for (size_t m = 0; m < n; m++) {
-        int b = s->bin[m], i, j, k;
-        bf_bin_ijk((size_t)b, &i, &j, &k);
-        double wi[3], wo[3];
-        brdffit_bin_directions(i, j, k, wi, wo);
-        bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
-        bf_geom_derive(&g);
-        F[BF_F_IX][m] = wi[0];
-        F[BF_F_IY][m] = wi[1];
-        F[BF_F_IZ][m] = wi[2];
-        F[BF_F_OX][m] = wo[0];
-        F[BF_F_OY][m] = wo[1];
-        F[BF_F_OZ][m] = wo[2];
-        F[BF_F_NH][m] = g.nh;
-        F[BF_F_VH][m] = g.vh;
-        F[BF_F_R][m] = v[(size_t)b] * f[0];
-        F[BF_F_G][m] = v[BF_NBINS + (size_t)b] * f[1];
-        F[BF_F_B][m] = v[2 * BF_NBINS + (size_t)b] * f[2];
-        s->w[m] = brdffit_bin_weight(i, j);
-        sum_w += s->w[m];
-    }
-    s->sum_w = sum_w;
-    for (size_t m = 0; m < n; m++) {
-        double iz = F[BF_F_IZ][m];
-        F[BF_F_A2][m] = s->w[m] * iz * iz / (3.0 * sum_w);
-    }
-    /* padding: harmless samples that add exactly 0 to every sum */
-    bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
-    bf_geom_derive(&pg);
-    for (size_t m = n; m < npad; m++) {
-        F[BF_F_IX][m] = 0;
-        F[BF_F_IY][m] = 0;
-        F[BF_F_IZ][m] = 1;
-        F[BF_F_OX][m] = 0;
-        F[BF_F_OY][m] = 0;
-        F[BF_F_OZ][m] = 1;
-        F[BF_F_NH][m] = pg.nh;
-        F[BF_F_VH][m] = pg.vh;
-        F[BF_F_R][m] = 0;
-        F[BF_F_G][m] = 0;
-        F[BF_F_B][m] = 0;
-        F[BF_F_A2][m] = 0;
-    }
-    *out = s;
+    *out = samples;
     bf_ok(err);
     return BRDFFIT_OK;
 }
@@ -226,7 +279,7 @@ void brdffit_samples_options(const brdffit_samples *samples, brdffit_sample_opti
 /* Two geometries closer than this in every invariant are the same one. */
 #define GEOM_TOL 1e-9
 
-size_t bf_samples_geometries(const brdffit_samples *s, size_t need)
+size_t bf_samples_geometries(const brdffit_samples *samples, size_t need)
 {
     /* the invariants of an isotropic, reciprocal BRDF's arguments: the two
      * cosines (in either order) and wi . wo */
@@ -234,9 +287,9 @@ size_t bf_samples_geometries(const brdffit_samples *s, size_t need)
     size_t found = 0;
     if (need > BF_GEOM_NEED_MAX)
         need = BF_GEOM_NEED_MAX;
-    const double *d = s->data;
-    size_t np = s->npad;
-    for (size_t m = 0; m < s->n && found < need; m++) {
+    const double *d = samples->data;
+    size_t np = samples->npad;
+    for (size_t m = 0; m < samples->n && found < need; m++) {
         double iz = d[BF_F_IZ * np + m], oz = d[BF_F_OZ * np + m];
         double dot = d[BF_F_IX * np + m] * d[BF_F_OX * np + m] +
                      d[BF_F_IY * np + m] * d[BF_F_OY * np + m] + iz * oz;

@@ -35,6 +35,6 @@ struct brdffit_samples {
  * isotropic and reciprocal.  A fit with fewer than its unknowns per channel
  * is refused (brdffit_fit: BRDFFIT_E_TOO_FEW_SAMPLES). */
 #define BF_GEOM_NEED_MAX 8
-size_t bf_samples_geometries(const brdffit_samples *s, size_t need);
+size_t bf_samples_geometries(const brdffit_samples *samples, size_t need);
 
 #endif /* BRDFFIT_SAMPLES_H */

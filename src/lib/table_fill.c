@@ -13,9 +13,9 @@ brdffit_status brdffit_table_fill_model(brdffit_table *table, brdffit_model mode
     if (!bf_scale_known(scale))
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
                        "brdffit_table_fill_model: unknown scale %d", (int)scale);
-    brdffit_status s = brdffit_params_check(model, params, err);
-    if (s != BRDFFIT_OK)
-        return s;
+    brdffit_status st = brdffit_params_check(model, params, err);
+    if (st != BRDFFIT_OK)
+        return st;
     double f[3];
     bf_scale_factors(scale, f);
     double wi[3 * BF_NPD], wo[3 * BF_NPD], rgb[3 * BF_NPD];
@@ -23,10 +23,10 @@ brdffit_status brdffit_table_fill_model(brdffit_table *table, brdffit_model mode
         for (int j = 0; j < BF_NTD; j++) {
             for (int k = 0; k < BF_NPD; k++)
                 bf_bin_dirs(i, j, k, wi + 3 * k, wo + 3 * k);
-            s = brdffit_eval_batch(model, params, BF_NPD, wi, wo, rgb);
-            if (s != BRDFFIT_OK)
-                return bf_fail(err, s, "brdffit_table_fill_model: evaluating bin row %d,%d: %s",
-                               i, j, brdffit_strerror(s));
+            st = brdffit_eval_batch(model, params, BF_NPD, wi, wo, rgb);
+            if (st != BRDFFIT_OK)
+                return bf_fail(err, st, "brdffit_table_fill_model: evaluating bin row %d,%d: %s",
+                               i, j, brdffit_strerror(st));
             size_t base = brdffit_bin_index(i, j, 0);
             for (int k = 0; k < BF_NPD; k++) {
                 int above = wi[3 * k + 2] > 0 && wo[3 * k + 2] > 0;

@@ -1,12 +1,14 @@
 /* SPDX-License-Identifier: MIT */
 /* bench.c -- `make bench`: the figures README.md reports.
  *
- *  1. per model, on the full alum-bronze table: one OpenCL data pass (value +
- *     Jacobian moments) against the same sums from the plain single-threaded
- *     C loop (compiled -O2), measured back to back in one run (ratio);
- *  2. per model, one complete fit (the fastest of 3 identical runs): wall
- *     time, passes, share inside cminpack; then the He / Cook-Torrance ratio
- *     from 3 more runs of each, alternating (the fastest of each);
+ *  1. per model, on the full alum-bronze table: its kernel build time
+ *     (brdffit_context_prepare), then one OpenCL data pass (value + Jacobian
+ *     moments) against the same sums from the plain single-threaded C loop
+ *     (compiled -O2), measured back to back in one run (ratio);
+ *  2. per model, one complete fit (the fastest of 3 identical runs, kernels
+ *     built beforehand): wall time, passes, share inside cminpack; then the
+ *     He / Cook-Torrance ratio from 3 more runs of each, alternating (the
+ *     fastest of each);
  *  3. all models on 10 materials end to end;
  *  4. `brdffit batch` on the same materials (bench_batch.c): its time and the
  *     share outside fitting.
@@ -96,107 +98,110 @@ static int fit_fastest(brdffit_context *ctx, const brdffit_samples *s, brdffit_m
     return 1;
 }
 
-int main(int argc, char **argv)
+typedef struct bench_args {
+    int quick;            /* --quick: fewer repetitions, 2 materials */
+    int nmat;             /* --materials N (1..10)                    */
+    const char *models;   /* --models a,b,... or NULL: all            */
+    int renders_only;     /* --renders: part 5 alone                  */
+} bench_args;
+
+/* 0, or 2 after printing the usage. */
+static int parse_args(int argc, char **argv, bench_args *a)
 {
-    int quick = 0, nmat = 10;
-    double fit_seconds[BRDFFIT_MODEL_COUNT] = { 0 };
-    const char *models = NULL;
+    a->quick = 0;
+    a->nmat = 10;
+    a->models = NULL;
+    a->renders_only = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
-            quick = 1, nmat = 2;
+            a->quick = 1, a->nmat = 2;
         else if (!strcmp(argv[i], "--renders"))
-            return bench_renders(0) == 0 ? 0 : 1; /* part 5 alone */
+            a->renders_only = 1;
         else if (!strcmp(argv[i], "--models") && i + 1 < argc)
-            models = argv[++i];
+            a->models = argv[++i];
         else if (!strcmp(argv[i], "--materials") && i + 1 < argc)
-            nmat = atoi(argv[++i]);
+            a->nmat = atoi(argv[++i]);
         else {
             fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N] [--renders]\n", argv[0]);
             return 2;
         }
     }
-    if (nmat < 1 || nmat > 10)
-        nmat = 10;
+    if (a->nmat < 1 || a->nmat > 10)
+        a->nmat = 10;
+    return 0;
+}
 
-    brdffit_error err;
-    brdffit_context *ctx = NULL;
-    if (brdffit_context_create(NULL, &ctx, &err) != BRDFFIT_OK) {
-        fprintf(stderr, "bench: %s\n", err.message);
-        return 1;
-    }
-    printf("brdffit %s bench -- %s\n", brdffit_version(), brdffit_context_describe(ctx));
-    brdffit_samples *s = load("alum-bronze");
-    if (!s)
-        return 1;
-    printf("alum-bronze: %zu valid samples (cutoff 80 deg, standard scale)\n\n", brdffit_samples_count(s));
-
-    /* 1. one pass: kernel vs plain C loop */
-    printf("1. one data pass (value + Jacobian moments), alum-bronze\n");
-    printf("%-18s %12s %12s %8s\n", "model", "C loop ms", "kernel ms", "ratio");
+/* 1. per model: its kernel build (brdffit_context_prepare), then one pass of
+ * the kernel against the plain C loop, the fastest of a few each. */
+static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a)
+{
+    printf("1. one data pass (value + Jacobian moments), alum-bronze; kernel build first\n");
+    printf("%-18s %9s %12s %12s %8s\n", "model", "build s", "C loop ms", "kernel ms", "ratio");
     for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
-        if (!model_selected(models, (brdffit_model)m))
+        if (!model_selected(a->models, (brdffit_model)m))
             continue;
+        brdffit_error err;
         bf_pass_driver dr;
-        if (bf_driver_open(&dr, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK) {
-            fprintf(stderr, "bench: %s\n", err.message);
-            return 1;
-        }
+        memset(&dr, 0, sizeof dr); /* closed below whatever happens */
+        int ok = brdffit_context_prepare(ctx, (brdffit_model)m, &err) == BRDFFIT_OK &&
+                 bf_driver_open(&dr, ctx, s, (brdffit_model)m, &err) == BRDFFIT_OK;
         bf_pass_par pp;
         point_of((brdffit_model)m, &pp);
         double mom[BF_NMOM_MAX], ref[BF_NMOM_MAX];
-        bf_driver_run(&dr, 1, &pp, mom, &err); /* warm-up (build, first touch) */
-        int reps = quick ? 2 : 5, creps = quick ? 1 : 2;
+        ok = ok && bf_driver_run(&dr, 1, &pp, mom, &err) == BRDFFIT_OK; /* warm-up: first touch */
+        int reps = a->quick ? 2 : 5, creps = a->quick ? 1 : 2;
         double tk = 1e30, tc = 1e30;
-        for (int r = 0; r < reps; r++) {
+        for (int r = 0; ok && r < reps; r++) {
             double t0 = bf_now();
-            if (bf_driver_run(&dr, 1, &pp, mom, &err) != BRDFFIT_OK) {
-                fprintf(stderr, "bench: %s\n", err.message);
-                return 1;
-            }
+            ok = bf_driver_run(&dr, 1, &pp, mom, &err) == BRDFFIT_OK;
             tk = fmin(tk, bf_now() - t0);
         }
-        for (int r = 0; r < creps; r++) {
+        for (int r = 0; ok && r < creps; r++) {
             double t0 = bf_now();
             bf_host_loop(s, (brdffit_model)m, dr.nk, dr.np, &pp, ref);
             tc = fmin(tc, bf_now() - t0);
         }
-        printf("%-18s %12.1f %12.1f %7.1fx\n", brdffit_model_get((brdffit_model)m)->name, tc * 1e3,
-               tk * 1e3, tc / tk);
         bf_driver_close(&dr);
-    }
-
-    /* 2. one full fit per model (its kernels already built: a build is once per
-     * context and model, ~1 s cold, not part of a fit) */
-    printf("\n2. one complete fit, alum-bronze (default options; kernels built beforehand;\n"
-           "   the fastest of %d runs)\n", quick ? 1 : 3);
-    printf("%-18s %10s %7s %7s %10s %10s %12s\n", "model", "Error", "passes", "LM it", "fit s",
-           "passes s", "cminpack %");
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
-        if (!model_selected(models, (brdffit_model)m))
-            continue;
-        bf_pass_driver warm;
-        bf_pass_par wp;
-        double wmom[BF_NMOM_MAX];
-        point_of((brdffit_model)m, &wp);
-        if (bf_driver_open(&warm, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK ||
-            bf_driver_run(&warm, 1, &wp, wmom, &err) != BRDFFIT_OK ||
-            bf_driver_run(&warm, 0, &wp, wmom, &err) != BRDFFIT_OK) {
+        if (!ok) {
             fprintf(stderr, "bench: %s\n", err.message);
             return 1;
         }
-        bf_driver_close(&warm);
+        printf("%-18s %9.2f %12.1f %12.1f %7.1fx\n", brdffit_model_get((brdffit_model)m)->name,
+               brdffit_context_build_seconds(ctx, (brdffit_model)m), tc * 1e3, tk * 1e3, tc / tk);
+    }
+    return 0;
+}
+
+/* 2. per model one complete fit (kernels built beforehand), the fastest of
+ * 3; then the He / Cook-Torrance ratio. */
+static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a)
+{
+    double fit_seconds[BRDFFIT_MODEL_COUNT] = { 0 };
+    printf("\n2. one complete fit, alum-bronze (default options; kernels built beforehand by\n"
+           "   brdffit_context_prepare; the fastest of %d runs)\n", a->quick ? 1 : 3);
+    printf("%-18s %10s %7s %7s %10s %10s %12s\n", "model", "Error", "passes", "LM it", "fit s",
+           "passes s", "cminpack %");
+    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+        if (!model_selected(a->models, (brdffit_model)m))
+            continue;
+        brdffit_error err;
+        if (brdffit_context_prepare(ctx, (brdffit_model)m, &err) != BRDFFIT_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            return 1;
+        }
         brdffit_fit_result r;
-        if (!fit_fastest(ctx, s, (brdffit_model)m, quick ? 1 : 3, &r, fit_seconds))
+        memset(&r, 0, sizeof r);
+        if (!fit_fastest(ctx, s, (brdffit_model)m, a->quick ? 1 : 3, &r, fit_seconds))
             return 1;
         printf("%-18s %10.3e %7d %7d %10.3f %10.3f %11.3f%%\n", brdffit_model_get((brdffit_model)m)->name,
-               r.error, r.evaluations, r.iterations, r.seconds, r.seconds_passes,
+               r.error, r.passes, r.iterations, r.seconds, r.seconds_passes,
                100.0 * r.seconds_solver / r.seconds);
     }
 
     /* The He / Cook-Torrance ratio: the two fits alternately (so that a burst
      * of load on the shared machine hits both), the fastest of each. */
     if (fit_seconds[BRDFFIT_COOK_TORRANCE] > 0 && fit_seconds[BRDFFIT_HE] > 0) {
-        int pairs = quick ? 1 : 3;
+        int pairs = a->quick ? 1 : 3;
         brdffit_fit_result r;
         for (int rep = 0; rep < pairs; rep++)
             if (!fit_fastest(ctx, s, BRDFFIT_COOK_TORRANCE, 1, &r, fit_seconds) ||
@@ -207,23 +212,28 @@ int main(int argc, char **argv)
                fit_seconds[BRDFFIT_HE] / fit_seconds[BRDFFIT_COOK_TORRANCE],
                fit_seconds[BRDFFIT_HE], fit_seconds[BRDFFIT_COOK_TORRANCE], pairs);
     }
-    brdffit_samples_free(s);
+    return 0;
+}
 
-    /* 3. every model on nmat materials, end to end (read + prepare + fit) */
-    printf("\n3. end to end: %d materials x the models (read, prepare, fit)\n", nmat);
+/* 3. every selected model on a->nmat materials, end to end (read + prepare + fit). */
+static int bench_end_to_end(brdffit_context *ctx, const bench_args *a)
+{
+    printf("\n3. end to end: %d materials x the models (read, prepare, fit)\n", a->nmat);
     double t0 = bf_now();
     int fits = 0;
-    for (int i = 0; i < nmat; i++) {
+    for (int i = 0; i < a->nmat; i++) {
         double tm = bf_now();
         brdffit_samples *ms = load(materials[i]);
         if (!ms)
             return 1;
         for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
-            if (!model_selected(models, (brdffit_model)m))
+            if (!model_selected(a->models, (brdffit_model)m))
                 continue;
             brdffit_fit_result r;
+            brdffit_error err;
             if (brdffit_fit(ctx, ms, (brdffit_model)m, NULL, &r, &err) != BRDFFIT_OK) {
                 fprintf(stderr, "bench: %s: %s\n", materials[i], err.message);
+                brdffit_samples_free(ms);
                 return 1;
             }
             fits++;
@@ -233,7 +243,42 @@ int main(int argc, char **argv)
     }
     double total = bf_now() - t0;
     printf("  total %d fits in %.2f s (%.2f s per fit)\n", fits, total, fits ? total / fits : 0.0);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    bench_args a;
+    if (parse_args(argc, argv, &a) != 0)
+        return 2;
+    if (a.renders_only)
+        return bench_renders(0) == 0 ? 0 : 1; /* part 5 alone */
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    brdffit_samples *s = NULL;
+    int rc = 1;
+    if (brdffit_context_create(NULL, &ctx, &err) != BRDFFIT_OK) {
+        fprintf(stderr, "bench: %s\n", err.message);
+        goto done;
+    }
+    printf("brdffit %s bench -- %s\n", brdffit_version(), brdffit_context_describe(ctx));
+    s = load("alum-bronze");
+    if (!s)
+        goto done;
+    printf("alum-bronze: %zu valid samples (cutoff 80 deg, standard scale)\n\n", brdffit_samples_count(s));
+    if (bench_passes(ctx, s, &a) != 0 || bench_fits(ctx, s, &a) != 0)
+        goto done;
+    brdffit_samples_free(s);
+    s = NULL;
+    if (bench_end_to_end(ctx, &a) != 0)
+        goto done;
+    brdffit_context_free(ctx); /* the batch runs the program */
+    ctx = NULL;
+    rc = bench_batch(materials, a.nmat, a.models) == 0 ? 0 : 1;
+    if (bench_renders(a.quick) != 0)
+        rc = 1;
+done:
+    brdffit_samples_free(s);
     brdffit_context_free(ctx);
-    int rc = bench_batch(materials, nmat, models) == 0 ? 0 : 1;
-    return bench_renders(quick) == 0 ? rc : 1;
+    return rc;
 }

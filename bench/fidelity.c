@@ -269,7 +269,7 @@ static void one_fit(brdffit_context *ctx, const brdffit_samples *s, const char *
     T->fit_seconds += r.seconds;
     if (T->write)
         fprintf(T->write, "%s\t%s\t%.17g\t%d\t%d\t%d\t%.3f\n", material, mi->name, r.error,
-                r.cminpack_info, r.iterations, r.evaluations, r.seconds);
+                r.cminpack_info, r.iterations, r.passes, r.seconds);
     T->seconds[m][T->nseconds[m]++] = r.seconds;
     char pubtxt[64] = "-", basetxt[64] = "-", note[128];
     const row *pr = find_row(pub, material, m);

@@ -345,6 +345,17 @@ const char *brdffit_context_describe(const brdffit_context *ctx);
  * empty message when the context uses OpenCL or HOST was asked. */
 brdffit_status brdffit_context_fallback(const brdffit_context *ctx, brdffit_error *why);
 
+/* Build the OpenCL kernels of a model now, so that no fit pays for it
+ * (without this the first fit of each model in a context builds them, and
+ * its `seconds` include the build: see brdffit_fit_result.seconds_build).
+ * BRDFFIT_OK and nothing to do on the host backend; BRDFFIT_E_KERNEL_BUILD
+ * with the build log in err.  Once per model and context; later calls are free. */
+brdffit_status brdffit_context_prepare(brdffit_context *ctx, brdffit_model model,
+                                       brdffit_error *err);
+/* The wall time in seconds that building a model's kernels took in this
+ * context (0 when they are not built, and on the host backend). */
+double brdffit_context_build_seconds(const brdffit_context *ctx, brdffit_model model);
+
 typedef struct brdffit_fit_options {
     int starts;          /* starting points screened; 0 (default): the model's
                             own, 8 (a log grid of the lobe width), He 14 (tau =
@@ -358,14 +369,20 @@ typedef struct brdffit_fit_options {
 
 void brdffit_fit_options_default(brdffit_fit_options *opt);
 
+/* What a fit found.  `error` is the fit's Error, the metric "ngan-l2" of
+ * params (as brdffit_error_of gives it): a measure of the fit, not a
+ * failure; failures are the brdffit_status a call returns, with its
+ * message in a brdffit_error. */
 typedef struct brdffit_fit_result {
     brdffit_model model;
     brdffit_params params;   /* in the paper's units                        */
     double error;            /* the "ngan-l2" Error of params               */
     int cminpack_info;       /* lmder's info of the run kept (1..4 converged) */
     int iterations;          /* Jacobian evaluations of that run (njev)     */
-    int evaluations;         /* all data passes of the fit (starts + LM)    */
-    double seconds;          /* wall time of the fit                        */
+    int passes;              /* all data passes of the fit (starts + LM)    */
+    double seconds;          /* wall time of brdffit_fit: checks, the kernel
+                                build if the fit made it (seconds_build),
+                                screening the starts, the LM runs           */
     double seconds_solver;   /* of which inside cminpack (not the passes)   */
     double seconds_passes;   /* of which in data passes                     */
     size_t samples;          /* samples fitted                              */
@@ -374,6 +391,9 @@ typedef struct brdffit_fit_result {
                                 brdffit_at_bound (lobe parameter k at its lower
                                 or upper bound, d_c = 0, s_c = 0)           */
     unsigned flags;          /* bits of brdffit_fit_flag                    */
+    double seconds_build;    /* of `seconds`: building the model's OpenCL
+                                kernels, 0 when the context had them
+                                (brdffit_context_prepare, an earlier fit)   */
 } brdffit_fit_result;
 
 /* Bits of brdffit_fit_result.at_bound.  A lobe parameter is on its bound when

@@ -102,8 +102,8 @@ static int split_lines(char *text, char **lines, int max)
 static void check_fit_record(const char *line, const char *want_material, const char *want_model)
 {
     static const char *const keys[] = { "material", "model", "d", "s", "p", "error", "metric",
-                                        "status", "iterations", "evaluations", "seconds",
-                                        "backend", "samples", "cminpack_info" };
+                                        "status", "iterations", "passes", "seconds",
+                                        "seconds_build", "backend", "samples", "cminpack_info" };
     ck_assert_msg(tu_json_object_line(line), "not one JSON object: %s", line);
     ck_assert_msg(line[0] == '{' && line[strlen(line) - 1] == '}', "line: %s", line);
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
@@ -133,8 +133,10 @@ static void check_fit_record(const char *line, const char *want_material, const 
     double n;
     ck_assert(tu_json_get_number(line, "samples", &n) && n > 0);
     ck_assert(tu_json_get_number(line, "iterations", &n) && n >= 0);
-    ck_assert(tu_json_get_number(line, "evaluations", &n) && n >= 1);
+    ck_assert(tu_json_get_number(line, "passes", &n) && n >= 1);
     ck_assert(tu_json_get_number(line, "seconds", &n) && n >= 0);
+    double b;
+    ck_assert(tu_json_get_number(line, "seconds_build", &b) && b >= 0 && b <= n);
 }
 
 START_TEST(json_checker_self_test)

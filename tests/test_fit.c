@@ -134,7 +134,7 @@ START_TEST(recovery)
                           mi->name, mi->param_names[k], r.params.p[k], truth.p[k]);
     }
     ck_assert(r.cminpack_info >= 1 && r.cminpack_info <= 4);
-    ck_assert(r.evaluations > 0 && r.iterations > 0 && r.seconds > 0);
+    ck_assert(r.passes > 0 && r.iterations > 0 && r.seconds > 0);
     ck_assert_int_eq(r.samples, brdffit_samples_count(s));
     brdffit_context_free(ctx);
     brdffit_samples_free(s);

@@ -274,6 +274,73 @@ START_TEST(pocl_cache_out_of_the_box)
 }
 END_TEST
 
+/* A small synthetic sample set: Ward within a 30 deg cutoff. */
+static brdffit_samples *small_samples(void)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    brdffit_samples *s = NULL;
+    brdffit_params p = { { 0.1, 0.1, 0.1 }, { 0.2, 0.2, 0.2 }, { 0.1 }, { 0 } };
+    ck_assert_msg(brdffit_table_create(&t, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(brdffit_table_fill_model(t, BRDFFIT_WARD, &p, BRDFFIT_SCALE_STANDARD, &err) ==
+                      BRDFFIT_OK, "%s", err.message);
+    brdffit_sample_options so;
+    brdffit_sample_options_default(&so);
+    so.cutoff_deg = 30;
+    ck_assert_msg(brdffit_samples_create(t, &so, &s, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_table_free(t);
+    return s;
+}
+
+/* brdffit_context_prepare builds a model's kernels ahead: the fit then
+ * reports no build time; without it the first fit builds them and reports
+ * the build (within its seconds) as seconds_build, the later ones 0. */
+START_TEST(prepare_builds_ahead)
+{
+    brdffit_samples *s = small_samples();
+    brdffit_error err;
+    brdffit_context_options co;
+    brdffit_context_options_default(&co);
+    co.backend = BRDFFIT_BACKEND_OPENCL;
+    brdffit_context *ctx = NULL;
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert(brdffit_context_build_seconds(ctx, BRDFFIT_WARD) == 0.0);
+    ck_assert_msg(brdffit_context_prepare(ctx, BRDFFIT_WARD, &err) == BRDFFIT_OK, "%s", err.message);
+    double built = brdffit_context_build_seconds(ctx, BRDFFIT_WARD);
+    ck_assert(built > 0.0);
+    brdffit_fit_result r;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert(r.seconds_build == 0.0);
+    ck_assert_msg(brdffit_context_prepare(ctx, BRDFFIT_WARD, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert(brdffit_context_build_seconds(ctx, BRDFFIT_WARD) == built); /* not built again */
+
+    /* no prepare: the first fit of a model builds, the second does not */
+    ck_assert(brdffit_context_build_seconds(ctx, BRDFFIT_BLINN_PHONG) == 0.0);
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_BLINN_PHONG, NULL, &r, &err) == BRDFFIT_OK, "%s",
+                  err.message);
+    ck_assert(r.seconds_build > 0.0 && r.seconds_build < r.seconds);
+    ck_assert(r.seconds_build == brdffit_context_build_seconds(ctx, BRDFFIT_BLINN_PHONG));
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_BLINN_PHONG, NULL, &r, &err) == BRDFFIT_OK, "%s",
+                  err.message);
+    ck_assert(r.seconds_build == 0.0);
+
+    ck_assert_int_eq(brdffit_context_prepare(ctx, (brdffit_model)99, &err), BRDFFIT_E_UNKNOWN_MODEL);
+    ck_assert_int_eq(err.status, BRDFFIT_E_UNKNOWN_MODEL);
+    ck_assert_int_eq(brdffit_context_prepare(NULL, BRDFFIT_WARD, &err), BRDFFIT_E_INVALID_ARGUMENT);
+    brdffit_context_free(ctx);
+
+    /* the host path has nothing to build */
+    co.backend = BRDFFIT_BACKEND_HOST;
+    ck_assert_msg(brdffit_context_create(&co, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(brdffit_context_prepare(ctx, BRDFFIT_WARD, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert(brdffit_context_build_seconds(ctx, BRDFFIT_WARD) == 0.0);
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert(r.seconds_build == 0.0);
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+}
+END_TEST
+
 /* A kernel that does not build reports BRDFFIT_E_KERNEL_BUILD with the log. */
 START_TEST(build_failure_carries_log)
 {
@@ -287,6 +354,10 @@ START_TEST(build_failure_carries_log)
     ck_assert_int_eq(err.status, BRDFFIT_E_KERNEL_BUILD);
     ck_assert_ptr_nonnull(strstr(err.message, "build log"));
     ck_assert_ptr_nonnull(strstr(err.message, "BF_WIDTH must be 4 or 8")); /* the compiler's words */
+    /* brdffit_context_prepare reports the same */
+    ck_assert_int_eq(brdffit_context_prepare(ctx, BRDFFIT_COOK_TORRANCE, &err), BRDFFIT_E_KERNEL_BUILD);
+    ck_assert_ptr_nonnull(strstr(err.message, "BF_WIDTH must be 4 or 8"));
+    ck_assert(brdffit_context_build_seconds(ctx, BRDFFIT_COOK_TORRANCE) == 0.0);
     brdffit_context_free(ctx);
 }
 END_TEST
@@ -312,6 +383,7 @@ Suite *pass_suite(void)
     tcase_add_test(te, no_platform_falls_back_to_host);
     tcase_add_test(te, pocl_cache_out_of_the_box);
     tcase_add_test(te, build_failure_carries_log);
+    tcase_add_test(te, prepare_builds_ahead);
     suite_add_tcase(s, te);
     return s;
 }

@@ -82,7 +82,7 @@ class FitResult(C.Structure):
         ("error", C.c_double),
         ("cminpack_info", C.c_int),
         ("iterations", C.c_int),
-        ("evaluations", C.c_int),
+        ("passes", C.c_int),
         ("seconds", C.c_double),
         ("seconds_solver", C.c_double),
         ("seconds_passes", C.c_double),
@@ -90,6 +90,7 @@ class FitResult(C.Structure):
         ("backend", c_enum),
         ("at_bound", C.c_uint),
         ("flags", C.c_uint),
+        ("seconds_build", C.c_double),
     ]
 
 

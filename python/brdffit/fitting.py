@@ -76,9 +76,10 @@ class FitResult:
     """What brdffit_fit returns.  ``params`` in the paper's units, ``error``
     the "ngan-l2" Error of params, ``status`` the call's Status (OK: a
     result), ``cminpack_info`` lmder's info of the run kept (1..4 converged),
-    ``iterations`` its Jacobian evaluations, ``evaluations`` all data passes
+    ``iterations`` its Jacobian evaluations, ``passes`` all data passes
     of the fit, ``seconds`` its wall time (``seconds_solver`` inside
-    cminpack, ``seconds_passes`` in data passes), ``samples`` fitted,
+    cminpack, ``seconds_passes`` in data passes, ``seconds_build`` building
+    the model's kernels when the fit had to), ``samples`` fitted,
     ``backend`` "opencl" or "host", ``at_bound`` the brdffit_at_bound bits
     (lobe parameter k on a bound: bit k; d_c = 0: bit 8 + c; s_c = 0: bit
     12 + c), ``flags`` the brdffit_fit_flag bits (1: stopped on max_evals)."""
@@ -89,12 +90,13 @@ class FitResult:
     status: Status
     cminpack_info: int
     iterations: int
-    evaluations: int
+    passes: int
     seconds: float
     seconds_solver: float
     seconds_passes: float
     samples: int
     backend: str
+    seconds_build: float = 0.0
     at_bound: int = 0
     flags: int = 0
 
@@ -161,12 +163,13 @@ def fit(ctx, samples, model, **options):
         status=Status.OK,
         cminpack_info=r.cminpack_info,
         iterations=r.iterations,
-        evaluations=r.evaluations,
+        passes=r.passes,
         seconds=r.seconds,
         seconds_solver=r.seconds_solver,
         seconds_passes=r.seconds_passes,
         samples=r.samples,
         backend=_BACKEND_NAMES.get(r.backend, "unknown"),
+        seconds_build=r.seconds_build,
         at_bound=r.at_bound,
         flags=r.flags,
     )

@@ -31,12 +31,13 @@ def test_fit_equals_the_program(brdffit, ctx, cli, alum_bronze, model, cutoff, s
     assert r.params.s.tolist() == rec["s"]
     assert r.params.p.tolist() == rec["p"]
     assert r.error == rec["error"]
-    assert (r.iterations, r.evaluations, r.cminpack_info, r.samples) == \
-        (rec["iterations"], rec["evaluations"], rec["cminpack_info"], rec["samples"])
+    assert (r.iterations, r.passes, r.cminpack_info, r.samples) == \
+        (rec["iterations"], rec["passes"], rec["cminpack_info"], rec["samples"])
     assert rec["metric"]["scale"] == scale
     assert r.status == brdffit.Status.OK and r.converged
     assert r.model is brdffit.model(model) and r.seconds > 0
     assert 0 <= r.seconds_solver <= r.seconds and 0 <= r.seconds_passes <= r.seconds
+    assert 0 <= r.seconds_build <= r.seconds
     # the Error of the fitted parameters is the fit's Error
     assert brdffit.error_of(ctx, s, model, r) == r.error
     assert brdffit.error_of(ctx, s, model, r.params.vector()) == r.error

@@ -233,8 +233,8 @@ void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
     putc(',', f);
     json_metric(f, m);
     if (r && st == BRDFFIT_OK) {
-        fprintf(f, ",\"iterations\":%d,\"evaluations\":%d,\"cminpack_info\":%d", r->iterations,
-                r->evaluations, r->cminpack_info);
+        fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"cminpack_info\":%d", r->iterations,
+                r->passes, r->cminpack_info);
         json_list lst = { f, 0 };
         fputs(",\"at_bound\":[", f);
         bound_names(r, 1, json_list_put, &lst);
@@ -244,7 +244,7 @@ void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
             json_list_put("limit", &lst);
         putc(']', f);
     } else {
-        fputs(",\"iterations\":null,\"evaluations\":null,\"cminpack_info\":null,"
+        fputs(",\"iterations\":null,\"passes\":null,\"cminpack_info\":null,"
               "\"at_bound\":null,\"flags\":null", f);
     }
     fputs(",\"seconds\":", f);
@@ -253,6 +253,8 @@ void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
     json_number(f, r && st == BRDFFIT_OK ? r->seconds_solver : NAN);
     fputs(",\"seconds_passes\":", f);
     json_number(f, r && st == BRDFFIT_OK ? r->seconds_passes : NAN);
+    fputs(",\"seconds_build\":", f);
+    json_number(f, r && st == BRDFFIT_OK ? r->seconds_build : NAN);
     fputs(",\"backend\":", f);
     json_string(f, backend_name(ctx));
     fputs(",\"backend_description\":", f);

@@ -61,7 +61,7 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, error),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, cminpack_info),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, iterations),
-    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, evaluations),
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, passes),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, seconds),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, seconds_solver),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, seconds_passes),
@@ -69,6 +69,7 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, backend),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, at_bound),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, flags),
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, seconds_build),
 };
 
 #undef M

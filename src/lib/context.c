@@ -409,6 +409,30 @@ static brdffit_status build_locked(brdffit_context *ctx, brdffit_model model,
     return BRDFFIT_OK;
 }
 
+brdffit_status brdffit_context_prepare(brdffit_context *ctx, brdffit_model model,
+                                       brdffit_error *err)
+{
+    if (!ctx)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_context_prepare: ctx is NULL");
+    if (!brdffit_model_get(model))
+        return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
+    if (ctx->backend == BRDFFIT_BACKEND_OPENCL) {
+        cl_kernel full, value;
+        brdffit_status st = bf_context_kernels(ctx, model, &full, &value, err);
+        if (st != BRDFFIT_OK)
+            return st;
+    }
+    bf_ok(err);
+    return BRDFFIT_OK;
+}
+
+double brdffit_context_build_seconds(const brdffit_context *ctx, brdffit_model model)
+{
+    if (!ctx || !brdffit_model_get(model) || !ctx->program[model])
+        return 0.0;
+    return ctx->build_seconds[model];
+}
+
 brdffit_status bf_context_kernels(brdffit_context *ctx, brdffit_model model, cl_kernel *full,
                                   cl_kernel *value, brdffit_error *err)
 {
@@ -419,10 +443,13 @@ brdffit_status bf_context_kernels(brdffit_context *ctx, brdffit_model model, cl_
         return bf_fail(err, BRDFFIT_E_NO_DEVICE, "the context has no OpenCL device");
     if (!ctx->program[model]) {
         pthread_mutex_lock(&cl_lock);
+        double t0 = bf_now();
         brdffit_status st = build_locked(ctx, model, mi, err);
+        double took = bf_now() - t0;
         pthread_mutex_unlock(&cl_lock);
         if (st != BRDFFIT_OK)
             return st;
+        ctx->build_seconds[model] = took;
     }
     *full = ctx->kfull[model];
     *value = ctx->kvalue[model];

@@ -21,6 +21,7 @@ struct brdffit_context {
     brdffit_error fallback;           /* AUTO on the host path: why OpenCL was not used */
     cl_program program[BRDFFIT_MODEL_COUNT];   /* built on first use */
     cl_kernel kfull[BRDFFIT_MODEL_COUNT], kvalue[BRDFFIT_MODEL_COUNT];
+    double build_seconds[BRDFFIT_MODEL_COUNT]; /* wall time of each model's build */
 };
 
 /* The two kernels of a model (bf_kernel_full, bf_kernel_value), building its

@@ -642,7 +642,8 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (rc != BRDFFIT_OK)
         goto done;
     fill_result(&S, &best, result);
-    result->evaluations = ps.passes;
+    result->passes = ps.passes;
+    result->seconds_build = ps.seconds_build;
     result->samples = samples->n;
     result->backend = brdffit_context_backend(ctx);
     result->seconds_passes = ps.seconds;

@@ -30,9 +30,12 @@ brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
     if (ctx->backend != BRDFFIT_BACKEND_OPENCL)
         return BRDFFIT_OK;
 
+    int built = ctx->program[model] != NULL;
     brdffit_status st = bf_context_kernels(ctx, model, &dr->kfull, &dr->kvalue, err);
     if (st != BRDFFIT_OK)
         return st;
+    if (!built)
+        dr->seconds_build = ctx->build_seconds[model];
     size_t nvec = samples->npad / (size_t)ctx->width;
     size_t items = (size_t)(ctx->compute_units ? ctx->compute_units : 1) * 16;
     if (items > nvec)

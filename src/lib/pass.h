@@ -26,11 +26,13 @@ typedef struct bf_pass_driver {
     cl_uint vec_per_item;
     double *rows;                     /* items x BF_NMOM_MAX, host side    */
     double seconds;                   /* time spent in passes              */
+    double seconds_build;             /* of the kernels, when open built them */
     int passes;
 } bf_pass_driver;
 
 /* Bind samples to ctx for passes of model (on OpenCL: the model's kernels,
- * built here when the context has not built them yet, and the buffers).
+ * built here when the context has not built them yet (their build time in
+ * seconds_build, else 0), and the buffers).
  * Call bf_driver_close afterwards whatever this returns. */
 brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
                               const brdffit_samples *samples, brdffit_model model,

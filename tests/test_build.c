@@ -1,0 +1,88 @@
+/* test_build.c -- the Makefile's header dependencies (-MMD -MP): a change to
+ * a header rebuilds the objects that include it, and only those.  Asked of
+ * make itself with `make -n -W HEADER` (what would run were HEADER new),
+ * in the build directory of the binaries under test. */
+#define _POSIX_C_SOURCE 200809L
+#include "testutil.h"
+
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The build directory: that of $BRDFFIT_CLI (make test sets it), else "build". */
+static void build_dir(char *buf, size_t len)
+{
+    const char *cli = getenv("BRDFFIT_CLI");
+    snprintf(buf, len, "%s", cli && *cli ? cli : "build/brdffit");
+    char *slash = strrchr(buf, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(buf, len, "build");
+}
+
+/* What `make -n -W header` would compile (its output) into out. */
+static void would_run(const char *header, const char *goal, char *out, size_t len)
+{
+    char dir[512], cmd[2048];
+    build_dir(dir, sizeof dir);
+    snprintf(cmd, sizeof cmd, "make -s -n -W '%s' BUILD='%s' '%s/%s' 2>&1", header, dir, dir, goal);
+    FILE *p = popen(cmd, "r");
+    ck_assert_ptr_nonnull(p);
+    size_t n = fread(out, 1, len - 1, p);
+    out[n] = '\0';
+    pclose(p);
+}
+
+static int compiles(const char *out, const char *source)
+{
+    char pat[256];
+    snprintf(pat, sizeof pat, "-c -o ");
+    for (const char *q = out; (q = strstr(q, pat)) != NULL; q++) {
+        const char *eol = strchr(q, '\n');
+        size_t n = eol ? (size_t)(eol - q) : strlen(q);
+        char line[1024];
+        snprintf(line, sizeof line, "%.*s", (int)(n < sizeof line - 1 ? n : sizeof line - 1), q);
+        if (strstr(line, source))
+            return 1;
+    }
+    return 0;
+}
+
+static char out[1 << 16];
+
+START_TEST(header_change_rebuilds_its_includers)
+{
+    /* the He maths: only the two library files that include the kernel maths */
+    would_run("kernels/bf_he.h", "libbrdffit.a", out, sizeof out);
+    ck_assert_msg(compiles(out, "src/lib/models.c"), "make -n said:\n%s", out);
+    ck_assert_msg(compiles(out, "src/lib/pass_host.c"), "make -n said:\n%s", out);
+    ck_assert_msg(!compiles(out, "src/lib/status.c"), "status.c rebuilt:\n%s", out);
+    ck_assert_msg(!compiles(out, "src/lib/fit.c"), "fit.c rebuilt:\n%s", out);
+    ck_assert_msg(!compiles(out, "src/lib/merl_file.c"), "merl_file.c rebuilt:\n%s", out);
+
+    /* the grid header: the table files, not the pass */
+    would_run("src/lib/grid.h", "libbrdffit.a", out, sizeof out);
+    ck_assert_msg(compiles(out, "src/lib/grid.c") && compiles(out, "src/lib/merl_file.c") &&
+                      compiles(out, "src/lib/lookup.c"),
+                  "make -n said:\n%s", out);
+    ck_assert_msg(!compiles(out, "src/lib/pass.c") && !compiles(out, "src/lib/context.c"),
+                  "pass/context rebuilt:\n%s", out);
+
+    /* the public header: everything of the library */
+    would_run("include/brdffit.h", "libbrdffit.a", out, sizeof out);
+    ck_assert_msg(compiles(out, "src/lib/status.c") && compiles(out, "src/lib/pass.c"),
+                  "make -n said:\n%s", out);
+}
+END_TEST
+
+Suite *build_suite(void)
+{
+    Suite *s = suite_create("build");
+    TCase *tc = tcase_create("build");
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, header_change_rebuilds_its_includers);
+    suite_add_tcase(s, tc);
+    return s;
+}

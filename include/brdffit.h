@@ -118,7 +118,9 @@ typedef enum brdffit_status {
 /* A fixed text for each status; never NULL. */
 const char *brdffit_strerror(brdffit_status status);
 
-/* Caller-owned error report.  Pass NULL where no message is wanted. */
+/* Caller-owned failure report: the status a call failed with and why.  Pass
+ * NULL where no message is wanted.  (Not to be confused with the Error, the
+ * fit metric "ngan-l2": brdffit_fit_result.error, brdffit_error_of.) */
 #define BRDFFIT_MESSAGE_MAX 2048
 typedef struct brdffit_error {
     brdffit_status status;
@@ -427,7 +429,8 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
                            brdffit_model model, const brdffit_fit_options *opt,
                            brdffit_fit_result *result, brdffit_error *err);
 
-/* The "ngan-l2" Error of given parameters on a sample set.
+/* The "ngan-l2" Error (the metric, into *error) of given parameters on a
+ * sample set; a failure is the returned status, explained in err.
  *
  * Fits and Errors come from data passes over the sample set (OpenCL kernel
  * or host loop).  For He a pass walks the samples in table order and, where

@@ -1,7 +1,9 @@
 /* test_build.c -- the Makefile's header dependencies (-MMD -MP): a change to
  * a header rebuilds the objects that include it, and only those.  Asked of
  * make itself with `make -n -W HEADER` (what would run were HEADER new),
- * in the build directory of the binaries under test. */
+ * in the build directory of the binaries under test; an object that `make -n`
+ * would rebuild anyway (a source edited since the build) proves nothing
+ * either way and is not asserted on. */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
 
@@ -22,12 +24,14 @@ static void build_dir(char *buf, size_t len)
         snprintf(buf, len, "build");
 }
 
-/* What `make -n -W header` would compile (its output) into out. */
+/* What `make -n [-W header]` would run (its output) into out. */
 static void would_run(const char *header, const char *goal, char *out, size_t len)
 {
-    char dir[512], cmd[2048];
+    char dir[512], cmd[2048], what[600] = "";
     build_dir(dir, sizeof dir);
-    snprintf(cmd, sizeof cmd, "make -s -n -W '%s' BUILD='%s' '%s/%s' 2>&1", header, dir, dir, goal);
+    if (header)
+        snprintf(what, sizeof what, "-W '%s'", header);
+    snprintf(cmd, sizeof cmd, "make -s -n %s BUILD='%s' '%s/%s' 2>&1", what, dir, dir, goal);
     FILE *p = popen(cmd, "r");
     ck_assert_ptr_nonnull(p);
     size_t n = fread(out, 1, len - 1, p);
@@ -50,30 +54,45 @@ static int compiles(const char *out, const char *source)
     return 0;
 }
 
-static char out[1 << 16];
+static char out[1 << 16], base[1 << 16];
+
+/* The start of the output, for a message. */
+static const char *head(const char *text)
+{
+    static char buf[1200];
+    snprintf(buf, sizeof buf, "%.1100s", text);
+    return buf;
+}
+
+#define REBUILDS(src) ck_assert_msg(compiles(out, src), "%s not rebuilt; make -n said:\n%s", src, head(out))
+#define KEEPS(src)                                                                              \
+    ck_assert_msg(compiles(base, src) || !compiles(out, src), "%s rebuilt; make -n said:\n%s", \
+                  src, head(out))
 
 START_TEST(header_change_rebuilds_its_includers)
 {
+    would_run(NULL, "libbrdffit.a", base, sizeof base);
+
     /* the He maths: only the two library files that include the kernel maths */
     would_run("kernels/bf_he.h", "libbrdffit.a", out, sizeof out);
-    ck_assert_msg(compiles(out, "src/lib/models.c"), "make -n said:\n%s", out);
-    ck_assert_msg(compiles(out, "src/lib/pass_host.c"), "make -n said:\n%s", out);
-    ck_assert_msg(!compiles(out, "src/lib/status.c"), "status.c rebuilt:\n%s", out);
-    ck_assert_msg(!compiles(out, "src/lib/fit.c"), "fit.c rebuilt:\n%s", out);
-    ck_assert_msg(!compiles(out, "src/lib/merl_file.c"), "merl_file.c rebuilt:\n%s", out);
+    REBUILDS("src/lib/models.c");
+    REBUILDS("src/lib/pass_host.c");
+    KEEPS("src/lib/status.c");
+    KEEPS("src/lib/fit.c");
+    KEEPS("src/lib/merl_file.c");
 
     /* the grid header: the table files, not the pass */
     would_run("src/lib/grid.h", "libbrdffit.a", out, sizeof out);
-    ck_assert_msg(compiles(out, "src/lib/grid.c") && compiles(out, "src/lib/merl_file.c") &&
-                      compiles(out, "src/lib/lookup.c"),
-                  "make -n said:\n%s", out);
-    ck_assert_msg(!compiles(out, "src/lib/pass.c") && !compiles(out, "src/lib/context.c"),
-                  "pass/context rebuilt:\n%s", out);
+    REBUILDS("src/lib/grid.c");
+    REBUILDS("src/lib/merl_file.c");
+    REBUILDS("src/lib/lookup.c");
+    KEEPS("src/lib/pass.c");
+    KEEPS("src/lib/context.c");
 
     /* the public header: everything of the library */
     would_run("include/brdffit.h", "libbrdffit.a", out, sizeof out);
-    ck_assert_msg(compiles(out, "src/lib/status.c") && compiles(out, "src/lib/pass.c"),
-                  "make -n said:\n%s", out);
+    REBUILDS("src/lib/status.c");
+    REBUILDS("src/lib/pass.c");
 }
 END_TEST
 

@@ -76,7 +76,7 @@ typedef struct bj_record {
     brdffit_params params;          /* d, s, p (nparams), lambda_um (He)   */
     int nparams;
     double error;
-    int iterations, evaluations, cminpack_info;
+    int iterations, passes, cminpack_info;
     double seconds;
     long long samples;
     char on_bound[128];             /* "n=upper,d_b=0" or ""               */

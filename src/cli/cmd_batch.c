@@ -547,7 +547,7 @@ static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples
         r.params = res.params;
         r.error = res.error;
         r.iterations = res.iterations;
-        r.evaluations = res.evaluations;
+        r.passes = res.passes;
         r.cminpack_info = res.cminpack_info;
         r.seconds = res.seconds;
         bj_on_bound(model, &res.params, r.on_bound, sizeof r.on_bound);

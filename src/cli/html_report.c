@@ -103,14 +103,14 @@ static void tsv_fit(FILE *f, const bj_record *fit, const bj_record *pub)
         fprintf(f, "\t%s", k < fit->nparams && fit->ok ? num(b, sizeof b, "%.10g", fit->params.p[k]) : "");
     fprintf(f, "\t%s", num(b, sizeof b, "%.10g", fit->ok ? fit->error : NAN));
     fprintf(f, "\t%s\t%d\t%d\t%s\t", fit->ok ? "ok" : fit->status, fit->iterations,
-            fit->evaluations, num(b, sizeof b, "%.3f", fit->seconds));
+            fit->passes, num(b, sizeof b, "%.3f", fit->seconds));
     tsv_text(f, fit->on_bound);
     fprintf(f, "\t%s", num(b, sizeof b, "%.10g", pub && pub->ok ? pub->error : NAN));
     fprintf(f, "\t%s", num(b, sizeof b, "%.6g", ratio(fit, pub)));
 }
 
 #define TSV_FIT_HEADER                                                                       \
-    "d_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\terror\tstatus\titerations\tevaluations\tseconds" \
+    "d_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\terror\tstatus\titerations\tpasses\tseconds" \
     "\ton_bound\tpublished_error\tratio"
 
 static int write_params_tsv(const rp_report *rep, const rp_material *m, const char *dir,
@@ -165,8 +165,8 @@ static void json_fit(FILE *f, const bj_record *fit, const bj_record *pub)
     }
     fputs(",\"error\":", f);
     json_number(f, fit->ok ? fit->error : NAN);
-    fprintf(f, ",\"iterations\":%d,\"evaluations\":%d,\"seconds\":", fit->iterations,
-            fit->evaluations);
+    fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"seconds\":", fit->iterations,
+            fit->passes);
     json_number(f, fit->seconds);
     fputs(",\"on_bound\":", f);
     json_string(f, fit->on_bound);

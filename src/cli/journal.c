@@ -243,8 +243,8 @@ void bj_record_json(FILE *f, const bj_record *r)
         json_number(f, r->error);
     }
     if (r->kind == BJ_FIT) {
-        fprintf(f, ",\"iterations\":%d,\"evaluations\":%d,\"cminpack_info\":%d,\"seconds\":",
-                r->iterations, r->evaluations, r->cminpack_info);
+        fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"cminpack_info\":%d,\"seconds\":",
+                r->iterations, r->passes, r->cminpack_info);
         json_number(f, r->seconds);
         fprintf(f, ",\"samples\":%lld,\"on_bound\":", r->samples);
         json_string(f, r->on_bound);
@@ -344,9 +344,9 @@ int bj_record_parse(const char *line, bj_record *r)
             goto done;
     }
     if (r->kind == BJ_FIT) {
-        double it, ev, info, smp;
+        double it, np, info, smp;
         if (get_num(&o, NULL, "iterations", &it, 1) != 0 ||
-            get_num(&o, NULL, "evaluations", &ev, 1) != 0 ||
+            get_num(&o, NULL, "passes", &np, 1) != 0 ||
             get_num(&o, NULL, "cminpack_info", &info, 1) != 0 ||
             get_num(&o, NULL, "seconds", &r->seconds, 1) != 0 ||
             get_num(&o, NULL, "samples", &smp, 1) != 0 ||
@@ -354,7 +354,7 @@ int bj_record_parse(const char *line, bj_record *r)
             get_str(&o, NULL, "backend", r->backend, sizeof r->backend, 0) != 0)
             goto done;
         r->iterations = (int)it;
-        r->evaluations = (int)ev;
+        r->passes = (int)np;
         r->cminpack_info = (int)info;
         r->samples = (long long)smp;
     }

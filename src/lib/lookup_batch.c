@@ -15,13 +15,12 @@ brdffit_status brdffit_table_lookup_batch(const brdffit_table *table, size_t n,
     brdffit_status st = brdffit_table_lookup(table, centre, centre, scale, interp, probe);
     if (st != BRDFFIT_OK)
         return st;
-    brdffit_status result = BRDFFIT_OK;
-    for (size_t s = 0; s < n; s++) {
-        double *out = rgb + 3 * s;
-        if (brdffit_table_lookup(table, wi + 3 * s, wo + 3 * s, scale, interp, out) != BRDFFIT_OK) {
+    for (size_t i = 0; i < n; i++) {
+        double *out = rgb + 3 * i;
+        if (brdffit_table_lookup(table, wi + 3 * i, wo + 3 * i, scale, interp, out) != BRDFFIT_OK) {
             out[0] = out[1] = out[2] = -1.0;
-            result = BRDFFIT_E_INVALID_ARGUMENT;
+            st = BRDFFIT_E_INVALID_ARGUMENT;
         }
     }
-    return result;
+    return st;
 }

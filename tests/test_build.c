@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_build.c -- the Makefile's header dependencies (-MMD -MP): a change to
  * a header rebuilds the objects that include it, and only those.  Asked of
  * make itself with `make -n -W HEADER` (what would run were HEADER new),

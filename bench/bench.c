@@ -11,10 +11,11 @@
  *     fastest of each);
  *  3. all models on 10 materials end to end;
  *  4. `brdffit batch` on the same materials (bench_batch.c): its time and the
- *     share outside fitting.
+ *     share outside fitting;
+ *  5. a material's renders and plots (bench_render.c; --renders: this alone).
  *
  * Tables come from ../shared/tools/merl-table (BRDFFIT_SHARED overrides).
- * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N]
+ * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N] [--renders]
  */
 #define _POSIX_C_SOURCE 200809L
 #include "pass.h"

@@ -22,6 +22,7 @@
 #include "testutil.h"
 #include "bench_batch.h"
 #include "bench_render.h"
+#include "registry.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -48,7 +49,6 @@ static brdffit_samples *load(const char *name)
 /* A representative pass point: the model's typical start. */
 static void point_of(brdffit_model m, bf_pass_par *pp)
 {
-    const brdffit_model_info *mi = brdffit_model_get(m);
     memset(pp, 0, sizeof *pp);
     for (int c = 0; c < 3; c++) {
         pp->d[c] = 0.05;
@@ -57,9 +57,9 @@ static void point_of(brdffit_model m, bf_pass_par *pp)
     pp->lam[0] = 0.645, pp->lam[1] = 0.526, pp->lam[2] = 0.444;
     int np = bf_model_ncoords(m);
     for (int j = 0; j <= np; j++) {
-        memcpy(pp->p[j], mi->start, sizeof pp->p[j]);
+        bf_model_start_params(m, pp->p[j]);
         if (j > 0) {
-            int k = (m == BRDFFIT_LAFORTUNE) ? j : j - 1; /* perturb a real parameter */
+            int k = bf_model_coord_param(m, j - 1); /* a parameter coordinate j-1 moves */
             pp->p[j][k] *= 1 + 1e-7;
             pp->inv_h[j - 1] = 1e7;
         }
@@ -138,7 +138,7 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const be
 {
     printf("1. one data pass (value + Jacobian moments), alum-bronze; kernel build first\n");
     printf("%-18s %9s %12s %12s %8s\n", "model", "build s", "C loop ms", "kernel ms", "ratio");
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+    for (int m = 0; m < brdffit_model_count(); m++) {
         if (!model_selected(a->models, (brdffit_model)m))
             continue;
         brdffit_error err;
@@ -182,7 +182,7 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
            "   brdffit_context_prepare; the fastest of %d runs)\n", a->quick ? 1 : 3);
     printf("%-18s %10s %7s %7s %10s %10s %12s\n", "model", "Error", "passes", "LM it", "fit s",
            "passes s", "cminpack %");
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+    for (int m = 0; m < brdffit_model_count(); m++) {
         if (!model_selected(a->models, (brdffit_model)m))
             continue;
         brdffit_error err;
@@ -227,7 +227,7 @@ static int bench_end_to_end(brdffit_context *ctx, const bench_args *a)
         brdffit_samples *ms = load(materials[i]);
         if (!ms)
             return 1;
-        for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+        for (int m = 0; m < brdffit_model_count(); m++) {
             if (!model_selected(a->models, (brdffit_model)m))
                 continue;
             brdffit_fit_result r;

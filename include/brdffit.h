@@ -129,33 +129,65 @@ typedef struct brdffit_error {
 
 /* ------------------------------------------------------------------ models */
 
+/* Model ids.  The values are part of the ABI: they never change, and new
+ * models are only appended.  Every fact about a model (name, parameters,
+ * bounds, units, how the fit maps them, its default starts) comes from the
+ * library's model registry through the functions below; BRDFFIT_MODEL_COUNT
+ * is the number this header knows, brdffit_model_count() the library's. */
 typedef enum brdffit_model {
     BRDFFIT_WARD = 0,
-    BRDFFIT_WARD_DUER,
-    BRDFFIT_BLINN_PHONG,
-    BRDFFIT_LAFORTUNE,
-    BRDFFIT_COOK_TORRANCE,
-    BRDFFIT_ASHIKHMIN_SHIRLEY,
-    BRDFFIT_HE,
-    BRDFFIT_MODEL_COUNT
+    BRDFFIT_WARD_DUER = 1,
+    BRDFFIT_BLINN_PHONG = 2,
+    BRDFFIT_LAFORTUNE = 3,
+    BRDFFIT_COOK_TORRANCE = 4,
+    BRDFFIT_ASHIKHMIN_SHIRLEY = 5,
+    BRDFFIT_HE = 6
 } brdffit_model;
+#define BRDFFIT_MODEL_COUNT 7
 
 #define BRDFFIT_MAX_LOBE_PARAMS 3
 
+/* How a fit moves a lobe parameter inside its bounds [lower, upper]: through
+ * an unbounded coordinate u, v = lo + (hi - lo)(1 + sin u)/2, with lo, hi the
+ * bounds (LINEAR) or their logarithms and v the logarithm (LOG).  DIRECTION:
+ * this parameter and the next one form a direction (a, b) fitted as one angle
+ * phi, (a, b) = (cos phi / sqrt 2, sin phi), i.e. scaled to 2 a^2 + b^2 = 1
+ * (Lafortune's Cxy counts twice, for x and y). */
+typedef enum brdffit_param_map {
+    BRDFFIT_MAP_LOG = 0,
+    BRDFFIT_MAP_LINEAR = 1,
+    BRDFFIT_MAP_DIRECTION = 2
+} brdffit_param_map;
+
+/* One lobe parameter of a model. */
+typedef struct brdffit_param_info {
+    const char *name;            /* "alpha", "F0", "tau", ...                 */
+    const char *unit;            /* "um" for He's tau and sigma0; "" for none */
+    double lower, upper;         /* inclusive bounds: brdffit_eval rejects
+                                    parameters outside them, fits stay inside */
+    double start;                /* a typical value (the fit's starts vary
+                                    some parameters around it)                */
+    brdffit_param_map map;       /* how the fit maps it                       */
+    const char *description;     /* a few words: "RMS slope of the microfacets" */
+} brdffit_param_info;
+
 typedef struct brdffit_model_info {
     brdffit_model id;
-    const char *name;            /* "ward", "ward-duer", ..., "he"          */
-    const char *title;           /* "Ward", "Ward-Duer", ...                */
-    int nparams;                 /* lobe parameters, 1..3                   */
-    const char *param_names[BRDFFIT_MAX_LOBE_PARAMS];
-    double lower[BRDFFIT_MAX_LOBE_PARAMS]; /* inclusive bounds; brdffit_eval */
-    double upper[BRDFFIT_MAX_LOBE_PARAMS]; /* rejects parameters outside them */
-    double start[BRDFFIT_MAX_LOBE_PARAMS]; /* a typical starting value        */
-    int chromatic;               /* 1 when K differs per channel (He)       */
+    const char *name;            /* "ward", "ward-duer", ..., "he"            */
+    const char *title;           /* "Ward", "Ward-Duer", ...                  */
+    int nparams;                 /* lobe parameters, 1..BRDFFIT_MAX_LOBE_PARAMS */
+    int chromatic;               /* 1 when K differs per channel: the lobe
+                                    depends on the wavelength (He)            */
+    int default_starts;          /* starting points a fit screens by default  */
+    const brdffit_param_info *params; /* nparams entries                      */
 } brdffit_model_info;
 
+/* The number of models the library has (ids 0 .. count-1). */
+int brdffit_model_count(void);
 /* The descriptor of a model, or NULL for an id out of range. */
 const brdffit_model_info *brdffit_model_get(brdffit_model model);
+/* Lobe parameter `index` (0-based) of a model, or NULL when either is out of range. */
+const brdffit_param_info *brdffit_model_param(brdffit_model model, int index);
 /* Look a model up by name ("cook-torrance"; '_' is accepted for '-'). */
 brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out);
 
@@ -360,9 +392,7 @@ double brdffit_context_build_seconds(const brdffit_context *ctx, brdffit_model m
 
 typedef struct brdffit_fit_options {
     int starts;          /* starting points screened; 0 (default): the model's
-                            own, 8 (a log grid of the lobe width), He 14 (tau =
-                            4, 8, ..., 28 as Ngan et al., at sigma0 = 0.5
-                            and at sigma0 = 2)                               */
+                            default_starts (brdffit_model_info)             */
     int refine;          /* best starts refined by LM; default 1             */
     double ftol, xtol, gtol; /* cminpack tolerances; default 1e-8, 1e-8, 0    */
     int max_evals;       /* data passes per LM run; default 200              */

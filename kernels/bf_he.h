@@ -809,4 +809,12 @@ BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n, const do
     bf_he_fd(g, p, 0, lam, K, (BF_REAL(*)[3])0, (bf_he_memo *)0);
 }
 
+/* The He model's entry point (the shape of bf_models.h's bf_lobe_<model>);
+ * its forward differences are bf_he_fd (bf_lobe_fd_he in bf_lobe.h hands it
+ * the pass state). */
+BF_FN void bf_lobe_he(const bf_geom *g, const double *p, const double *lam, BF_REAL *K)
+{
+    bf_he(g, p[0], p[1], p[2], lam, K);
+}
+
 #endif /* BF_HE_H */

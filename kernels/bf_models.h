@@ -1,16 +1,19 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * bf_models.h -- the closed-form BRDF lobes K(wi, wo; p) (He's lobe is
- * bf_he.h), the model ids and the geometry of a direction pair, written once
- * for the C library and the OpenCL kernel (see bf_common.h).
+ * bf_models.h -- the closed-form BRDF lobes K(wi, wo; p), written once for the
+ * C library and the OpenCL kernel (see bf_common.h).
  *
  * Frame: z is the normal; wi (i*) points toward the light, wo (o*) toward the
  * viewer; both unit vectors strictly above the horizon.  H = normalize(wi+wo),
  * delta = angle(N, H).  f_c = d_c/pi + s_c K_c, no cosine factor.
  *
- * A renderer may include bf_lobe.h (it includes this header and bf_he.h),
- * fill a bf_geom's two directions, call bf_geom_derive and then bf_lobe:
- * nothing here allocates or has state.
+ * Each model has one entry point of the same shape,
+ *     bf_lobe_<model>(g, p, lam, K):  K[0..2] per channel for lobe parameters
+ *     p[0..] (paper units) and wavelengths lam[0..2] (um, chromatic lobes only),
+ * which the model registry (src/lib/registry.c) names for the library and
+ * the kernel build.  A renderer may include this header (with bf_common.h)
+ * and call bf_geom_derive + bf_lobe_<model> directly: nothing here allocates
+ * or has state.
  */
 #ifndef BF_MODELS_H
 #define BF_MODELS_H
@@ -18,15 +21,6 @@
 #ifndef __OPENCL_VERSION__
 #include "bf_common.h"
 #endif
-
-/* Model ids: the values of brdffit_model in include/brdffit.h. */
-#define BF_WARD 0
-#define BF_WARD_DUER 1
-#define BF_BLINN_PHONG 2
-#define BF_LAFORTUNE 3
-#define BF_COOK_TORRANCE 4
-#define BF_ASHIKHMIN_SHIRLEY 5
-#define BF_HE 6
 
 /* The geometry of a (wi, wo) pair: computed once per sample of a table. */
 typedef struct bf_geom {
@@ -113,5 +107,24 @@ BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
     return ((n + 1.0) / (8.0 * BF_PI)) * bf_powu(g->nh, n)
          / (g->vh * fmax(g->iz, g->oz)) * bf_schlick(f0, g->vh);
 }
+
+/* A lobe that is the same for the three channels, as a model entry point. */
+#define BF_GREY_LOBE(model, expr)                                                        \
+    BF_FN void bf_lobe_##model(const bf_geom *g, const double *p, const double *lam,    \
+                               BF_REAL *K)                                               \
+    {                                                                                    \
+        (void)lam;                                                                       \
+        BF_REAL k = (expr);                                                              \
+        K[0] = k;                                                                        \
+        K[1] = k;                                                                        \
+        K[2] = k;                                                                        \
+    }
+
+BF_GREY_LOBE(ward, bf_ward(g, p[0]))
+BF_GREY_LOBE(ward_duer, bf_ward_duer(g, p[0]))
+BF_GREY_LOBE(blinn_phong, bf_blinn_phong(g, p[0]))
+BF_GREY_LOBE(lafortune, bf_lafortune(g, p[0], p[1], p[2]))
+BF_GREY_LOBE(cook_torrance, bf_cook_torrance(g, p[0], p[1]))
+BF_GREY_LOBE(ashikhmin_shirley, bf_ashikhmin_shirley(g, p[0], p[1]))
 
 #endif /* BF_MODELS_H */

@@ -6,7 +6,7 @@
 #define _DEFAULT_SOURCE
 #include "testutil.h"
 
-#include "bf_lobe.h"
+#include "registry.h"
 
 #include <check.h>
 #include <math.h>
@@ -717,18 +717,17 @@ START_TEST(pass_memo)
 }
 END_TEST
 
-/* bf_lobe_fd: for He with np = 0 it is bf_lobe (bf_he); for the closed-form
- * lobes it is bf_lobe at each point, bit for bit (the pass's G_j of those
- * models are exactly as before). */
+/* bf_lobe_fd: with np = 0 it is bf_lobe (for He, bf_he); for a lobe without
+ * forward differences of its own it is bf_lobe at each point, bit for bit. */
 START_TEST(fd_lobe_dispatch)
 {
     make_dirs();
-    for (int model = 0; model < BRDFFIT_MODEL_COUNT; model++) {
-        const brdffit_model_info *mi = brdffit_model_get((brdffit_model)model);
-        ck_assert_ptr_nonnull(mi);
+    for (int model = 0; model < brdffit_model_count(); model++) {
+        const bf_model_def *def = bf_model_def_get((brdffit_model)model);
+        ck_assert_ptr_nonnull(def);
         double p[4][3];
         for (int j = 0; j < 4; j++) {
-            memcpy(p[j], mi->start, sizeof p[j]);
+            bf_model_start_params((brdffit_model)model, p[j]);
             if (j > 0)
                 p[j][j - 1] *= 1 + 1e-7;
         }
@@ -741,8 +740,8 @@ START_TEST(fd_lobe_dispatch)
                 bf_lobe(model, &g, p[0], default_lam, K);
                 ck_assert_msg(memcmp(K0, K, sizeof K) == 0, "model %d np %d dir %d: K0", model, np,
                               s);
-                if (model == BRDFFIT_HE)
-                    continue; /* its neighbours: fd_neighbours */
+                if (def->lobe_fd)
+                    continue; /* a lobe's own forward differences (He's: fd_neighbours) */
                 for (int j = 0; j < np; j++) {
                     bf_lobe(model, &g, p[1 + j], default_lam, K);
                     ck_assert_msg(memcmp(Kj[j], K, sizeof K) == 0, "model %d dir %d: K_%d", model,

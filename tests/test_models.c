@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: MIT */
-/* test_models.c -- the six closed-form lobes: reference values, reciprocity,
- * finiteness at the edges of the hemisphere and of the parameter ranges. */
+/* test_models.c -- the closed-form lobes (every model of the registry whose
+ * lobe is the same for the three channels; He has its own suite): reference
+ * values, reciprocity, finiteness at the edges of the hemisphere and of the
+ * parameter ranges; the registry itself and the ABI values it pins. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
 
@@ -10,11 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const brdffit_model closed_form[] = {
-    BRDFFIT_WARD, BRDFFIT_WARD_DUER, BRDFFIT_BLINN_PHONG,
-    BRDFFIT_LAFORTUNE, BRDFFIT_COOK_TORRANCE, BRDFFIT_ASHIKHMIN_SHIRLEY,
-};
-#define NCLOSED (int)(sizeof closed_form / sizeof closed_form[0])
 
 START_TEST(reference_values)
 {
@@ -43,10 +40,11 @@ START_TEST(reference_values)
         /* 1e-12, except that x^n turns one rounding step of x (which the
          * reference and we may round differently) into n * 2.2e-16: for the
          * chrome Lafortune row at the mirror direction (n = 6630) that is
-         * 1.5e-12.  So the bound is max(1e-12, 2 n eps) for exponent lobes. */
-        double n_exp = m == BRDFFIT_BLINN_PHONG ? p.p[0]
-                     : m == BRDFFIT_LAFORTUNE ? p.p[2]
-                     : m == BRDFFIT_ASHIKHMIN_SHIRLEY ? p.p[1] : 0.0;
+         * 1.5e-12.  So the bound is max(1e-12, 2 n eps), n the largest lobe
+         * parameter above 1 (the exponent of an exponent lobe). */
+        double n_exp = 0.0;
+        for (int k = 0; k < brdffit_model_get(m)->nparams; k++)
+            n_exp = fmax(n_exp, p.p[k] > 1 ? p.p[k] : 0.0);
         double tol = fmax(1e-12, 2.0 * n_exp * 2.220446049250313e-16);
         for (int c = 0; c < 3; c++) {
             double ref = atof(fl[17 + c]), rd = tu_reldiff(rgb[c], ref);
@@ -62,30 +60,40 @@ START_TEST(reference_values)
 }
 END_TEST
 
+/* The closed-form models of the registry, in id order. */
+static int closed_form(brdffit_model *out)
+{
+    int n = 0;
+    for (int m = 0; m < brdffit_model_count(); m++)
+        if (!brdffit_model_get((brdffit_model)m)->chromatic)
+            out[n++] = (brdffit_model)m;
+    return n;
+}
+
+static brdffit_model closed_form_model(int i)
+{
+    brdffit_model ms[BRDFFIT_MODEL_COUNT];
+    ck_assert_int_lt(i, closed_form(ms));
+    return ms[i];
+}
+
+/* Parameters of a model: its alum-bronze row of ngan2005-fits.tsv when
+ * ../shared has it, else (a model the paper did not fit, or no ../shared)
+ * the registry's start values with alum-bronze-like d and s. */
 static void published(brdffit_model m, brdffit_params *p)
 {
-    /* alum-bronze rows of ngan2005-fits.tsv */
-    static const double tab[6][9] = {
-        { 0.0851, 0.0586, 0.0294, 0.0484, 0.0274, 0.0135, 0.0357, 0, 0 },
-        { 0.0856, 0.0585, 0.0291, 0.032, 0.0189, 0.00986, 0.0374, 0, 0 },
-        { 0.0864, 0.0597, 0.0302, 0.015, 0.00818, 0.00381, 1290.0, 0, 0 },
-        { 0.0923, 0.0625, 0.0311, 0.322, 0.193, 0.105, -0.579, 0.574, 630.0 },
-        { 0.0886, 0.0602, 0.0299, 0.118, 0.0698, 0.0371, 0.203, 0.0367, 0 },
-        { 0.0877, 0.0598, 0.0297, 0.108, 0.0637, 0.0337, 0.249, 1350.0, 0 },
-    };
-    memset(p, 0, sizeof *p);
-    for (int c = 0; c < 3; c++) {
-        p->d[c] = tab[m][c];
-        p->s[c] = tab[m][3 + c];
-    }
-    for (int k = 0; k < 3; k++)
-        p->p[k] = tab[m][6 + k];
+    if (tu_published("alum-bronze", m, p))
+        return;
+    static const brdffit_params ds = { { 0.0851, 0.0586, 0.0294 }, { 0.0484, 0.0274, 0.0135 },
+                                       { 0 }, { 0 } };
+    *p = ds;
+    tu_start_params(m, p->p);
 }
 
 START_TEST(reciprocity)
 {
     unsigned st = 12345u + (unsigned)_i;
-    brdffit_model m = closed_form[_i];
+    brdffit_model m = closed_form_model(_i);
     brdffit_params p;
     published(m, &p);
     for (int t = 0; t < 20000; t++) {
@@ -105,7 +113,7 @@ END_TEST
  * box and the awkward directions: wi = wo, normal incidence, grazing 89.9 deg. */
 START_TEST(finite_everywhere)
 {
-    brdffit_model m = closed_form[_i];
+    brdffit_model m = closed_form_model(_i);
     const brdffit_model_info *mi = brdffit_model_get(m);
     ck_assert_ptr_nonnull(mi);
     double dirs[][2] = { { 0, 0 }, { 1e-9, 0 }, { 30, 0 }, { 30, 180 }, { 60, 90 }, { 80, 45 },
@@ -123,13 +131,14 @@ START_TEST(finite_everywhere)
         for (int k = 0; k < mi->nparams; k++) {
             int bit = (cnr % corners) >> k & 1;
             /* corners, then points just inside them, then random interior points */
-            double lo = mi->lower[k], hi = mi->upper[k];
+            double lo = mi->params[k].lower, hi = mi->params[k].upper;
             p.p[k] = cnr < corners ? (bit ? hi : lo)
                    : cnr < 2 * corners ? (bit ? hi - 1e-9 * (hi - lo) : lo + 1e-9 * (hi - lo))
                                        : lo + (hi - lo) * tu_urand(&st);
         }
-        if (m == BRDFFIT_LAFORTUNE && p.p[0] == 0 && p.p[1] == 0)
-            p.p[1] = 1;
+        for (int k = 0; k + 1 < mi->nparams; k++) /* a direction pair needs a direction */
+            if (mi->params[k].map == BRDFFIT_MAP_DIRECTION && p.p[k] == 0 && p.p[k + 1] == 0)
+                p.p[k + 1] = 1;
         for (int a = 0; a < nd; a++)
             for (int b = 0; b < nd; b++) {
                 double wi[3], wo[3], rgb[3];
@@ -148,29 +157,57 @@ END_TEST
 
 START_TEST(exponent_million)
 {
-    /* n = 1e6: the peak is finite and huge, off-peak values underflow to 0 cleanly */
+    /* every lobe with an exponent up to 1e6, there (the others at their start):
+     * the peak is finite and huge, off-peak values underflow to 0 cleanly */
     brdffit_params p;
     memset(&p, 0, sizeof p);
     p.s[0] = p.s[1] = p.s[2] = 1;
     double wi[3], wo[3], rgb[3];
     tu_dir_at(30, 0, wi);
     tu_dir_at(30, 180, wo);
-    brdffit_model ms[] = { BRDFFIT_BLINN_PHONG, BRDFFIT_LAFORTUNE, BRDFFIT_ASHIKHMIN_SHIRLEY };
-    for (int i = 0; i < 3; i++) {
-        p.p[0] = ms[i] == BRDFFIT_LAFORTUNE ? -1.0 : (ms[i] == BRDFFIT_ASHIKHMIN_SHIRLEY ? 0.5 : 1e6);
-        p.p[1] = ms[i] == BRDFFIT_LAFORTUNE ? 1.0 : 1e6;
-        p.p[2] = 1e6;
-        ck_assert_int_eq(brdffit_eval(ms[i], &p, wi, wo, rgb), BRDFFIT_OK);
-        ck_assert_msg(isfinite(rgb[0]) && rgb[0] > 1e4, "peak of model %d at n=1e6: %g", (int)ms[i], rgb[0]);
+    int tested = 0;
+    for (int m = 0; m < brdffit_model_count(); m++) {
+        const brdffit_model_info *mi = brdffit_model_get((brdffit_model)m);
+        int big = -1;
+        for (int k = 0; k < mi->nparams; k++)
+            if (mi->params[k].upper >= 1e6)
+                big = k;
+        if (big < 0 || mi->chromatic)
+            continue;
+        tested++;
+        tu_start_params((brdffit_model)m, p.p);
+        p.p[big] = 1e6;
+        ck_assert_int_eq(brdffit_eval((brdffit_model)m, &p, wi, wo, rgb), BRDFFIT_OK);
+        ck_assert_msg(isfinite(rgb[0]) && rgb[0] > 1e4, "peak of %s at %s=1e6: %g", mi->name,
+                      mi->params[big].name, rgb[0]);
         double off[3];
         tu_dir_at(40, 180, off); /* half-vector 5 deg off the peak */
-        ck_assert_int_eq(brdffit_eval(ms[i], &p, wi, off, rgb), BRDFFIT_OK);
-        ck_assert_msg(isfinite(rgb[0]) && rgb[0] >= 0 && rgb[0] < 1e-100, "off-peak %g", rgb[0]);
+        ck_assert_int_eq(brdffit_eval((brdffit_model)m, &p, wi, off, rgb), BRDFFIT_OK);
+        ck_assert_msg(isfinite(rgb[0]) && rgb[0] >= 0 && rgb[0] < 1e-100, "%s off-peak %g",
+                      mi->name, rgb[0]);
     }
-    /* Lafortune with large C: normalisation before the power, no underflow to 0 */
-    p.p[0] = -50, p.p[1] = 50, p.p[2] = 5000;
-    ck_assert_int_eq(brdffit_eval(BRDFFIT_LAFORTUNE, &p, wi, wo, rgb), BRDFFIT_OK);
-    ck_assert_msg(rgb[0] > 1.0, "Lafortune peak with |C| = 50, n = 5000: %g", rgb[0]);
+    ck_assert_int_ge(tested, 3); /* Blinn-Phong, Lafortune, Ashikhmin-Shirley */
+    /* a direction pair scaled to |C| = 50 (Lafortune), exponent 5000: the
+     * normalisation comes before the power, so the peak does not underflow */
+    int pairs = 0;
+    for (int m = 0; m < brdffit_model_count(); m++) {
+        const brdffit_model_info *mi = brdffit_model_get((brdffit_model)m);
+        for (int k = 0; k + 1 < mi->nparams; k++) {
+            if (mi->params[k].map != BRDFFIT_MAP_DIRECTION)
+                continue;
+            tu_start_params((brdffit_model)m, p.p);
+            double f = 50.0 / fmax(fabs(p.p[k]), fabs(p.p[k + 1]));
+            p.p[k] *= f, p.p[k + 1] *= f;
+            for (int e = 0; e < mi->nparams; e++)
+                if (mi->params[e].upper >= 1e6)
+                    p.p[e] = 5000;
+            ck_assert_int_eq(brdffit_eval((brdffit_model)m, &p, wi, wo, rgb), BRDFFIT_OK);
+            ck_assert_msg(rgb[0] > 1.0, "%s peak with |C| = 50, n = 5000: %g", mi->name, rgb[0]);
+            pairs++;
+            k++;
+        }
+    }
+    ck_assert_int_ge(pairs, 1);
 }
 END_TEST
 
@@ -193,17 +230,32 @@ START_TEST(bad_parameters)
     ck_assert_int_eq(brdffit_eval(BRDFFIT_WARD, &p, wi, wo, rgb), BRDFFIT_E_PARAM_RANGE);
     p.d[1] = 0.1;
     ck_assert_int_eq(brdffit_eval(BRDFFIT_WARD, &p, wi, wo, rgb), BRDFFIT_OK);
-    ck_assert_int_eq(brdffit_eval(BRDFFIT_MODEL_COUNT, &p, wi, wo, rgb), BRDFFIT_E_UNKNOWN_MODEL);
+    ck_assert_int_eq(brdffit_eval((brdffit_model)brdffit_model_count(), &p, wi, wo, rgb), BRDFFIT_E_UNKNOWN_MODEL);
     ck_assert_int_eq(brdffit_eval(BRDFFIT_WARD, NULL, wi, wo, rgb), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_eval(BRDFFIT_WARD, &p, NULL, wo, rgb), BRDFFIT_E_INVALID_ARGUMENT);
     double zero[3] = { 0, 0, 0 }, nan3[3] = { NAN, 0, 1 };
     ck_assert_int_eq(brdffit_eval(BRDFFIT_WARD, &p, zero, wo, rgb), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_eval(BRDFFIT_WARD, &p, nan3, wo, rgb), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
-    /* Lafortune with both C zero is no lobe */
-    published(BRDFFIT_LAFORTUNE, &p);
-    p.p[0] = p.p[1] = 0;
-    ck_assert_int_eq(brdffit_eval(BRDFFIT_LAFORTUNE, &p, wi, wo, rgb), BRDFFIT_E_PARAM_RANGE);
+    /* a direction pair (Lafortune's Cxy, Cz) with both 0 is no lobe */
+    int pairs = 0;
+    for (int m = 0; m < brdffit_model_count(); m++) {
+        const brdffit_model_info *mi = brdffit_model_get((brdffit_model)m);
+        for (int k = 0; k + 1 < mi->nparams; k++)
+            if (mi->params[k].map == BRDFFIT_MAP_DIRECTION) {
+                published((brdffit_model)m, &p);
+                ck_assert_int_eq(brdffit_eval((brdffit_model)m, &p, wi, wo, rgb), BRDFFIT_OK);
+                p.p[k] = p.p[k + 1] = 0;
+                ck_assert_int_eq(brdffit_params_check((brdffit_model)m, &p, &err),
+                                 BRDFFIT_E_PARAM_RANGE);
+                ck_assert_ptr_nonnull(strstr(err.message, mi->params[k + 1].name));
+                ck_assert_int_eq(brdffit_eval((brdffit_model)m, &p, wi, wo, rgb),
+                                 BRDFFIT_E_PARAM_RANGE);
+                pairs++;
+                k++;
+            }
+    }
+    ck_assert_int_ge(pairs, 1);
 }
 END_TEST
 
@@ -228,29 +280,74 @@ END_TEST
 
 START_TEST(model_table)
 {
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+    ck_assert_int_eq(brdffit_model_count(), BRDFFIT_MODEL_COUNT);
+    for (int m = 0; m < brdffit_model_count(); m++) {
         const brdffit_model_info *mi = brdffit_model_get((brdffit_model)m);
         ck_assert_ptr_nonnull(mi);
         ck_assert_int_eq(mi->id, m);
         brdffit_model back;
         ck_assert_int_eq(brdffit_model_from_name(mi->name, &back), BRDFFIT_OK);
         ck_assert_int_eq(back, m);
-        ck_assert(mi->nparams >= 1 && mi->nparams <= 3);
+        ck_assert(strlen(mi->title) > 0);
+        ck_assert(mi->nparams >= 1 && mi->nparams <= BRDFFIT_MAX_LOBE_PARAMS);
+        ck_assert(mi->default_starts >= 1 && mi->default_starts <= 1000);
+        ck_assert(mi->chromatic == 0 || mi->chromatic == 1);
         for (int k = 0; k < mi->nparams; k++) {
-            ck_assert_ptr_nonnull(mi->param_names[k]);
-            ck_assert(mi->lower[k] < mi->upper[k]);
-            ck_assert(mi->start[k] >= mi->lower[k] && mi->start[k] <= mi->upper[k]);
+            const brdffit_param_info *pi = brdffit_model_param((brdffit_model)m, k);
+            ck_assert_ptr_eq(pi, &mi->params[k]);
+            ck_assert(pi->name && *pi->name && pi->unit && pi->description && *pi->description);
+            ck_assert(pi->lower < pi->upper);
+            ck_assert(pi->start >= pi->lower && pi->start <= pi->upper);
+            ck_assert(pi->map == BRDFFIT_MAP_LOG || pi->map == BRDFFIT_MAP_LINEAR ||
+                      pi->map == BRDFFIT_MAP_DIRECTION);
+            if (pi->map == BRDFFIT_MAP_LOG)
+                ck_assert(pi->lower > 0);
+            if (pi->map == BRDFFIT_MAP_DIRECTION) { /* a pair */
+                ck_assert_int_lt(k + 1, mi->nparams);
+                ck_assert_int_eq(mi->params[k + 1].map, BRDFFIT_MAP_DIRECTION);
+                k++;
+            }
         }
+        ck_assert_ptr_null(brdffit_model_param((brdffit_model)m, mi->nparams));
+        ck_assert_ptr_null(brdffit_model_param((brdffit_model)m, -1));
+        /* the default parameters are valid */
+        brdffit_params p;
+        memset(&p, 0, sizeof p);
+        tu_start_params((brdffit_model)m, p.p);
+        ck_assert_int_eq(brdffit_params_check((brdffit_model)m, &p, NULL), BRDFFIT_OK);
     }
     brdffit_model m;
     ck_assert_int_eq(brdffit_model_from_name("cook_torrance", &m), BRDFFIT_OK);
     ck_assert_int_eq(m, BRDFFIT_COOK_TORRANCE);
     ck_assert_int_eq(brdffit_model_from_name("phong", &m), BRDFFIT_E_UNKNOWN_MODEL);
     ck_assert_int_eq(brdffit_model_from_name("ward-duerX", &m), BRDFFIT_E_UNKNOWN_MODEL);
-    ck_assert_ptr_null(brdffit_model_get(BRDFFIT_MODEL_COUNT));
+    ck_assert_int_eq(brdffit_model_from_name(NULL, &m), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_ptr_null(brdffit_model_get((brdffit_model)brdffit_model_count()));
+    ck_assert_ptr_null(brdffit_model_get((brdffit_model)-1));
+    ck_assert_ptr_null(brdffit_model_param((brdffit_model)brdffit_model_count(), 0));
     for (int s = 0; s < BRDFFIT_STATUS_COUNT; s++)
         ck_assert(strlen(brdffit_strerror((brdffit_status)s)) > 0);
     ck_assert_str_eq(brdffit_strerror((brdffit_status)999), "unknown status");
+}
+END_TEST
+
+/* The ABI: model ids and names never change (new models are appended), nor do
+ * the values of the other public enums. */
+START_TEST(abi_values)
+{
+    static const struct { int id; const char *name; } pinned[] = {
+        { BRDFFIT_WARD, "ward" }, { BRDFFIT_WARD_DUER, "ward-duer" },
+        { BRDFFIT_BLINN_PHONG, "blinn-phong" }, { BRDFFIT_LAFORTUNE, "lafortune" },
+        { BRDFFIT_COOK_TORRANCE, "cook-torrance" }, { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley" },
+        { BRDFFIT_HE, "he" },
+    };
+    for (int i = 0; i < (int)(sizeof pinned / sizeof pinned[0]); i++) {
+        ck_assert_int_eq(pinned[i].id, i);
+        ck_assert_str_eq(brdffit_model_get((brdffit_model)i)->name, pinned[i].name);
+    }
+    ck_assert_int_eq(BRDFFIT_MAP_LOG, 0);
+    ck_assert_int_eq(BRDFFIT_MAP_LINEAR, 1);
+    ck_assert_int_eq(BRDFFIT_MAP_DIRECTION, 2);
 }
 END_TEST
 
@@ -264,12 +361,15 @@ Suite *models_suite(void)
     suite_add_tcase(s, tr);
     TCase *tc = tcase_create("closed-form");
     tcase_set_timeout(tc, 60);
-    tcase_add_loop_test(tc, reciprocity, 0, NCLOSED);
-    tcase_add_loop_test(tc, finite_everywhere, 0, NCLOSED);
+    brdffit_model ms[BRDFFIT_MODEL_COUNT];
+    int nclosed = closed_form(ms);
+    tcase_add_loop_test(tc, reciprocity, 0, nclosed);
+    tcase_add_loop_test(tc, finite_everywhere, 0, nclosed);
     tcase_add_test(tc, exponent_million);
     tcase_add_test(tc, bad_parameters);
     tcase_add_test(tc, below_horizon_and_batch);
     tcase_add_test(tc, model_table);
+    tcase_add_test(tc, abi_values);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -143,6 +143,14 @@ int tu_published_all(brdffit_model model, brdffit_params *params, char (*names)[
     return published_rows(NULL, model, params, names, max);
 }
 
+void tu_start_params(brdffit_model model, double p[BRDFFIT_MAX_LOBE_PARAMS])
+{
+    for (int k = 0; k < BRDFFIT_MAX_LOBE_PARAMS; k++) {
+        const brdffit_param_info *pi = brdffit_model_param(model, k);
+        p[k] = pi ? pi->start : 0.0;
+    }
+}
+
 double tu_reldiff(double a, double b)
 {
     double m = fmax(fmax(fabs(a), fabs(b)), 1e-300);

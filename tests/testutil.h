@@ -83,6 +83,9 @@ typedef struct tu_run_out {
 tu_run_out tu_run_cli(const char *env, const char *args);
 void tu_run_free(tu_run_out *r);
 
+/* Every lobe parameter of a model at the registry's start value (unused 0). */
+void tu_start_params(brdffit_model model, double p[BRDFFIT_MAX_LOBE_PARAMS]);
+
 /* Relative difference |a - b| / max(|a|, |b|, tiny). */
 double tu_reldiff(double a, double b);
 

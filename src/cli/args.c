@@ -58,12 +58,32 @@ const char *cli_model_names(char *buf, size_t len)
 {
     size_t used = 0;
     buf[0] = '\0';
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+    for (int m = 0; m < brdffit_model_count(); m++) {
         int w = snprintf(buf + used, len - used, "%s%s", m ? ", " : "",
                          brdffit_model_get((brdffit_model)m)->name);
         if (w < 0 || (size_t)w >= len - used)
             break;
         used += (size_t)w;
+    }
+    return buf;
+}
+
+const char *cli_default_starts(char *buf, size_t len)
+{
+    /* the count most models have, then the others by name */
+    int n = brdffit_model_count(), common = 0, most = 0;
+    for (int m = 0; m < n; m++) {
+        int v = brdffit_model_get((brdffit_model)m)->default_starts, same = 0;
+        for (int k = 0; k < n; k++)
+            same += brdffit_model_get((brdffit_model)k)->default_starts == v;
+        if (same > most)
+            most = same, common = v;
+    }
+    size_t used = (size_t)snprintf(buf, len, "%d", common);
+    for (int m = 0; m < n && used < len; m++) {
+        const brdffit_model_info *mi = brdffit_model_get((brdffit_model)m);
+        if (mi->default_starts != common)
+            used += (size_t)snprintf(buf + used, len - used, "; %s %d", mi->name, mi->default_starts);
     }
     return buf;
 }

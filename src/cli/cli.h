@@ -89,6 +89,8 @@ int cli_is_help(const char *a);
 int cli_usage_error(const char *fmt, ...) CLI_PRINTF(1, 2);
 /* The valid model names, comma-separated, into buf. */
 const char *cli_model_names(char *buf, size_t len);
+/* The models' default numbers of starts, "8; he 7" (the common one first), into buf. */
+const char *cli_default_starts(char *buf, size_t len);
 
 /* ---- options.c ---- */
 

@@ -70,7 +70,7 @@ static int eval_params(const eval_args *e, brdffit_model *model, brdffit_params 
         char pn[128] = "";
         for (int k = 0; k < mi->nparams; k++) {
             strcat(pn, " ");
-            strncat(pn, mi->param_names[k], 32);
+            strncat(pn, mi->params[k].name, 32);
         }
         return cli_usage_error("eval %s needs %d numbers (d_r d_g d_b s_r s_g s_b%s), got %d",
                                mi->name, 6 + mi->nparams, pn, e->nnum);

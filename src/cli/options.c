@@ -8,7 +8,7 @@
 
 void cli_options_help(FILE *f)
 {
-    char names[512];
+    char names[512], starts[256];
     fprintf(f,
             "Options of fit and demo:\n"
             "  --model NAME[,NAME...]|all    models to fit (repeatable; default all):\n"
@@ -17,13 +17,14 @@ void cli_options_help(FILE *f)
             "                                (1, 1.15, 1.66)/1500; flat = 1/1500, as Ngan et al.)\n"
             "  --cutoff DEG                  fit directions with theta_i, theta_o <= DEG, in (0, 90]\n"
             "                                (default 80)\n"
-            "  --starts N                    starting points screened per model, 1..1000 (default 8; He 14)\n"
+            "  --starts N                    starting points screened per model, 1..1000\n"
+            "                                (default: the model's own, %s)\n"
             "  --backend auto|opencl|host    where the data passes run (default auto: OpenCL when a\n"
             "                                device is found, else C on the host)\n"
             "  --device SPEC                 OpenCL device, PLATFORM:DEVICE by index or name\n"
             "                                substring (default $BRDFFIT_DEVICE, else PoCL's CPU)\n"
             "  --json                        one JSON object per fit per line (JSON Lines)\n",
-            cli_model_names(names, sizeof names));
+            cli_model_names(names, sizeof names), cli_default_starts(starts, sizeof starts));
 }
 
 /* ------------------------------------------------------------------ one option each */
@@ -41,7 +42,7 @@ static int add_model_named(cli_options *o, const char *one)
     char names[512];
     brdffit_model m;
     if (strcmp(one, "all") == 0) {
-        for (int k = 0; k < BRDFFIT_MODEL_COUNT; k++)
+        for (int k = 0; k < brdffit_model_count(); k++)
             add_model(o, (brdffit_model)k);
     } else if (brdffit_model_from_name(one, &m) == BRDFFIT_OK) {
         add_model(o, m);
@@ -186,7 +187,7 @@ int cli_parse_options(int argc, char **argv, cli_options *o)
             rc = parse_valued(o, argc, argv, &i);
     }
     if (rc == CLI_OK && o->nmodels == 0)
-        for (int k = 0; k < BRDFFIT_MODEL_COUNT; k++)
+        for (int k = 0; k < brdffit_model_count(); k++)
             o->models[o->nmodels++] = (brdffit_model)k;
     return rc;
 }

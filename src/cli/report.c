@@ -42,10 +42,11 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
     fprintf(f, "  samples %zu fitted (%zu bins masked, %zu beyond the cutoff)\n"
                "  fit: ",
             brdffit_samples_count(s), brdffit_samples_masked(s), brdffit_samples_beyond_cutoff(s));
+    char dflt[256];
     if (fo->starts > 0)
         fprintf(f, "%d starts screened per model", fo->starts);
     else
-        fputs("8 starts screened per model (He: 14, tau = 4..28 x sigma0 = 0.5, 2)", f);
+        fprintf(f, "the model's default starts screened (%s)", cli_default_starts(dflt, sizeof dflt));
     fprintf(f, ", the best %d refined by Levenberg-Marquardt (cminpack lmder)\n\n", fo->refine);
     fprintf(f, ROW_FMT, "model", "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0", "p1", "p2",
             "Error", "iter", "seconds", "");
@@ -148,9 +149,10 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels)
     for (int i = 0; i < nmodels; i++) {
         const brdffit_model_info *mi = brdffit_model_get(models[i]);
         fprintf(f, "%s %s", i ? ";" : "", mi->name);
-        for (int k = 0; k < mi->nparams; k++)
-            fprintf(f, " %s%s", mi->param_names[k],
-                    models[i] == BRDFFIT_HE && k < 2 ? "[um]" : "");
+        for (int k = 0; k < mi->nparams; k++) {
+            const brdffit_param_info *pi = &mi->params[k];
+            fprintf(f, " %s%s%s%s", pi->name, *pi->unit ? "[" : "", pi->unit, *pi->unit ? "]" : "");
+        }
     }
     fprintf(f, "\n  d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s;"
                " Error = %s (1/sr);\n  iter = Jacobian evaluations of the LM run kept,"
@@ -211,7 +213,7 @@ void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
     for (int k = 0; k < mi->nparams; k++) {
         if (k)
             putc(',', f);
-        json_string(f, mi->param_names[k]);
+        json_string(f, mi->params[k].name);
     }
     putc(']', f);
     if (r && st == BRDFFIT_OK) {

@@ -9,6 +9,7 @@
  * context has its own queue. */
 #define _POSIX_C_SOURCE 200809L
 #include "context.h"
+#include "registry.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -436,7 +437,8 @@ double brdffit_context_build_seconds(const brdffit_context *ctx, brdffit_model m
 brdffit_status bf_context_kernels(brdffit_context *ctx, brdffit_model model, cl_kernel *full,
                                   cl_kernel *value, brdffit_error *err)
 {
-    const brdffit_model_info *mi = brdffit_model_get(model);
+    const bf_model_def *def = bf_model_def_get(model);
+    const brdffit_model_info *mi = def ? &def->info : NULL;
     if (!mi)
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
     if (ctx->backend != BRDFFIT_BACKEND_OPENCL)

@@ -3,9 +3,10 @@
  *
  * The linear unknowns d, s >= 0 are solved exactly at every lobe point from
  * the pass's moments (variable projection, linear.h): LM moves only the lobe
- * coordinates u (nx = nl of them): bounded parameters v = lo + (hi-lo)(1+sin u)/2,
- * on a log scale for widths and exponents; Lafortune's direction is an angle
- * phi with (Cxy, Cz) = (cos phi / sqrt 2, sin phi).
+ * coordinates u (nx = nl of them), as the model registry maps its parameters
+ * (brdffit_param_map): a bounded parameter is v = lo + (hi-lo)(1+sin u)/2
+ * (lo, hi and v in log units for LOG); a DIRECTION pair (Lafortune's Cxy, Cz)
+ * is one angle phi, (a, b) = (cos phi / sqrt 2, sin phi).
  *
  * cminpack's own QR would cost far more than a data pass on ~1M rows, so lmder
  * is given an exactly equivalent problem whose size does not grow with the
@@ -20,6 +21,7 @@
 #define _DEFAULT_SOURCE /* M_PI, M_SQRT2, M_SQRT1_2 */
 #include "linear.h"
 #include "pass.h"
+#include "registry.h"
 #include "samples.h"
 
 #include <cminpack.h>
@@ -30,46 +32,40 @@
 #define NM_MAX (NX_MAX + 1)
 #define FD_STEP 1e-7
 
-enum { MAP_LOG, MAP_LIN, MAP_ANGLE };
-
+/* How lobe coordinate j maps to the model's parameters (registry.c). */
 typedef struct fitmap {
     brdffit_model model;
     int nl;                     /* lobe coordinates */
-    int kind[BF_MAX_NP];
+    brdffit_param_map kind[BF_MAX_NP];
     int param[BF_MAX_NP];       /* the (first) lobe parameter of coordinate j */
-    double lo[BF_MAX_NP], hi[BF_MAX_NP]; /* in log units for MAP_LOG */
+    double lo[BF_MAX_NP], hi[BF_MAX_NP]; /* bounds, in log units for BRDFFIT_MAP_LOG */
 } fitmap;
 
 static void fitmap_init(fitmap *fm, brdffit_model model)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);
+    memset(fm, 0, sizeof *fm);
     fm->model = model;
     fm->nl = bf_model_ncoords(model);
-    int src = 0;
-    for (int j = 0; j < fm->nl; j++, src++) {
-        fm->param[j] = src;
-        if (model == BRDFFIT_LAFORTUNE && j == 0) {
-            fm->kind[0] = MAP_ANGLE;
-            fm->lo[0] = fm->hi[0] = 0;
-            src = 1; /* Cxy, Cz -> one angle; the next coordinate is n (param 2) */
-            continue;
-        }
-        int is_f0 = (model == BRDFFIT_COOK_TORRANCE || model == BRDFFIT_ASHIKHMIN_SHIRLEY) && j == 0;
-        fm->kind[j] = is_f0 ? MAP_LIN : MAP_LOG;
-        fm->lo[j] = is_f0 ? mi->lower[src] : log(mi->lower[src]);
-        fm->hi[j] = is_f0 ? mi->upper[src] : log(mi->upper[src]);
+    for (int j = 0; j < fm->nl; j++) {
+        int k = bf_model_coord_param(model, j);
+        const brdffit_param_info *pi = &mi->params[k];
+        fm->param[j] = k;
+        fm->kind[j] = pi->map;
+        fm->lo[j] = pi->map == BRDFFIT_MAP_LOG ? log(pi->lower) : pi->lower;
+        fm->hi[j] = pi->map == BRDFFIT_MAP_LOG ? log(pi->upper) : pi->upper;
     }
 }
 
 static double map_fwd(const fitmap *fm, int j, double u)
 {
     double v = fm->lo[j] + (fm->hi[j] - fm->lo[j]) * 0.5 * (1.0 + sin(u));
-    return fm->kind[j] == MAP_LOG ? exp(v) : v;
+    return fm->kind[j] == BRDFFIT_MAP_LOG ? exp(v) : v;
 }
 
 static double map_inv(const fitmap *fm, int j, double v)
 {
-    if (fm->kind[j] == MAP_LOG)
+    if (fm->kind[j] == BRDFFIT_MAP_LOG)
         v = log(v);
     double t = 2.0 * (v - fm->lo[j]) / (fm->hi[j] - fm->lo[j]) - 1.0;
     return asin(fmin(fmax(t, -1.0), 1.0));
@@ -79,25 +75,26 @@ static double map_inv(const fitmap *fm, int j, double v)
 static void coords_to_params(const fitmap *fm, const double *u, double p[3])
 {
     p[0] = p[1] = p[2] = 0.0;
-    if (fm->model == BRDFFIT_LAFORTUNE) {
-        p[0] = cos(u[0]) * M_SQRT1_2;
-        p[1] = sin(u[0]);
-        p[2] = map_fwd(fm, 1, u[1]);
-        return;
+    for (int j = 0; j < fm->nl; j++) {
+        int k = fm->param[j];
+        if (fm->kind[j] == BRDFFIT_MAP_DIRECTION) {
+            p[k] = cos(u[j]) * M_SQRT1_2;
+            p[k + 1] = sin(u[j]);
+        } else {
+            p[k] = map_fwd(fm, j, u[j]);
+        }
     }
-    for (int j = 0; j < fm->nl; j++)
-        p[j] = map_fwd(fm, j, u[j]);
 }
 
 static void params_to_coords(const fitmap *fm, const double p[3], double *u)
 {
-    if (fm->model == BRDFFIT_LAFORTUNE) {
-        u[0] = atan2(p[1], p[0] * M_SQRT2);
-        u[1] = map_inv(fm, 1, p[2]);
-        return;
+    for (int j = 0; j < fm->nl; j++) {
+        int k = fm->param[j];
+        if (fm->kind[j] == BRDFFIT_MAP_DIRECTION)
+            u[j] = atan2(p[k + 1], p[k] * M_SQRT2);
+        else
+            u[j] = map_inv(fm, j, p[k]);
     }
-    for (int j = 0; j < fm->nl; j++)
-        u[j] = map_inv(fm, j, p[j]);
 }
 
 /* ---------------------------------------------------------------- one point */
@@ -261,46 +258,30 @@ typedef struct start {
     double cost;        /* r^T r there */
 } start;
 
-/* The lobe parameters of start number i of n (a log grid of the lobe width). */
+/* The lobe parameters of start number i of n: the model's start grid (see
+ * bf_start_grid in registry.h). */
 static void start_params(brdffit_model model, int i, int n, double p[3])
 {
+    const bf_start_grid *gr = &bf_model_def_get(model)->grid;
     const brdffit_model_info *mi = brdffit_model_get(model);
-    double t = n > 1 ? (double)i / (n - 1) : 0.5;
-    double lo = 0, hi = 0;
-    p[0] = mi->start[0];
-    p[1] = mi->start[1];
-    p[2] = mi->start[2];
-    switch (model) {
-    case BRDFFIT_WARD:
-    case BRDFFIT_WARD_DUER:
-        lo = 0.005, hi = 0.5;
-        p[0] = lo * pow(hi / lo, t);
-        break;
-    case BRDFFIT_BLINN_PHONG:
-        lo = 2, hi = 5e4;
-        p[0] = lo * pow(hi / lo, t);
-        break;
-    case BRDFFIT_LAFORTUNE:
-        lo = 2, hi = 5e4;
-        p[2] = lo * pow(hi / lo, t);
-        break;
-    case BRDFFIT_COOK_TORRANCE:
-        lo = 0.005, hi = 0.5;
-        p[1] = lo * pow(hi / lo, t);
-        break;
-    case BRDFFIT_ASHIKHMIN_SHIRLEY:
-        lo = 2, hi = 5e4;
-        p[1] = lo * pow(hi / lo, t);
-        break;
-    case BRDFFIT_HE:
-        /* tau over 4, 8, ..., 28 as Ngan et al.; further rounds of 7 vary sigma0 */
-        p[0] = 4.0 * (1 + (i % 7));
-        p[1] = mi->start[1] * pow(4.0, (double)(i / 7));
-        if (p[1] > mi->upper[1])
-            p[1] = mi->upper[1];
-        break;
-    default:
-        break;
+    bf_model_start_params(model, p);
+    int k = gr->period > 0 ? i % gr->period : i, m = gr->period > 0 ? gr->period : n;
+    double v = gr->lo;
+    if (m > 1) {
+        if (gr->spacing == BRDFFIT_MAP_LOG)
+            v = gr->lo * pow(gr->hi / gr->lo, (double)k / (m - 1));
+        else
+            v = gr->lo + (gr->hi - gr->lo) * k / (m - 1);
+    } else if (gr->period == 0) { /* one start: the middle of the grid */
+        v = gr->spacing == BRDFFIT_MAP_LOG ? gr->lo * pow(gr->hi / gr->lo, 0.5)
+                                           : 0.5 * (gr->lo + gr->hi);
+    }
+    p[gr->param] = v;
+    if (gr->round_param >= 0 && gr->period > 0) {
+        int r = gr->round_param;
+        p[r] *= pow(gr->round_factor, (double)(i / gr->period));
+        if (p[r] > mi->params[r].upper)
+            p[r] = mi->params[r].upper;
     }
 }
 
@@ -327,7 +308,7 @@ void brdffit_fit_options_default(brdffit_fit_options *opt)
     if (!opt)
         return;
     memset(opt, 0, sizeof *opt);
-    opt->starts = 0; /* the model's own: 8, He 14 */
+    opt->starts = 0; /* the model's default_starts */
     opt->refine = 1;
     opt->ftol = 1e-8;
     opt->xtol = 1e-8;
@@ -361,11 +342,13 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
 
 enum { MAX_KEEP = 16, LM_RESTARTS = 2 };
 
-/* Starts come in rounds: He's are 7 values of tau at one sigma0, then 7 at
- * the next; the other models' starts are one round. */
+/* Starts come in rounds of the start grid's period when a round changes a
+ * parameter (He: 7 values of tau at one sigma0, then 7 at the next); the
+ * other models' starts are one round. */
 static int start_round(brdffit_model model, int i)
 {
-    return model == BRDFFIT_HE ? i / 7 : 0;
+    const bf_start_grid *gr = &bf_model_def_get(model)->grid;
+    return gr->period > 0 && gr->round_param >= 0 ? i / gr->period : 0;
 }
 
 /* Screen nstarts starts; keep the best `refine` of them, cheapest first, and
@@ -448,7 +431,7 @@ static brdffit_status lm_once(lmstate *S, const brdffit_fit_options *o, lmrun *r
  * the upper; -1 for a direction (no bounds). */
 static double coord_position(const fitmap *fm, int j, double u)
 {
-    return fm->kind[j] == MAP_ANGLE ? -1.0 : 0.5 * (1.0 + sin(u));
+    return fm->kind[j] == BRDFFIT_MAP_DIRECTION ? -1.0 : 0.5 * (1.0 + sin(u));
 }
 
 /* A coordinate within this of an end of its range is on its bound. */
@@ -620,7 +603,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
 
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
-    int nstarts = o.starts ? o.starts : model == BRDFFIT_HE ? 14 : 8;
+    int nstarts = o.starts ? o.starts : brdffit_model_get(model)->default_starts;
     rc = screen_starts(&S, nstarts, refine, keep, &nkeep);
     if (rc != BRDFFIT_OK)
         goto done;

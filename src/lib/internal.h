@@ -42,9 +42,6 @@ int bf_scale_known(brdffit_scale scale);
 /* The default He wavelengths (um) where params->lambda_um[c] is 0. */
 void bf_lambdas(const brdffit_params *params, double lam[3]);
 
-/* Lobe coordinates a fit uses for a model (Lafortune: direction + n = 2);
- * 0 for an id out of range.  A fact of the model, kept beside its table
- * (models.c). */
-int bf_model_ncoords(brdffit_model model);
+/* The model registry's internal side (bf_model_ncoords, ...): registry.h. */
 
 #endif /* BRDFFIT_INTERNAL_H */

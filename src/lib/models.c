@@ -1,64 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* models.c -- the model table, parameter checks and the plain-C evaluators.
- * The maths itself is kernels/bf_lobe.h (shared with the OpenCL kernel). */
-#include "internal.h"
-
-#include "bf_lobe.h"
+/* models.c -- parameter checks and the plain-C evaluators.  The models
+ * themselves are registry.c's; their maths is in kernels/ (shared with the
+ * OpenCL kernel). */
+#include "registry.h"
 
 #include <math.h>
 #include <string.h>
-
-_Static_assert(BF_WARD == BRDFFIT_WARD && BF_WARD_DUER == BRDFFIT_WARD_DUER &&
-                   BF_BLINN_PHONG == BRDFFIT_BLINN_PHONG && BF_LAFORTUNE == BRDFFIT_LAFORTUNE &&
-                   BF_COOK_TORRANCE == BRDFFIT_COOK_TORRANCE &&
-                   BF_ASHIKHMIN_SHIRLEY == BRDFFIT_ASHIKHMIN_SHIRLEY && BF_HE == BRDFFIT_HE,
-               "kernels/bf_models.h ids must match brdffit_model");
-
-/* Bounds are inclusive: brdffit_eval accepts exactly these, and fits stay in them. */
-static const brdffit_model_info model_table[BRDFFIT_MODEL_COUNT] = {
-    { BRDFFIT_WARD, "ward", "Ward", 1, { "alpha" }, { 1e-4 }, { 1.0 }, { 0.1 }, 0 },
-    { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", 1, { "alpha" }, { 1e-4 }, { 1.0 }, { 0.1 }, 0 },
-    { BRDFFIT_BLINN_PHONG, "blinn-phong", "Blinn-Phong", 1, { "n" }, { 0.1 }, { 1e6 }, { 100 }, 0 },
-    { BRDFFIT_LAFORTUNE, "lafortune", "Lafortune", 3, { "Cxy", "Cz", "n" },
-      { -100, -100, 0.1 }, { 100, 100, 1e6 }, { -0.57735026918962576, 0.57735026918962576, 100 }, 0 },
-    { BRDFFIT_COOK_TORRANCE, "cook-torrance", "Cook-Torrance", 2, { "F0", "m" },
-      { 0, 1e-4 }, { 1, 2.0 }, { 0.5, 0.1 }, 0 },
-    { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley", "Ashikhmin-Shirley", 2, { "F0", "n" },
-      { 0, 0.1 }, { 1, 1e6 }, { 0.5, 100 }, 0 },
-    { BRDFFIT_HE, "he", "He", 3, { "tau", "sigma0", "n" },
-      { 1, 0.001, 1 }, { 200, 30, 30 }, { 16, 0.5, 2 }, 1 },
-};
-
-const brdffit_model_info *brdffit_model_get(brdffit_model model)
-{
-    if ((int)model < 0 || model >= BRDFFIT_MODEL_COUNT)
-        return NULL;
-    return &model_table[model];
-}
-
-int bf_model_ncoords(brdffit_model model)
-{
-    const brdffit_model_info *mi = brdffit_model_get(model);
-    if (!mi)
-        return 0;
-    return model == BRDFFIT_LAFORTUNE ? 2 : mi->nparams;
-}
-
-brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out)
-{
-    if (!name || !out)
-        return BRDFFIT_E_INVALID_ARGUMENT;
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
-        const char *a = model_table[m].name, *b = name;
-        while (*a && (*a == *b || (*a == '-' && *b == '_')))
-            a++, b++;
-        if (*a == '\0' && *b == '\0') {
-            *out = (brdffit_model)m;
-            return BRDFFIT_OK;
-        }
-    }
-    return BRDFFIT_E_UNKNOWN_MODEL;
-}
 
 void bf_lambdas(const brdffit_params *params, double lam[3])
 {
@@ -83,20 +30,27 @@ brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *p
         if (!isfinite(params->s[c]) || params->s[c] < 0)
             return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: s_%c = %g must be finite and >= 0",
                            mi->name, ch[c], params->s[c]);
-        if (model == BRDFFIT_HE && params->lambda_um[c] != 0.0 &&
+        if (mi->chromatic && params->lambda_um[c] != 0.0 &&
             !(params->lambda_um[c] >= 0.1 && params->lambda_um[c] <= 10.0))
             return bf_fail(err, BRDFFIT_E_PARAM_RANGE,
                            "%s: lambda_%c = %g um must be 0 (default) or in [0.1, 10]", mi->name,
                            ch[c], params->lambda_um[c]);
     }
     for (int k = 0; k < mi->nparams; k++) {
+        const brdffit_param_info *pi = &mi->params[k];
         double v = params->p[k];
-        if (!(v >= mi->lower[k] && v <= mi->upper[k]))
+        if (!(v >= pi->lower && v <= pi->upper))
             return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: %s = %g outside [%g, %g]", mi->name,
-                           mi->param_names[k], v, mi->lower[k], mi->upper[k]);
+                           pi->name, v, pi->lower, pi->upper);
     }
-    if (model == BRDFFIT_LAFORTUNE && fmax(fabs(params->p[0]), fabs(params->p[1])) < 1e-12)
-        return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "lafortune: Cxy and Cz are both 0");
+    /* a direction pair has a direction only when one of its two is not 0 */
+    for (int k = 0; k + 1 < mi->nparams; k++)
+        if (mi->params[k].map == BRDFFIT_MAP_DIRECTION) {
+            if (fmax(fabs(params->p[k]), fabs(params->p[k + 1])) < 1e-12)
+                return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: %s and %s are both 0", mi->name,
+                               mi->params[k].name, mi->params[k + 1].name);
+            k++;
+        }
     bf_ok(err);
     return BRDFFIT_OK;
 }

@@ -4,6 +4,7 @@
  * Both return the moments of kernels/bf_layout.h in double. */
 #include "pass.h"
 #include "context.h"
+#include "registry.h"
 #include "samples.h"
 
 #include <math.h>

@@ -1,0 +1,192 @@
+/* SPDX-License-Identifier: MIT */
+/* registry.c -- the model registry: every fact about every model, one entry
+ * each (ids as in include/brdffit.h, lobes in kernels/).  Bounds, maps and
+ * start grids are plain data: the fit, the pass, the program and the tests
+ * read them from here. */
+#include "registry.h"
+
+#include <string.h>
+
+/* The lobe entry points of a model and the names the kernel build gives them. */
+#define LOBE(fn) .lobe = fn, .lobe_name = #fn
+#define LOBE_FD(fn) .lobe_fd = fn, .lobe_fd_name = #fn
+#define NO_ROUNDS .round_param = -1, .round_factor = 1.0
+
+/* Bounds are inclusive: brdffit_eval accepts exactly these, and fits stay in them. */
+
+static const brdffit_param_info ward_params[] = {
+    { "alpha", "", 1e-4, 1.0, 0.1, BRDFFIT_MAP_LOG, "RMS slope of the surface" },
+};
+
+static const brdffit_param_info blinn_phong_params[] = {
+    { "n", "", 0.1, 1e6, 100, BRDFFIT_MAP_LOG, "exponent of cos(delta)" },
+};
+
+static const brdffit_param_info lafortune_params[] = {
+    { "Cxy", "", -100, 100, -0.57735026918962576, BRDFFIT_MAP_DIRECTION,
+      "weight of the tangential components" },
+    { "Cz", "", -100, 100, 0.57735026918962576, BRDFFIT_MAP_DIRECTION,
+      "weight of the normal component" },
+    { "n", "", 0.1, 1e6, 100, BRDFFIT_MAP_LOG, "exponent" },
+};
+
+static const brdffit_param_info cook_torrance_params[] = {
+    { "F0", "", 0, 1, 0.5, BRDFFIT_MAP_LINEAR, "reflectance at normal incidence (Schlick)" },
+    { "m", "", 1e-4, 2.0, 0.1, BRDFFIT_MAP_LOG, "RMS slope of the microfacets (Beckmann)" },
+};
+
+static const brdffit_param_info ashikhmin_shirley_params[] = {
+    { "F0", "", 0, 1, 0.5, BRDFFIT_MAP_LINEAR, "reflectance at normal incidence (Schlick)" },
+    { "n", "", 0.1, 1e6, 100, BRDFFIT_MAP_LOG, "exponent of N.H" },
+};
+
+static const brdffit_param_info he_params[] = {
+    { "tau", "um", 1, 200, 16, BRDFFIT_MAP_LOG, "autocorrelation length of the surface" },
+    { "sigma0", "um", 0.001, 30, 0.5, BRDFFIT_MAP_LOG, "RMS roughness of the surface" },
+    { "n", "", 1, 30, 2, BRDFFIT_MAP_LOG, "refractive index (real)" },
+};
+
+#define PARAMS(a) .nparams = (int)(sizeof a / sizeof a[0]), .params = a
+
+static const bf_model_def registry[] = {
+    [BRDFFIT_WARD] = {
+        .info = { BRDFFIT_WARD, "ward", "Ward", PARAMS(ward_params), .chromatic = 0,
+                  .default_starts = 8 },
+        .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
+        LOBE(bf_lobe_ward),
+    },
+    [BRDFFIT_WARD_DUER] = {
+        .info = { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", PARAMS(ward_params),
+                  .chromatic = 0, .default_starts = 8 },
+        .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
+        LOBE(bf_lobe_ward_duer),
+    },
+    [BRDFFIT_BLINN_PHONG] = {
+        .info = { BRDFFIT_BLINN_PHONG, "blinn-phong", "Blinn-Phong", PARAMS(blinn_phong_params),
+                  .chromatic = 0, .default_starts = 8 },
+        .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
+        LOBE(bf_lobe_blinn_phong),
+    },
+    [BRDFFIT_LAFORTUNE] = {
+        .info = { BRDFFIT_LAFORTUNE, "lafortune", "Lafortune", PARAMS(lafortune_params),
+                  .chromatic = 0, .default_starts = 8 },
+        .grid = { .param = 2, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
+        LOBE(bf_lobe_lafortune),
+    },
+    [BRDFFIT_COOK_TORRANCE] = {
+        .info = { BRDFFIT_COOK_TORRANCE, "cook-torrance", "Cook-Torrance",
+                  PARAMS(cook_torrance_params), .chromatic = 0, .default_starts = 8 },
+        .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
+        LOBE(bf_lobe_cook_torrance),
+    },
+    [BRDFFIT_ASHIKHMIN_SHIRLEY] = {
+        .info = { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley", "Ashikhmin-Shirley",
+                  PARAMS(ashikhmin_shirley_params), .chromatic = 0, .default_starts = 8 },
+        .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
+        LOBE(bf_lobe_ashikhmin_shirley),
+    },
+    /* tau over 4, 8, ..., 28 as Ngan et al. at sigma0 = 0.5, then again at
+     * sigma0 = 2 (each further round of 7 raises sigma0 4x) */
+    [BRDFFIT_HE] = {
+        .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
+                  .default_starts = 14 },
+        .grid = { .param = 0, .spacing = BRDFFIT_MAP_LINEAR, .lo = 4, .hi = 28, .period = 7,
+                  .round_param = 1, .round_factor = 4.0 },
+        LOBE(bf_lobe_he),
+        LOBE_FD(bf_lobe_fd_he),
+    },
+};
+
+#define NMODELS (int)(sizeof registry / sizeof registry[0])
+_Static_assert(NMODELS == BRDFFIT_MODEL_COUNT, "one registry entry per brdffit_model");
+
+int brdffit_model_count(void)
+{
+    return NMODELS;
+}
+
+const bf_model_def *bf_model_def_get(brdffit_model model)
+{
+    if ((int)model < 0 || (int)model >= NMODELS)
+        return NULL;
+    return &registry[model];
+}
+
+const brdffit_model_info *brdffit_model_get(brdffit_model model)
+{
+    const bf_model_def *def = bf_model_def_get(model);
+    return def ? &def->info : NULL;
+}
+
+const brdffit_param_info *brdffit_model_param(brdffit_model model, int index)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    if (!mi || index < 0 || index >= mi->nparams)
+        return NULL;
+    return &mi->params[index];
+}
+
+brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out)
+{
+    if (!name || !out)
+        return BRDFFIT_E_INVALID_ARGUMENT;
+    for (int m = 0; m < NMODELS; m++) {
+        const char *a = registry[m].info.name, *b = name;
+        while (*a && (*a == *b || (*a == '-' && *b == '_')))
+            a++, b++;
+        if (*a == '\0' && *b == '\0') {
+            *out = (brdffit_model)m;
+            return BRDFFIT_OK;
+        }
+    }
+    return BRDFFIT_E_UNKNOWN_MODEL;
+}
+
+int bf_model_coord_param(brdffit_model model, int j)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    if (!mi)
+        return -1;
+    for (int k = 0, c = 0; k < mi->nparams; k++, c++) {
+        if (c == j)
+            return k;
+        if (mi->params[k].map == BRDFFIT_MAP_DIRECTION)
+            k++; /* with the next parameter: one angle */
+    }
+    return -1;
+}
+
+int bf_model_ncoords(brdffit_model model)
+{
+    int n = 0;
+    while (bf_model_coord_param(model, n) >= 0)
+        n++;
+    return n;
+}
+
+void bf_model_start_params(brdffit_model model, double p[BRDFFIT_MAX_LOBE_PARAMS])
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    for (int k = 0; k < BRDFFIT_MAX_LOBE_PARAMS; k++)
+        p[k] = mi && k < mi->nparams ? mi->params[k].start : 0.0;
+}
+
+/* ---------------------------------------------------------------- host dispatch */
+
+void bf_lobe(int model, const bf_geom *g, const double *p, const double *lam, double *K)
+{
+    registry[model].lobe(g, p, lam, K);
+}
+
+void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np, const double *lam,
+                double *K0, double (*Kj)[3], bf_lobe_state *st)
+{
+    const bf_model_def *def = &registry[model];
+    if (def->lobe_fd) {
+        def->lobe_fd(g, p, np, lam, K0, Kj, st);
+        return;
+    }
+    def->lobe(g, p[0], lam, K0);
+    for (int j = 0; j < np; j++)
+        def->lobe(g, p[1 + j], lam, Kj[j]);
+}

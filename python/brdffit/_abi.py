@@ -25,17 +25,27 @@ class Error(C.Structure):
     _fields_ = [("status", c_enum), ("message", C.c_char * MESSAGE_MAX)]
 
 
+class ParamInfo(C.Structure):
+    _fields_ = [
+        ("name", C.c_char_p),
+        ("unit", C.c_char_p),
+        ("lower", C.c_double),
+        ("upper", C.c_double),
+        ("start", C.c_double),
+        ("map", c_enum),
+        ("description", C.c_char_p),
+    ]
+
+
 class ModelInfo(C.Structure):
     _fields_ = [
         ("id", c_enum),
         ("name", C.c_char_p),
         ("title", C.c_char_p),
         ("nparams", C.c_int),
-        ("param_names", C.c_char_p * MAX_LOBE_PARAMS),
-        ("lower", _dp),
-        ("upper", _dp),
-        ("start", _dp),
         ("chromatic", C.c_int),
+        ("default_starts", C.c_int),
+        ("params", C.POINTER(ParamInfo)),
     ]
 
 
@@ -104,7 +114,11 @@ STRUCT_KINDS = {
     ContextOptions: 5,
     FitOptions: 6,
     FitResult: 7,
+    ParamInfo: 8,
 }
+
+# brdffit_param_map (pinned values).
+PARAM_MAPS = {0: "log", 1: "linear", 2: "direction"}
 
 # brdffit_scale, brdffit_interp, brdffit_backend (pinned values).
 SCALES = {"standard": 0, "flat": 1}
@@ -123,7 +137,9 @@ FUNCTIONS = {
     "brdffit_strerror": (C.c_char_p, [_status]),
     "brdffit_metric_name": (C.c_char_p, []),
     # models
+    "brdffit_model_count": (C.c_int, []),
     "brdffit_model_get": (C.POINTER(ModelInfo), [c_enum]),
+    "brdffit_model_param": (C.POINTER(ParamInfo), [c_enum, C.c_int]),
     "brdffit_model_from_name": (_status, [C.c_char_p, C.POINTER(c_enum)]),
     "brdffit_params_check": (_status, [c_enum, C.POINTER(Params), _err]),
     "brdffit_eval": (_status, [c_enum, C.POINTER(Params), _P, _P, _P]),

@@ -16,26 +16,32 @@ _BAD = Status.INVALID_ARGUMENT
 @dataclass(frozen=True)
 class Param:
     """One lobe parameter of a model: name, unit ("" when dimensionless),
-    inclusive bounds and a typical starting value, in the paper's units."""
+    inclusive bounds and a typical starting value, in the paper's units; how a
+    fit maps it (``map``: "log", "linear" or "direction") and a few words on
+    what it is."""
 
     name: str
     unit: str
     lower: float
     upper: float
     start: float
+    map: str
+    description: str
 
 
 @dataclass(frozen=True)
 class Model:
     """A model of the registry: ``id`` (brdffit_model), ``name``
     ("cook-torrance"), ``title`` ("Cook-Torrance"), its lobe ``params`` and
-    whether its lobe differs per channel (``chromatic``)."""
+    whether its lobe differs per channel (``chromatic``), and the number of
+    starting points a fit screens by default (``default_starts``)."""
 
     id: int
     name: str
     title: str
     params: Tuple[Param, ...]
     chromatic: bool
+    default_starts: int
 
     @property
     def nparams(self):
@@ -66,24 +72,22 @@ def models():
     if found is not None and found[0] is lib:
         return found[1]
     out = []
-    m = 0
-    while True:
-        info = lib.cdll.brdffit_model_get(m)
-        if not info:
-            break
-        mi = info.contents
+    for m in range(lib.cdll.brdffit_model_count()):
+        mi = lib.cdll.brdffit_model_get(m).contents
         params = tuple(
             Param(
-                name=_text(mi.param_names[k]),
-                unit="",
-                lower=mi.lower[k],
-                upper=mi.upper[k],
-                start=mi.start[k],
+                name=_text(pi.name),
+                unit=_text(pi.unit),
+                lower=pi.lower,
+                upper=pi.upper,
+                start=pi.start,
+                map=_abi.PARAM_MAPS.get(pi.map, str(pi.map)),
+                description=_text(pi.description),
             )
-            for k in range(mi.nparams)
+            for pi in (mi.params[k] for k in range(mi.nparams))
         )
-        out.append(Model(mi.id, _text(mi.name), _text(mi.title), params, bool(mi.chromatic)))
-        m += 1
+        out.append(Model(mi.id, _text(mi.name), _text(mi.title), params, bool(mi.chromatic),
+                         mi.default_starts))
     result = tuple(out)
     _cache[id(lib)] = (lib, result)
     return result

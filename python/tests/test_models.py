@@ -28,6 +28,11 @@ def test_models_are_the_registrys(brdffit, cli):
     he = brdffit.model("he")
     assert he.chromatic and not brdffit.model("ward").chromatic
     assert he.param_names == ("tau", "sigma0", "n")
+    # units, maps and default starts come from the registry too
+    assert [p.unit for p in he.params] == ["um", "um", ""]
+    assert he.default_starts == 7 and brdffit.model("ward").default_starts == 8
+    assert [p.map for p in brdffit.model("lafortune").params] == ["direction", "direction", "log"]
+    assert all(p.description for m in ms for p in m.params)
 
 
 def test_model_lookup(brdffit):

@@ -23,11 +23,17 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, name),
     M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, title),
     M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, nparams),
-    M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, param_names),
-    M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, lower),
-    M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, upper),
-    M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, start),
     M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, chromatic),
+    M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, default_starts),
+    M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, params),
+
+    M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, name),
+    M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, unit),
+    M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, lower),
+    M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, upper),
+    M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, start),
+    M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, map),
+    M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, description),
 
     M(BRDFFIT_STRUCT_PARAMS, brdffit_params, d),
     M(BRDFFIT_STRUCT_PARAMS, brdffit_params, s),
@@ -85,6 +91,7 @@ size_t brdffit_struct_size(brdffit_struct_kind kind)
     case BRDFFIT_STRUCT_CONTEXT_OPTIONS: return sizeof(brdffit_context_options);
     case BRDFFIT_STRUCT_FIT_OPTIONS: return sizeof(brdffit_fit_options);
     case BRDFFIT_STRUCT_FIT_RESULT: return sizeof(brdffit_fit_result);
+    case BRDFFIT_STRUCT_PARAM_INFO: return sizeof(brdffit_param_info);
     }
     return 0;
 }

@@ -55,7 +55,7 @@ static double ratio(const bj_record *fit, const bj_record *pub)
 static const char *param_label(brdffit_model model, int k)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);
-    return k < mi->nparams ? mi->param_names[k] : "";
+    return k < mi->nparams ? mi->params[k].name : "";
 }
 
 static int open_in(out_file *o, const char *dir, const char *name, brdffit_error *err)
@@ -151,7 +151,7 @@ static void json_fit(FILE *f, const bj_record *fit, const bj_record *pub)
     for (int k = 0; mi && k < mi->nparams; k++) {
         if (k)
             putc(',', f);
-        json_string(f, mi->param_names[k]);
+        json_string(f, mi->params[k].name);
     }
     fputs("],\"d\":", f);
     if (fit->ok) {
@@ -283,11 +283,12 @@ static void settings_table(xml_writer *w, const rp_report *rep)
         cell(w, "td", "name", rows[i][1]);
         xml_close(w);
     }
-    char starts[64];
+    char starts[320], dflt[256];
     if (rep->settings.starts > 0)
         snprintf(starts, sizeof starts, "%d per model", rep->settings.starts);
     else
-        snprintf(starts, sizeof starts, "each model's default (8; He 14)");
+        snprintf(starts, sizeof starts, "each model's default (%s)",
+                 cli_default_starts(dflt, sizeof dflt));
     const char *more[][2] = {
         { "scale", rep->settings.scale },
         { "starts", starts },

@@ -196,12 +196,12 @@ const char *bj_on_bound(brdffit_model model, const brdffit_params *p, char *buf,
             used += (size_t)w;
     }
     for (int k = 0; k < mi->nparams; k++) {
-        double x = p->p[k], lo = mi->lower[k], hi = mi->upper[k];
+        double x = p->p[k], lo = mi->params[k].lower, hi = mi->params[k].upper;
         double tol = 1e-9 * fmax(1.0, fmax(fabs(lo), fabs(hi)));
         const char *at = x <= lo + tol ? "lower" : x >= hi - tol ? "upper" : NULL;
         if (!at)
             continue;
-        int w = snprintf(buf + used, len - used, "%s%s=%s", used ? "," : "", mi->param_names[k], at);
+        int w = snprintf(buf + used, len - used, "%s%s=%s", used ? "," : "", mi->params[k].name, at);
         if (w > 0 && (size_t)w < len - used)
             used += (size_t)w;
     }

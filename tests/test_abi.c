@@ -19,6 +19,7 @@ START_TEST(struct_sizes)
                       sizeof(brdffit_context_options));
     ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_FIT_OPTIONS), sizeof(brdffit_fit_options));
     ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_FIT_RESULT), sizeof(brdffit_fit_result));
+    ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_PARAM_INFO), sizeof(brdffit_param_info));
     ck_assert_uint_eq(brdffit_struct_size((brdffit_struct_kind)999), 0);
     ck_assert_uint_eq(brdffit_struct_size((brdffit_struct_kind)-1), 0);
 }

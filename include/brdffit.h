@@ -39,6 +39,11 @@
  *                            in micrometres, n a real refractive index), per
  *                            channel at wavelengths lambda = (0.645, 0.526,
  *                            0.444) um unless brdffit_params.lambda_um says.
+ *     ggx [F0, alpha]        K = D G2 F(F0, V.H) / (4 cos ti cos to), as pbrt-v4:
+ *                            D = 1 / (pi a^2 cos^4 th (1 + tan^2 th / a^2)^2)
+ *                            (Trowbridge-Reitz), G2 = 1 / (1 + L(wi) + L(wo))
+ *                            (height-correlated Smith), L(w) = (sqrt(1 + a^2
+ *                            tan^2 theta_w) - 1) / 2
  *     F(F0, c) = F0 + (1 - F0)(1 - c)^5 (Schlick).
  *   The Lafortune lobe depends on (Cxy, Cz) only through their direction;
  *   fits report them scaled to 2 Cxy^2 + Cz^2 = 1.
@@ -141,9 +146,10 @@ typedef enum brdffit_model {
     BRDFFIT_LAFORTUNE = 3,
     BRDFFIT_COOK_TORRANCE = 4,
     BRDFFIT_ASHIKHMIN_SHIRLEY = 5,
-    BRDFFIT_HE = 6
+    BRDFFIT_HE = 6,
+    BRDFFIT_GGX = 7
 } brdffit_model;
-#define BRDFFIT_MODEL_COUNT 7
+#define BRDFFIT_MODEL_COUNT 8
 
 #define BRDFFIT_MAX_LOBE_PARAMS 3
 

@@ -108,6 +108,26 @@ BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
          / (g->vh * fmax(g->iz, g->oz)) * bf_schlick(f0, g->vh);
 }
 
+/* GGX [F0, alpha], as pbrt-v4 evaluates it: K = D G2 F / (4 cos ti cos to),
+ * D the Trowbridge-Reitz distribution 1 / (pi a^2 cos^4 th (1 + tan^2 th / a^2)^2),
+ * G2 the height-correlated Smith term 1 / (1 + L(wi) + L(wo)) with
+ * L(w) = (sqrt(1 + a^2 tan^2 theta) - 1) / 2, F Schlick's at wo.h.  Written
+ * without 1 - cos^2 and without dividing by the cosines: with H = wi + wo
+ * (not normalised) D = a^2 |H|^4 / (pi (a^2 Hz^2 + Hx^2 + Hy^2)^2), and with
+ * q(w) = sqrt(z^2 + a^2 (x^2 + y^2)) = z (1 + 2 L(w)),
+ * G2 / (4 cos ti cos to) = 1 / (2 (q(wi) oz + q(wo) iz)). */
+BF_FN BF_REAL bf_ggx(const bf_geom *g, double f0, double alpha)
+{
+    double a2 = alpha * alpha;
+    BF_REAL hx = g->ix + g->ox, hy = g->iy + g->oy, hz = g->iz + g->oz;
+    BF_REAL s2 = hx * hx + hy * hy, h2 = s2 + hz * hz;
+    BF_REAL den = a2 * (hz * hz) + s2;
+    BF_REAL d = (a2 * (h2 * h2)) / (BF_PI * (den * den));
+    BF_REAL qi = sqrt(g->iz * g->iz + a2 * (g->ix * g->ix + g->iy * g->iy));
+    BF_REAL qo = sqrt(g->oz * g->oz + a2 * (g->ox * g->ox + g->oy * g->oy));
+    return bf_schlick(f0, g->vh) * d / (2.0 * (qi * g->oz + qo * g->iz));
+}
+
 /* A lobe that is the same for the three channels, as a model entry point. */
 #define BF_GREY_LOBE(model, expr)                                                        \
     BF_FN void bf_lobe_##model(const bf_geom *g, const double *p, const double *lam,    \
@@ -126,5 +146,6 @@ BF_GREY_LOBE(blinn_phong, bf_blinn_phong(g, p[0]))
 BF_GREY_LOBE(lafortune, bf_lafortune(g, p[0], p[1], p[2]))
 BF_GREY_LOBE(cook_torrance, bf_cook_torrance(g, p[0], p[1]))
 BF_GREY_LOBE(ashikhmin_shirley, bf_ashikhmin_shirley(g, p[0], p[1]))
+BF_GREY_LOBE(ggx, bf_ggx(g, p[0], p[1]))
 
 #endif /* BF_MODELS_H */

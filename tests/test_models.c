@@ -339,7 +339,7 @@ START_TEST(abi_values)
         { BRDFFIT_WARD, "ward" }, { BRDFFIT_WARD_DUER, "ward-duer" },
         { BRDFFIT_BLINN_PHONG, "blinn-phong" }, { BRDFFIT_LAFORTUNE, "lafortune" },
         { BRDFFIT_COOK_TORRANCE, "cook-torrance" }, { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley" },
-        { BRDFFIT_HE, "he" },
+        { BRDFFIT_HE, "he" }, { BRDFFIT_GGX, "ggx" },
     };
     for (int i = 0; i < (int)(sizeof pinned / sizeof pinned[0]); i++) {
         ck_assert_int_eq(pinned[i].id, i);

@@ -46,6 +46,11 @@ static const brdffit_param_info he_params[] = {
     { "n", "", 1, 30, 2, BRDFFIT_MAP_LOG, "refractive index (real)" },
 };
 
+static const brdffit_param_info ggx_params[] = {
+    { "F0", "", 0, 1, 0.5, BRDFFIT_MAP_LINEAR, "reflectance at normal incidence (Schlick)" },
+    { "alpha", "", 1e-4, 1, 0.1, BRDFFIT_MAP_LOG, "roughness: RMS slope of the microfacets (Trowbridge-Reitz)" },
+};
+
 #define PARAMS(a) .nparams = (int)(sizeof a / sizeof a[0]), .params = a
 
 static const bf_model_def registry[] = {
@@ -94,6 +99,12 @@ static const bf_model_def registry[] = {
                   .round_param = 1, .round_factor = 4.0 },
         LOBE(bf_lobe_he),
         LOBE_FD(bf_lobe_fd_he),
+    },
+    [BRDFFIT_GGX] = {
+        .info = { BRDFFIT_GGX, "ggx", "GGX", PARAMS(ggx_params), .chromatic = 0,
+                  .default_starts = 8 },
+        .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.8, NO_ROUNDS },
+        LOBE(bf_lobe_ggx),
     },
 };
 

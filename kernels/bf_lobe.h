@@ -1,13 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * bf_lobe.h -- the lobe of the model a data pass is for, for the C library and
- * the OpenCL kernel alike.  Which function that is comes from the model
- * registry (src/lib/registry.c):
- *   kernel  built for one model with -DBF_LOBE=bf_lobe_<model> and, for a lobe
- *           with forward differences of its own, -DBF_LOBE_FD=<function>;
- *   host    bf_lobe and bf_lobe_fd look the model up in the registry.
- * A renderer does not need this file: it calls bf_lobe_<model> (bf_models.h,
- * bf_he.h) directly.
+ * bf_lobe.h -- one entry point to the lobes of every model, for the C library,
+ * the OpenCL kernel and a renderer that includes it (it needs nothing else:
+ * no allocation, no state).  The cases come from BF_MODEL_LOBES (bf_models.h);
+ * in the kernel `model` is a compile-time constant (-DBF_MODEL=...), so the
+ * switch folds away.
  */
 #ifndef BF_LOBE_H
 #define BF_LOBE_H
@@ -16,6 +13,22 @@
 #include "bf_models.h"
 #include "bf_he.h"
 #endif
+
+/* K per channel into K[0..2] of model `model` (a brdffit_model id; 0 for any
+ * other) for lobe parameters p[0..2] (paper units) and, for a chromatic lobe
+ * (He), wavelengths lam[0..2] in micrometres. */
+BF_FN void bf_lobe(int model, const bf_geom *g, const double *p, const double *lam,
+                   BF_REAL *K)
+{
+    switch (model) {
+#define BF_LOBE_CASE(id, name, fd) \
+    case id: bf_lobe_##name(g, p, lam, K); return;
+    BF_MODEL_LOBES(BF_LOBE_CASE)
+#undef BF_LOBE_CASE
+    default: break;
+    }
+    K[0] = K[1] = K[2] = BF_R(0.0);
+}
 
 /* What a lobe may carry from one vector of samples to the next within a
  * data pass, which walks the samples in table order: each lobe that keeps
@@ -38,41 +51,46 @@ BF_FN void bf_lobe_fd_he(const bf_geom *g, const double (*p)[3], int np, const d
     bf_he_fd(g, p, np, lam, K0, Kj, st ? &st->he : (bf_he_memo *)0);
 }
 
-/* bf_lobe_fd: K at p[0] and at the np forward-difference neighbours p[1..np]
- * of a data pass (see bf_pass.h): K0[c] = K(p[0]) as the model's
- * bf_lobe_<model> gives it, Kj[j][c] ~ K(p[1 + j]).  A lobe without forward
- * differences of its own is evaluated at each point; He sums its series once
- * and carries it to the neighbours to first order in its log, and with a
- * state (NULL: none) reuses the previous vector's series where g and a are
- * unchanged (bf_he_fd; K0 is then bf_he's to ~1e-13). */
-#ifdef __OPENCL_VERSION__
+/* The two kinds of forward differences a BF_MODEL_LOBES entry names. */
+#define BF_FD_POINTWISE(name)                                   \
+    bf_lobe_##name(g, p[0], lam, K0);                           \
+    for (int j = 0; j < np; j++)                                \
+        bf_lobe_##name(g, p[1 + j], lam, Kj[j]);
+#define BF_FD_OWN(name) bf_lobe_fd_##name(g, p, np, lam, K0, Kj, st);
 
-#ifndef BF_LOBE
-#error "build with -DBF_LOBE=bf_lobe_<model>"
-#endif
-
+/* K at p[0] and at the np forward-difference neighbours p[1..np] of a data
+ * pass (see bf_pass.h): K0[c] = K(p[0]) as bf_lobe gives it, Kj[j][c] ~
+ * K(p[1 + j]).  A BF_FD_POINTWISE lobe is evaluated at each point; He
+ * (BF_FD_OWN) sums its series once and carries it to the neighbours to first
+ * order in its log, and with a state (NULL: none) reuses the previous
+ * vector's series where g and a are unchanged (bf_he_fd; K0 is then bf_he's
+ * to ~1e-13). */
 BF_FN void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
                       const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3], bf_lobe_state *st)
 {
-    (void)model;
-#ifdef BF_LOBE_FD
-    BF_LOBE_FD(g, p, np, lam, K0, Kj, st);
-#else
     (void)st;
-    BF_LOBE(g, p[0], lam, K0);
+    switch (model) {
+#define BF_LOBE_FD_CASE(id, name, fd) \
+    case id: { fd(name) } return;
+    BF_MODEL_LOBES(BF_LOBE_FD_CASE)
+#undef BF_LOBE_FD_CASE
+    default: break;
+    }
+    K0[0] = K0[1] = K0[2] = BF_R(0.0);
     for (int j = 0; j < np; j++)
-        BF_LOBE(g, p[1 + j], lam, Kj[j]);
-#endif
+        Kj[j][0] = Kj[j][1] = Kj[j][2] = BF_R(0.0);
 }
 
-#else /* host: src/lib/registry.c */
-
-/* K per channel into K[0..2] of model `model` (an id the caller checked) for
- * lobe parameters p (paper units) and wavelengths lam (um). */
-void bf_lobe(int model, const bf_geom *g, const double *p, const double *lam, double *K);
-void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np, const double *lam,
-                double *K0, double (*Kj)[3], bf_lobe_state *st);
-
-#endif
+/* 1 when a model's lobe has forward differences of its own (BF_FD_OWN). */
+BF_FN int bf_lobe_has_own_fd(int model)
+{
+#define BF_FD_KIND_BF_FD_POINTWISE 0
+#define BF_FD_KIND_BF_FD_OWN 1
+#define BF_LOBE_KIND_CASE(id, name, fd) \
+    if (model == id) return BF_FD_KIND_##fd;
+    BF_MODEL_LOBES(BF_LOBE_KIND_CASE)
+#undef BF_LOBE_KIND_CASE
+    return 0;
+}
 
 #endif /* BF_LOBE_H */

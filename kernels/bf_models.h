@@ -10,10 +10,9 @@
  * Each model has one entry point of the same shape,
  *     bf_lobe_<model>(g, p, lam, K):  K[0..2] per channel for lobe parameters
  *     p[0..] (paper units) and wavelengths lam[0..2] (um, chromatic lobes only),
- * which the model registry (src/lib/registry.c) names for the library and
- * the kernel build.  A renderer may include this header (with bf_common.h)
- * and call bf_geom_derive + bf_lobe_<model> directly: nothing here allocates
- * or has state.
+ * bound to its id by BF_MODEL_LOBES at the end of this file.  A renderer may
+ * include bf_lobe.h and call bf_geom_derive + bf_lobe(id, ...) or a model's
+ * bf_lobe_<model> directly: nothing here allocates or has state.
  */
 #ifndef BF_MODELS_H
 #define BF_MODELS_H
@@ -147,5 +146,21 @@ BF_GREY_LOBE(lafortune, bf_lafortune(g, p[0], p[1], p[2]))
 BF_GREY_LOBE(cook_torrance, bf_cook_torrance(g, p[0], p[1]))
 BF_GREY_LOBE(ashikhmin_shirley, bf_ashikhmin_shirley(g, p[0], p[1]))
 BF_GREY_LOBE(ggx, bf_ggx(g, p[0], p[1]))
+
+/* The lobe of each model, by id (the values of brdffit_model in brdffit.h;
+ * src/lib/registry.c checks that it has an entry for each): X(id, model, fd)
+ * with bf_lobe_<model> its entry point and fd how a data pass takes its
+ * forward differences, BF_FD_POINTWISE (the lobe at each point) or BF_FD_OWN
+ * (its own bf_lobe_fd_<model>).  bf_lobe and bf_lobe_fd (bf_lobe.h) switch
+ * over this list; the rest of a model's facts are its registry entry. */
+#define BF_MODEL_LOBES(X)                                                                 \
+    X(0, ward, BF_FD_POINTWISE)                                                           \
+    X(1, ward_duer, BF_FD_POINTWISE)                                                      \
+    X(2, blinn_phong, BF_FD_POINTWISE)                                                    \
+    X(3, lafortune, BF_FD_POINTWISE)                                                      \
+    X(4, cook_torrance, BF_FD_POINTWISE)                                                  \
+    X(5, ashikhmin_shirley, BF_FD_POINTWISE)                                              \
+    X(6, he, BF_FD_OWN)                                                                   \
+    X(7, ggx, BF_FD_POINTWISE)
 
 #endif /* BF_MODELS_H */

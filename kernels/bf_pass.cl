@@ -4,9 +4,8 @@
  * host side that enqueues it).  The library prepends the kernel headers, in
  * the order the Makefile's KERNEL_SOURCES lists, and builds it once per model
  * and context with
- *     -DBF_MODEL=<id> -DBF_LOBE=<lobe function> [-DBF_LOBE_FD=<its forward differences>]
- *     -DBF_NP=<lobe coordinates> -DBF_NK=<1|3> -DBF_WIDTH=<4|8>
- * (the lobe functions and counts from the model registry, src/lib/registry.c).
+ *     -DBF_MODEL=<id> -DBF_NP=<lobe coordinates> -DBF_NK=<1|3> -DBF_WIDTH=<4|8>
+ * (the counts from the model registry, src/lib/registry.c).
  *
  * Each work-item walks a contiguous run of BF_WIDTH-wide sample vectors
  * (explicit vector types: PoCL does not vectorise scalar work-items that call

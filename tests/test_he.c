@@ -7,6 +7,7 @@
 #include "testutil.h"
 
 #include "registry.h"
+#include "bf_lobe.h"
 
 #include <check.h>
 #include <math.h>
@@ -723,8 +724,7 @@ START_TEST(fd_lobe_dispatch)
 {
     make_dirs();
     for (int model = 0; model < brdffit_model_count(); model++) {
-        const bf_model_def *def = bf_model_def_get((brdffit_model)model);
-        ck_assert_ptr_nonnull(def);
+        ck_assert_ptr_nonnull(brdffit_model_get((brdffit_model)model));
         double p[4][3];
         for (int j = 0; j < 4; j++) {
             bf_model_start_params((brdffit_model)model, p[j]);
@@ -740,7 +740,7 @@ START_TEST(fd_lobe_dispatch)
                 bf_lobe(model, &g, p[0], default_lam, K);
                 ck_assert_msg(memcmp(K0, K, sizeof K) == 0, "model %d np %d dir %d: K0", model, np,
                               s);
-                if (def->lobe_fd)
+                if (bf_lobe_has_own_fd(model))
                     continue; /* a lobe's own forward differences (He's: fd_neighbours) */
                 for (int j = 0; j < np; j++) {
                     bf_lobe(model, &g, p[1 + j], default_lam, K);

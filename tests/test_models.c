@@ -5,6 +5,7 @@
  * parameter ranges; the registry itself and the ABI values it pins. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
+#include "bf_lobe.h"
 
 #include <check.h>
 #include <math.h>
@@ -331,6 +332,35 @@ START_TEST(model_table)
 }
 END_TEST
 
+/* BF_MODEL_LOBES (kernels/bf_models.h) binds each registry entry, by id, to
+ * the lobe of its name: every id once, in order, "ward_duer" for "ward-duer". */
+START_TEST(lobe_list_is_the_registry)
+{
+    static const struct { int id; const char *name; } lobes[] = {
+#define LOBE_ROW(id, name, fd) { id, #name },
+        BF_MODEL_LOBES(LOBE_ROW)
+#undef LOBE_ROW
+    };
+    int n = (int)(sizeof lobes / sizeof lobes[0]);
+    ck_assert_int_eq(n, brdffit_model_count());
+    for (int i = 0; i < n; i++) {
+        ck_assert_int_eq(lobes[i].id, i);
+        char want[64];
+        snprintf(want, sizeof want, "%s", brdffit_model_get((brdffit_model)i)->name);
+        for (char *c = want; *c; c++)
+            if (*c == '-')
+                *c = '_';
+        ck_assert_str_eq(lobes[i].name, want);
+    }
+    /* an id out of range has no lobe */
+    bf_geom g = { 0, 0, 1, 0, 0, 1, 0, 0 };
+    bf_geom_derive(&g);
+    double p[3] = { 0.1, 0.1, 0.1 }, lam[3] = { 0.6, 0.5, 0.4 }, K[3] = { 1, 1, 1 };
+    bf_lobe(n, &g, p, lam, K);
+    ck_assert(K[0] == 0 && K[1] == 0 && K[2] == 0);
+}
+END_TEST
+
 /* The ABI: model ids and names never change (new models are appended), nor do
  * the values of the other public enums. */
 START_TEST(abi_values)
@@ -370,6 +400,7 @@ Suite *models_suite(void)
     tcase_add_test(tc, below_horizon_and_batch);
     tcase_add_test(tc, model_table);
     tcase_add_test(tc, abi_values);
+    tcase_add_test(tc, lobe_list_is_the_registry);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -437,8 +437,7 @@ double brdffit_context_build_seconds(const brdffit_context *ctx, brdffit_model m
 brdffit_status bf_context_kernels(brdffit_context *ctx, brdffit_model model, cl_kernel *full,
                                   cl_kernel *value, brdffit_error *err)
 {
-    const bf_model_def *def = bf_model_def_get(model);
-    const brdffit_model_info *mi = def ? &def->info : NULL;
+    const brdffit_model_info *mi = brdffit_model_get(model);
     if (!mi)
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
     if (ctx->backend != BRDFFIT_BACKEND_OPENCL)

@@ -4,6 +4,8 @@
  * OpenCL kernel). */
 #include "registry.h"
 
+#include "bf_lobe.h"
+
 #include <math.h>
 #include <string.h>
 

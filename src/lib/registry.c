@@ -1,15 +1,15 @@
 /* SPDX-License-Identifier: MIT */
 /* registry.c -- the model registry: every fact about every model, one entry
- * each (ids as in include/brdffit.h, lobes in kernels/).  Bounds, maps and
- * start grids are plain data: the fit, the pass, the program and the tests
- * read them from here. */
+ * each (ids as in include/brdffit.h; the lobe of each id is BF_MODEL_LOBES in
+ * kernels/bf_models.h, which the kernel sees too).  Bounds, maps and start
+ * grids are plain data: the fit, the pass, the program and the tests read
+ * them from here. */
 #include "registry.h"
+
+#include "bf_lobe.h"
 
 #include <string.h>
 
-/* The lobe entry points of a model and the names the kernel build gives them. */
-#define LOBE(fn) .lobe = fn, .lobe_name = #fn
-#define LOBE_FD(fn) .lobe_fd = fn, .lobe_fd_name = #fn
 #define NO_ROUNDS .round_param = -1, .round_factor = 1.0
 
 /* Bounds are inclusive: brdffit_eval accepts exactly these, and fits stay in them. */
@@ -58,37 +58,31 @@ static const bf_model_def registry[] = {
         .info = { BRDFFIT_WARD, "ward", "Ward", PARAMS(ward_params), .chromatic = 0,
                   .default_starts = 8 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
-        LOBE(bf_lobe_ward),
     },
     [BRDFFIT_WARD_DUER] = {
         .info = { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", PARAMS(ward_params),
                   .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
-        LOBE(bf_lobe_ward_duer),
     },
     [BRDFFIT_BLINN_PHONG] = {
         .info = { BRDFFIT_BLINN_PHONG, "blinn-phong", "Blinn-Phong", PARAMS(blinn_phong_params),
                   .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
-        LOBE(bf_lobe_blinn_phong),
     },
     [BRDFFIT_LAFORTUNE] = {
         .info = { BRDFFIT_LAFORTUNE, "lafortune", "Lafortune", PARAMS(lafortune_params),
                   .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 2, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
-        LOBE(bf_lobe_lafortune),
     },
     [BRDFFIT_COOK_TORRANCE] = {
         .info = { BRDFFIT_COOK_TORRANCE, "cook-torrance", "Cook-Torrance",
                   PARAMS(cook_torrance_params), .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
-        LOBE(bf_lobe_cook_torrance),
     },
     [BRDFFIT_ASHIKHMIN_SHIRLEY] = {
         .info = { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley", "Ashikhmin-Shirley",
                   PARAMS(ashikhmin_shirley_params), .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
-        LOBE(bf_lobe_ashikhmin_shirley),
     },
     /* tau over 4, 8, ..., 28 as Ngan et al. at sigma0 = 0.5, then again at
      * sigma0 = 2 (each further round of 7 raises sigma0 4x) */
@@ -97,19 +91,21 @@ static const bf_model_def registry[] = {
                   .default_starts = 14 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LINEAR, .lo = 4, .hi = 28, .period = 7,
                   .round_param = 1, .round_factor = 4.0 },
-        LOBE(bf_lobe_he),
-        LOBE_FD(bf_lobe_fd_he),
     },
     [BRDFFIT_GGX] = {
         .info = { BRDFFIT_GGX, "ggx", "GGX", PARAMS(ggx_params), .chromatic = 0,
                   .default_starts = 8 },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.8, NO_ROUNDS },
-        LOBE(bf_lobe_ggx),
     },
 };
 
 #define NMODELS (int)(sizeof registry / sizeof registry[0])
 _Static_assert(NMODELS == BRDFFIT_MODEL_COUNT, "one registry entry per brdffit_model");
+/* ... and one lobe per entry, ids 0 .. NMODELS-1 in order */
+#define ONE_LOBE(id, name, fd) +1
+_Static_assert(0 BF_MODEL_LOBES(ONE_LOBE) == NMODELS, "BF_MODEL_LOBES: one lobe per model");
+#undef ONE_LOBE
+
 
 int brdffit_model_count(void)
 {
@@ -180,24 +176,4 @@ void bf_model_start_params(brdffit_model model, double p[BRDFFIT_MAX_LOBE_PARAMS
     const brdffit_model_info *mi = brdffit_model_get(model);
     for (int k = 0; k < BRDFFIT_MAX_LOBE_PARAMS; k++)
         p[k] = mi && k < mi->nparams ? mi->params[k].start : 0.0;
-}
-
-/* ---------------------------------------------------------------- host dispatch */
-
-void bf_lobe(int model, const bf_geom *g, const double *p, const double *lam, double *K)
-{
-    registry[model].lobe(g, p, lam, K);
-}
-
-void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np, const double *lam,
-                double *K0, double (*Kj)[3], bf_lobe_state *st)
-{
-    const bf_model_def *def = &registry[model];
-    if (def->lobe_fd) {
-        def->lobe_fd(g, p, np, lam, K0, Kj, st);
-        return;
-    }
-    def->lobe(g, p[0], lam, K0);
-    for (int j = 0; j < np; j++)
-        def->lobe(g, p[1 + j], lam, Kj[j]);
 }

@@ -1,19 +1,13 @@
 /* SPDX-License-Identifier: MIT */
 /* registry.h -- the model registry: every fact about a model, written once in
- * registry.c.  The public part (brdffit_model_info, brdffit_param_info) is what
- * brdffit_model_get and brdffit_model_param return; the rest is for the fit
- * (its start grid) and the data pass (its lobe functions). */
+ * registry.c (its lobe, by id, in BF_MODEL_LOBES of kernels/bf_models.h, the
+ * one part the kernel sees).  The public part (brdffit_model_info,
+ * brdffit_param_info) is what brdffit_model_get and brdffit_model_param
+ * return; the rest is the fit's (its start grid). */
 #ifndef BRDFFIT_REGISTRY_H
 #define BRDFFIT_REGISTRY_H
 
 #include "internal.h"
-
-#include "bf_lobe.h"
-
-/* A model's lobe (bf_lobe_<model>) and its forward differences (see bf_lobe.h). */
-typedef void bf_lobe_fn(const bf_geom *g, const double *p, const double *lam, double *K);
-typedef void bf_lobe_fd_fn(const bf_geom *g, const double (*p)[3], int np, const double *lam,
-                           double *K0, double (*Kj)[3], bf_lobe_state *st);
 
 /* The starting points a fit screens.  Start i of n has every lobe parameter at
  * its `start` value except:
@@ -34,11 +28,6 @@ typedef struct bf_start_grid {
 typedef struct bf_model_def {
     brdffit_model_info info;     /* the public descriptor                       */
     bf_start_grid grid;          /* the starts the fit screens                  */
-    bf_lobe_fn *lobe;            /* host: K per channel                         */
-    const char *lobe_name;       /* kernel: -DBF_LOBE=<this>                    */
-    bf_lobe_fd_fn *lobe_fd;      /* NULL: the pass evaluates the lobe at each
-                                    forward-difference point                    */
-    const char *lobe_fd_name;    /* kernel: -DBF_LOBE_FD=<this> (when lobe_fd)  */
 } bf_model_def;
 
 /* The registry entry of a model, or NULL for an id out of range. */

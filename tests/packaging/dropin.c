@@ -21,11 +21,11 @@ int main(void)
     }
     const double lam[3] = { 0.645, 0.526, 0.444 };
     int bad = 0;
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+    for (int m = 0; m < brdffit_model_count(); m++) {
         const brdffit_model_info *mi = brdffit_model_get((brdffit_model)m);
         brdffit_params p = { { 0, 0, 0 }, { 1, 1, 1 }, { 0, 0, 0 }, { 0, 0, 0 } };
         for (int k = 0; k < mi->nparams; k++)
-            p.p[k] = mi->start[k];
+            p.p[k] = mi->params[k].start;
         double rgb[3], K[3];
         if (brdffit_eval((brdffit_model)m, &p, wi, wo, rgb) != BRDFFIT_OK) {
             fprintf(stderr, "dropin: brdffit_eval %s failed\n", mi->name);

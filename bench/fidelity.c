@@ -230,7 +230,7 @@ static const char *result_note(const brdffit_fit_result *r, char *buf, size_t le
         o += (size_t)snprintf(buf + o, len - o, "bound:");
         for (int k = 0; k < mi->nparams && o < len; k++)
             if (r->at_bound & (BRDFFIT_AT_BOUND_P0 << k))
-                o += (size_t)snprintf(buf + o, len - o, " %s", mi->param_names[k]);
+                o += (size_t)snprintf(buf + o, len - o, " %s", mi->params[k].name);
         o += (size_t)snprintf(buf + o, len - o, " ");
     }
     for (int c = 0; c < 3 && o < len; c++)
@@ -325,7 +325,7 @@ static int summary(const tally *T, int nmat, double wall, int have_base)
                T->compared, T->worse_baseline, WORSE_TOL, T->better_baseline, WORSE_TOL,
                T->above_baseline, T->worst_base_ratio, T->worst_base[0] ? T->worst_base : "-");
     printf("  time: %.0f s wall, %.0f s in fits; median fit seconds:", wall, T->fit_seconds);
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+    for (int m = 0; m < brdffit_model_count(); m++) {
         if (!T->nseconds[m])
             continue;
         qsort(T->seconds[m], (size_t)T->nseconds[m], sizeof(double), cmp_double);
@@ -347,7 +347,7 @@ static int parse_args(int argc, char **argv, config *c)
     shared_path("tools", c->tools, sizeof c->tools);
     brdffit_context_options_default(&c->ctx);
     brdffit_fit_options_default(&c->fit);
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++)
+    for (int m = 0; m < brdffit_model_count(); m++)
         c->use_model[m] = 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -417,7 +417,7 @@ int main(int argc, char **argv)
     if (read_rows(c.fits, 1, &pub) != 0 || (c.baseline[0] && read_rows(c.baseline, 0, &base) != 0))
         goto done;
     nmat = material_list(&c, &pub, names);
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++)
+    for (int m = 0; m < brdffit_model_count(); m++)
         if (!(T.seconds[m] = calloc(MAX_MATERIALS, sizeof(double))))
             goto done;
     if (c.write[0]) {
@@ -444,7 +444,7 @@ int main(int argc, char **argv)
             T.failed++;
             continue;
         }
-        for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++)
+        for (int m = 0; m < brdffit_model_count(); m++)
             if (c.use_model[m])
                 one_fit(ctx, s, names[i], (brdffit_model)m, &c.fit, &pub, c.baseline[0] ? &base : NULL,
                         &T);
@@ -457,7 +457,7 @@ done:
         rc = 2;
     }
     brdffit_context_free(ctx);
-    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++)
+    for (int m = 0; m < brdffit_model_count(); m++)
         free(T.seconds[m]);
     free(pub.rows);
     free(base.rows);

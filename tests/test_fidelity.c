@@ -35,21 +35,29 @@ START_TEST(bounds_admit_published)
     static brdffit_params rows[MAX_ROWS];
     static char names[MAX_ROWS][64];
     int n = tu_published_all(m, rows, names, MAX_ROWS);
+    if (_i == 0) { /* the paper fitted seven of the registry's models */
+        int fitted = 0;
+        for (int k = 0; k < brdffit_model_count(); k++)
+            fitted += tu_published_all((brdffit_model)k, rows, names, MAX_ROWS) > 0;
+        ck_assert_int_eq(fitted, 7);
+        n = tu_published_all(m, rows, names, MAX_ROWS);
+    }
+    if (n == 0)
+        return; /* a model the paper did not fit (ggx): no published rows to check */
     ck_assert_msg(n >= 80, "%s: %d published rows (../shared/data/ngan2005-fits.tsv)", mi->name, n);
     for (int r = 0; r < n; r++) {
         brdffit_error err;
         ck_assert_msg(brdffit_params_check(m, &rows[r], &err) == BRDFFIT_OK, "%s/%s: %s", names[r],
                       mi->name, err.message);
         for (int k = 0; k < mi->nparams; k++) {
-            double v = rows[r].p[k], lo = mi->lower[k], hi = mi->upper[k];
-            int log_scale = lo > 0 && !(m == BRDFFIT_COOK_TORRANCE && k == 0) &&
-                            !(m == BRDFFIT_ASHIKHMIN_SHIRLEY && k == 0);
+            double v = rows[r].p[k], lo = mi->params[k].lower, hi = mi->params[k].upper;
+            int log_scale = mi->params[k].map == BRDFFIT_MAP_LOG;
             if (!log_scale)
                 continue;
             ck_assert_msg(physical_lower_limit(m, k) || v >= LOG_MARGIN * lo, "%s/%s: %s = %g too near the lower bound %g",
-                          names[r], mi->name, mi->param_names[k], v, lo);
+                          names[r], mi->name, mi->params[k].name, v, lo);
             ck_assert_msg(v <= hi / LOG_MARGIN, "%s/%s: %s = %g too near the upper bound %g", names[r],
-                          mi->name, mi->param_names[k], v, hi);
+                          mi->name, mi->params[k].name, v, hi);
         }
     }
 }
@@ -109,7 +117,7 @@ static brdffit_table *wide_ward_table(double alpha)
 START_TEST(bound_is_flagged)
 {
     const brdffit_model_info *mi = brdffit_model_get(BRDFFIT_WARD);
-    double alpha = 1.5 * mi->upper[0];
+    double alpha = 1.5 * mi->params[0].upper;
     brdffit_table *t = wide_ward_table(alpha);
     brdffit_samples *s = samples_of(t);
     brdffit_context *ctx = make_context();
@@ -118,7 +126,7 @@ START_TEST(bound_is_flagged)
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_msg(r.at_bound & BRDFFIT_AT_BOUND_P0, "alpha %g (truth %g): at_bound 0x%x", r.params.p[0],
                   alpha, r.at_bound);
-    ck_assert_msg(tu_reldiff(r.params.p[0], mi->upper[0]) < 1e-4, "alpha %g", r.params.p[0]);
+    ck_assert_msg(tu_reldiff(r.params.p[0], mi->params[0].upper) < 1e-4, "alpha %g", r.params.p[0]);
     ck_assert(!(r.at_bound & (BRDFFIT_AT_BOUND_P1 | BRDFFIT_AT_BOUND_P2)));
     ck_assert(!(r.at_bound & (BRDFFIT_AT_BOUND_D_R | BRDFFIT_AT_BOUND_D_G | BRDFFIT_AT_BOUND_D_B)));
 
@@ -195,7 +203,7 @@ Suite *fidelity_suite(void)
     Suite *su = suite_create("fidelity");
     TCase *tb = tcase_create("bounds");
     tcase_set_tags(tb, TU_NEEDS_SHARED);
-    tcase_add_loop_test(tb, bounds_admit_published, 0, BRDFFIT_MODEL_COUNT);
+    tcase_add_loop_test(tb, bounds_admit_published, 0, brdffit_model_count());
     suite_add_tcase(su, tb);
     TCase *tf = tcase_create("flags");
     tcase_set_timeout(tf, 300);

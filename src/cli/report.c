@@ -62,7 +62,7 @@ static void bound_names(const brdffit_fit_result *r, int with_linear,
     static const char *const dn[3] = { "d_r", "d_g", "d_b" }, *const sn[3] = { "s_r", "s_g", "s_b" };
     for (int k = 0; k < mi->nparams; k++)
         if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_P0 << k))
-            put(mi->param_names[k], user);
+            put(mi->params[k].name, user);
     for (int c = 0; with_linear && c < 3; c++)
         if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_D_R << c))
             put(dn[c], user);

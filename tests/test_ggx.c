@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ggx.c -- the GGX model: reference values of an independent
  * implementation, an evaluation of pbrt-v4's formula written here in long
  * double, fits that give a GGX table's parameters back, and the program

@@ -27,7 +27,7 @@ static brdffit_params params_of(brdffit_model m)
     for (int c = 0; c < 3; c++)
         p.d[c] = 0.1, p.s[c] = 0.1;
     for (int k = 0; k < mi->nparams; k++)
-        p.p[k] = mi->start[k];
+        p.p[k] = mi->params[k].start;
     return p;
 }
 

@@ -555,7 +555,7 @@ static void headline_series(xml_writer *w, const rp_report *rep, const order_ite
         free(y);
         return;
     }
-    const char *col = svg_color(k);
+    const char *col = svg_color((int)rep->models[k]); /* a model's colour in every figure */
     int run = 0;
     for (int i = 0; i <= np; i++) {
         double e = i < np ? fit_error(&rep->m[ord[i].i], k) : NAN;
@@ -616,8 +616,8 @@ static int write_headline(const rp_report *rep, const char *dir, int sort_k, brd
     for (int k = 0; k < rep->nmodels; k++) {
         headline_series(&w, rep, ord, np, k, lo, hi);
         double ly = HF_T + 10 + 20 * k, lx = HF_W - HF_R + 16;
-        svg_line(&w, lx, ly, lx + 22, ly, svg_color(k), 2, NULL);
-        svg_circle(&w, lx + 11, ly, 2.5, svg_color(k), NULL);
+        svg_line(&w, lx, ly, lx + 22, ly, svg_color((int)rep->models[k]), 2, NULL);
+        svg_circle(&w, lx + 11, ly, 2.5, svg_color((int)rep->models[k]), NULL);
         svg_text(&w, lx + 28, ly + 4, "start", 12, brdffit_model_get(rep->models[k])->title);
     }
     free(ord);

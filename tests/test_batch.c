@@ -565,7 +565,12 @@ START_TEST(resume_after_sigkill_equals_clean_run)
     expect_status(r, 128 + SIGKILL, "killed after record 2");
     run_free(&r);
     ck_assert_int_eq(journal_count(out, "fit"), 2);
-    /* 2: killed in the middle of writing its second record: a torn last line */
+    /* 2: killed after a material's renders and plots were written, before their record */
+    r = run_with("BRDFFIT_FAULT=asset:1", args);
+    expect_status(r, 128 + SIGKILL, "killed after the renders");
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "assets"), 0);
+    /* 3: killed in the middle of writing its second record: a torn last line */
     r = run_with("BRDFFIT_FAULT=torn:2", args);
     expect_status(r, 128 + SIGKILL, "killed mid-record");
     run_free(&r);
@@ -574,7 +579,7 @@ START_TEST(resume_after_sigkill_equals_clean_run)
     char *j = slurp(path);
     ck_assert_msg(j[0] && j[strlen(j) - 1] != '\n', "no torn last line:\n%s", j);
     free(j);
-    /* 3: killed while writing the pages of the report */
+    /* 4: killed while writing the pages of the report */
     r = run_with("BRDFFIT_FAULT=page:2", args);
     expect_status(r, 128 + SIGKILL, "killed in the report");
     ck_assert_msg(strstr(r.err, "cut short"), "the torn line is not reported:\n%s", r.err);
@@ -588,6 +593,7 @@ START_TEST(resume_after_sigkill_equals_clean_run)
     char *resumed = fits_sans_timing(out);
     ck_assert_str_eq(resumed, clean);
     ck_assert_int_eq(journal_count(out, "fit"), 3 * 2);
+    ck_assert_int_eq(journal_count(out, "assets"), 3);
     no_duplicate_fits(out);
     check_page(out, "index.html");
     for (int i = 0; i < 3; i++)

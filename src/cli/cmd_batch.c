@@ -436,11 +436,13 @@ static int same_params(const brdffit_params *a, const brdffit_params *b, int np)
 }
 
 /* A fit that failed for a reason outside the data (no device, an OpenCL or
- * kernel-build failure, no memory) is tried again by the next run. */
+ * kernel-build failure, an unusable kernel cache, no memory) is tried again by
+ * the next run. */
 static int done_fit(const bj_record *r)
 {
     static const brdffit_status transient[] = { BRDFFIT_E_NO_MEMORY, BRDFFIT_E_NO_DEVICE,
-                                                BRDFFIT_E_OPENCL, BRDFFIT_E_KERNEL_BUILD };
+                                                BRDFFIT_E_OPENCL, BRDFFIT_E_KERNEL_BUILD,
+                                                BRDFFIT_E_CACHE_DIR };
     if (!r)
         return 0;
     for (size_t i = 0; i < sizeof transient / sizeof transient[0]; i++)

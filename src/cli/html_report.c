@@ -478,7 +478,7 @@ static int write_material_page(const rp_report *rep, const rp_material *m, int b
         figures(&w, m, "image", "Renders (reference and each model, same exposure)");
         figures(&w, m, "diff", "Differences from the reference");
         figures(&w, m, "plot", "Incidence-plane plots (cube root)");
-        figures(&w, m, "data", "Linear images (OpenEXR)");
+        figures(&w, m, "data", "Data: linear images (OpenEXR, alpha = coverage), render settings");
     }
     html_end(&w);
     return finish(&o, &w, err);

@@ -540,7 +540,9 @@ static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples
     fill_key(&r, BJ_FIT, m, &R->settings);
     snprintf(r.model, sizeof r.model, "%s", mi->name);
     r.ok = st == BRDFFIT_OK;
-    snprintf(r.status, sizeof r.status, "%s", r.ok ? "ok" : brdffit_strerror(st));
+    /* "limit": fitted, but the LM run kept stopped on its evaluation limit */
+    snprintf(r.status, sizeof r.status, "%s",
+             !r.ok ? brdffit_strerror(st) : res.flags & BRDFFIT_FIT_LIMIT ? "limit" : "ok");
     r.nparams = mi->nparams;
     r.samples = (long long)brdffit_samples_count(s);
     snprintf(r.backend, sizeof r.backend, "%s",

@@ -102,7 +102,7 @@ static void tsv_fit(FILE *f, const bj_record *fit, const bj_record *pub)
     for (int k = 0; k < BRDFFIT_MAX_LOBE_PARAMS; k++)
         fprintf(f, "\t%s", k < fit->nparams && fit->ok ? num(b, sizeof b, "%.10g", fit->params.p[k]) : "");
     fprintf(f, "\t%s", num(b, sizeof b, "%.10g", fit->ok ? fit->error : NAN));
-    fprintf(f, "\t%s\t%d\t%d\t%s\t", fit->ok ? "ok" : fit->status, fit->iterations,
+    fprintf(f, "	%s	%d	%d	%s	", fit->status, fit->iterations,
             fit->passes, num(b, sizeof b, "%.3f", fit->seconds));
     tsv_text(f, fit->on_bound);
     fprintf(f, "\t%s", num(b, sizeof b, "%.10g", pub && pub->ok ? pub->error : NAN));
@@ -146,7 +146,7 @@ static void json_fit(FILE *f, const bj_record *fit, const bj_record *pub)
     fputs("{\"model\":", f);
     json_string(f, fit->model);
     fputs(",\"status\":", f);
-    json_string(f, fit->ok ? "ok" : fit->status);
+    json_string(f, fit->status);
     fputs(",\"param_names\":[", f);
     for (int k = 0; mi && k < mi->nparams; k++) {
         if (k)

@@ -18,6 +18,8 @@
 #   make uninstall PREFIX=/usr/local [DESTDIR=...]  removes what install put there
 #   make clean
 
+.DEFAULT_GOAL := all
+
 PREFIX   ?= /usr/local
 BUILD    ?= build
 CC       ?= cc

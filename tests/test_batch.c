@@ -486,6 +486,18 @@ START_TEST(batch_writes_every_file)
                   "%s", idx);
     ck_assert_msg(strstr(idx, "published "), "no published Error in the matrix");
     free(idx);
+    /* a material's page: the renders, differences, plots and EXR files of each model */
+    snprintf(path, sizeof path, "%s/chrome/index.html", out);
+    char *page = slurp(path);
+    static const char *const linked[] = {
+        "src=\"reference.png\"", "src=\"ward.png\"", "src=\"ward-diff.png\"",
+        "src=\"blinn-phong.png\"", "src=\"plot-measured.svg\"", "src=\"plot-ward.svg\"",
+        "src=\"plot-blinn-phong.svg\"", "href=\"reference.exr\"", "href=\"ward.exr\"",
+    };
+    for (size_t i = 0; i < sizeof linked / sizeof linked[0]; i++)
+        ck_assert_msg(strstr(page, linked[i]), "chrome's page has no %s", linked[i]);
+    ck_assert_msg(strstr(page, "Ward: "), "no caption with the Error");
+    free(page);
     snprintf(path, sizeof path, "%s/blue-rubber/params.tsv", out);
     char *pt = slurp(path);
     ck_assert_msg(strstr(pt, "\nward\t") && strstr(pt, "\nblinn-phong\t"), "%s", pt);

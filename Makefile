@@ -287,7 +287,7 @@ install-python:
 	set -x; \
 	install -d "$(DESTDIR)$$dir/brdffit" && \
 	install -m 644 $(PY_SRC) "$(DESTDIR)$$dir/brdffit/" && \
-	ln -sf "$$(realpath -m --relative-to="$$dir/brdffit" '$(PREFIX)/lib/$(SONAME)')" \
+	ln -sf "$$(realpath -m --relative-to="$$dir/brdffit" '$(LIBDIR)/$(SONAME)')" \
 	    "$(DESTDIR)$$dir/brdffit/$(SONAME)"
 
 uninstall:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """README.md's Python example runs as written (on alum-bronze), and the figures
 it would plot are the library's."""
 

@@ -287,19 +287,19 @@ static void start_params(brdffit_model model, int i, int n, double p[3])
 
 /* One value pass at the start's lobe with d = s = 0 gives the exact best
  * linear part there. */
-static brdffit_status screen_start(lmstate *S, const double p[3], start *st)
+static brdffit_status screen_start(lmstate *S, const double p[3], start *sp)
 {
     bf_pass_par pp;
     memset(&pp, 0, sizeof pp);
     memcpy(pp.lam, S->lam, sizeof pp.lam);
     memcpy(pp.p[0], p, 3 * sizeof *p);
     double mom[BF_NMOM_MAX];
-    brdffit_status rc = bf_driver_run(S->ps, 0, &pp, mom, S->err);
-    if (rc != BRDFFIT_OK)
-        return rc;
+    brdffit_status st = bf_driver_run(S->ps, 0, &pp, mom, S->err);
+    if (st != BRDFFIT_OK)
+        return st;
     const bf_linear zero = { { 0, 0, 0 }, { 0, 0, 0 } };
-    st->cost = bf_linear_best(mom, S->ps->nk, 0, &zero, &st->lin);
-    params_to_coords(&S->fm, p, st->x);
+    sp->cost = bf_linear_best(mom, S->ps->nk, 0, &zero, &sp->lin);
+    params_to_coords(&S->fm, p, sp->x);
     return BRDFFIT_OK;
 }
 
@@ -362,28 +362,28 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
     *nkeep = 0;
     for (int i = 0; i < nstarts; i++) {
         double p[3];
-        start st;
-        memset(&st, 0, sizeof st);
+        start cand;
+        memset(&cand, 0, sizeof cand);
         start_params(S->fm.model, i, nstarts, p);
-        brdffit_status rc = screen_start(S, p, &st);
-        if (rc != BRDFFIT_OK)
-            return rc;
+        brdffit_status st = screen_start(S, p, &cand);
+        if (st != BRDFFIT_OK)
+            return st;
         int r = start_round(S->fm.model, i);
         if (r < MAX_KEEP) {
-            if (r >= nrounds || st.cost < round_best[r].cost)
-                round_best[r] = st;
+            if (r >= nrounds || cand.cost < round_best[r].cost)
+                round_best[r] = cand;
             if (r >= nrounds)
                 nrounds = r + 1;
         }
         int pos = *nkeep;
-        while (pos > 0 && st.cost < keep[pos - 1].cost)
+        while (pos > 0 && cand.cost < keep[pos - 1].cost)
             pos--;
         if (pos >= refine)
             continue;
         if (*nkeep < refine)
             (*nkeep)++;
         memmove(keep + pos + 1, keep + pos, (size_t)(*nkeep - 1 - pos) * sizeof *keep);
-        keep[pos] = st;
+        keep[pos] = cand;
     }
     for (int r = 0; r < nrounds && *nkeep < MAX_KEEP; r++) {
         int kept = 0;
@@ -444,9 +444,9 @@ static brdffit_status lm_converge(lmstate *S, const brdffit_fit_options *o, lmru
                                   double *solver_s)
 {
     for (int k = 0; k <= LM_RESTARTS; k++) {
-        brdffit_status rc = lm_once(S, o, run, solver_s);
-        if (rc != BRDFFIT_OK || run->info != 5)
-            return rc;
+        brdffit_status st = lm_once(S, o, run, solver_s);
+        if (st != BRDFFIT_OK || run->info != 5)
+            return st;
     }
     return BRDFFIT_OK;
 }
@@ -455,15 +455,15 @@ static brdffit_status lm_converge(lmstate *S, const brdffit_fit_options *o, lmru
  * whether or not the data's optimum is inside (v = lo + (hi-lo)(1+sin u)/2
  * has no gradient at the bounds), so such a run is repeated from a point a
  * quarter of the range inside on those coordinates, and the better kept. */
-static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, const start *st,
+static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, const start *sp,
                                    lmrun *run, double *solver_s)
 {
     memset(run, 0, sizeof *run);
-    memcpy(run->x, st->x, sizeof run->x);
-    S->ref = st->lin;
-    brdffit_status rc = lm_converge(S, o, run, solver_s);
-    if (rc != BRDFFIT_OK)
-        return rc;
+    memcpy(run->x, sp->x, sizeof run->x);
+    S->ref = sp->lin;
+    brdffit_status st = lm_converge(S, o, run, solver_s);
+    if (st != BRDFFIT_OK)
+        return st;
     lmrun again = *run;
     int moved = 0;
     for (int j = 0; j < S->fm.nl; j++) {
@@ -475,9 +475,9 @@ static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, con
     }
     if (!moved)
         return BRDFFIT_OK;
-    rc = lm_converge(S, o, &again, solver_s);
-    if (rc != BRDFFIT_OK)
-        return rc;
+    st = lm_converge(S, o, &again, solver_s);
+    if (st != BRDFFIT_OK)
+        return st;
     if (again.rr < run->rr)
         *run = again;
     else
@@ -521,9 +521,9 @@ static brdffit_status exact_error(lmstate *S, lmrun *best)
     memcpy(pp.lam, S->lam, sizeof pp.lam);
     coords_to_params(&S->fm, best->x, pp.p[0]);
     double mom[BF_NMOM_MAX], rr = 0.0;
-    brdffit_status rc = bf_driver_run(S->ps, 0, &pp, mom, S->err);
-    if (rc != BRDFFIT_OK)
-        return rc;
+    brdffit_status st = bf_driver_run(S->ps, 0, &pp, mom, S->err);
+    if (st != BRDFFIT_OK)
+        return st;
     for (int c = 0; c < 3; c++)
         rr += mom[bf_mom_chan(c, S->ps->nk, 0) + BF_MC_SEE];
     best->rr = fmax(rr, 0.0);
@@ -579,16 +579,16 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     brdffit_fit_options_default(&o);
     if (opt)
         o = *opt;
-    brdffit_status rc = check_fit_options(&o, err);
-    if (rc != BRDFFIT_OK)
-        return rc;
-    rc = check_enough_samples(samples, model, err);
-    if (rc != BRDFFIT_OK)
-        return rc;
+    brdffit_status st = check_fit_options(&o, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    st = check_enough_samples(samples, model, err);
+    if (st != BRDFFIT_OK)
+        return st;
 
     bf_pass_driver ps;
-    rc = bf_driver_open(&ps, ctx, samples, model, err);
-    if (rc != BRDFFIT_OK)
+    st = bf_driver_open(&ps, ctx, samples, model, err);
+    if (st != BRDFFIT_OK)
         goto done;
     lmstate S;
     memset(&S, 0, sizeof S);
@@ -604,25 +604,25 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
     int nstarts = o.starts ? o.starts : brdffit_model_get(model)->default_starts;
-    rc = screen_starts(&S, nstarts, refine, keep, &nkeep);
-    if (rc != BRDFFIT_OK)
+    st = screen_starts(&S, nstarts, refine, keep, &nkeep);
+    if (st != BRDFFIT_OK)
         goto done;
     lmrun best = { .rr = INFINITY };
     double solver_seconds = 0.0;
     for (int r = 0; r < nkeep; r++) {
         lmrun run;
-        rc = refine_start(&S, &o, &keep[r], &run, &solver_seconds);
-        if (rc != BRDFFIT_OK)
+        st = refine_start(&S, &o, &keep[r], &run, &solver_seconds);
+        if (st != BRDFFIT_OK)
             goto done;
         if (run.rr < best.rr)
             best = run;
     }
     if (!isfinite(best.rr)) {
-        rc = bf_fail(err, BRDFFIT_E_FIT_FAILED, "no start gave a finite Error");
+        st = bf_fail(err, BRDFFIT_E_FIT_FAILED, "no start gave a finite Error");
         goto done;
     }
-    rc = exact_error(&S, &best);
-    if (rc != BRDFFIT_OK)
+    st = exact_error(&S, &best);
+    if (st != BRDFFIT_OK)
         goto done;
     fill_result(&S, &best, result);
     result->passes = ps.passes;
@@ -635,7 +635,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     bf_ok(err);
 done:
     bf_driver_close(&ps);
-    return rc;
+    return st;
 }
 
 brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *samples,
@@ -644,12 +644,12 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
 {
     if (!ctx || !samples || !error)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_error_of: NULL argument");
-    brdffit_status rc = brdffit_params_check(model, params, err);
-    if (rc != BRDFFIT_OK)
-        return rc;
+    brdffit_status st = brdffit_params_check(model, params, err);
+    if (st != BRDFFIT_OK)
+        return st;
     bf_pass_driver ps;
-    rc = bf_driver_open(&ps, ctx, samples, model, err);
-    if (rc == BRDFFIT_OK) {
+    st = bf_driver_open(&ps, ctx, samples, model, err);
+    if (st == BRDFFIT_OK) {
         bf_pass_par pp;
         memset(&pp, 0, sizeof pp);
         memcpy(pp.d, params->d, sizeof pp.d);
@@ -657,8 +657,8 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
         bf_lambdas(params, pp.lam);
         memcpy(pp.p[0], params->p, sizeof pp.p[0]);
         double mom[BF_NMOM_MAX];
-        rc = bf_driver_run(&ps, 0, &pp, mom, err);
-        if (rc == BRDFFIT_OK) {
+        st = bf_driver_run(&ps, 0, &pp, mom, err);
+        if (st == BRDFFIT_OK) {
             double rr = 0.0;
             for (int c = 0; c < 3; c++)
                 rr += mom[bf_mom_chan(c, ps.nk, 0) + BF_MC_SEE];
@@ -667,5 +667,5 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
         }
     }
     bf_driver_close(&ps);
-    return rc;
+    return st;
 }

@@ -96,28 +96,28 @@ double brdffit_seconds(void);
 
 typedef enum brdffit_status {
     BRDFFIT_OK = 0,
-    BRDFFIT_E_INVALID_ARGUMENT,  /* NULL pointer, unknown option, bad value   */
-    BRDFFIT_E_NO_MEMORY,
-    BRDFFIT_E_FILE_OPEN,         /* missing or unreadable file                */
-    BRDFFIT_E_FILE_NOT_REGULAR,  /* a directory or other non-file             */
-    BRDFFIT_E_FILE_READ,         /* an I/O error while reading                */
-    BRDFFIT_E_FILE_EMPTY,        /* zero bytes                                */
-    BRDFFIT_E_FILE_TRUNCATED,    /* fewer bytes than the header promises      */
-    BRDFFIT_E_FILE_DIMS,         /* dimensions other than 90 x 90 x 180       */
-    BRDFFIT_E_FILE_TRAILING,     /* bytes after the last sample               */
-    BRDFFIT_E_FILE_NONFINITE,    /* NaN or inf stored in the table            */
-    BRDFFIT_E_FILE_WRITE,        /* could not write a file                    */
-    BRDFFIT_E_UNKNOWN_MODEL,
-    BRDFFIT_E_PARAM_RANGE,       /* parameter NaN, inf or outside its bounds  */
-    BRDFFIT_E_NO_SAMPLES,        /* no valid sample to fit                    */
-    BRDFFIT_E_NO_DEVICE,         /* no OpenCL platform/device (or none matches) */
-    BRDFFIT_E_OPENCL,            /* an OpenCL call failed                     */
-    BRDFFIT_E_KERNEL_BUILD,      /* the OpenCL program did not build (log in message) */
-    BRDFFIT_E_FIT_FAILED,        /* the optimiser could not produce a result  */
+    BRDFFIT_E_INVALID_ARGUMENT = 1, /* NULL pointer, unknown option, bad value   */
+    BRDFFIT_E_NO_MEMORY = 2,
+    BRDFFIT_E_FILE_OPEN = 3,      /* missing or unreadable file                */
+    BRDFFIT_E_FILE_NOT_REGULAR = 4, /* a directory or other non-file             */
+    BRDFFIT_E_FILE_READ = 5,      /* an I/O error while reading                */
+    BRDFFIT_E_FILE_EMPTY = 6,     /* zero bytes                                */
+    BRDFFIT_E_FILE_TRUNCATED = 7, /* fewer bytes than the header promises      */
+    BRDFFIT_E_FILE_DIMS = 8,      /* dimensions other than 90 x 90 x 180       */
+    BRDFFIT_E_FILE_TRAILING = 9,  /* bytes after the last sample               */
+    BRDFFIT_E_FILE_NONFINITE = 10, /* NaN or inf stored in the table            */
+    BRDFFIT_E_FILE_WRITE = 11,    /* could not write a file                    */
+    BRDFFIT_E_UNKNOWN_MODEL = 12,
+    BRDFFIT_E_PARAM_RANGE = 13,   /* parameter NaN, inf or outside its bounds  */
+    BRDFFIT_E_NO_SAMPLES = 14,    /* no valid sample to fit                    */
+    BRDFFIT_E_NO_DEVICE = 15,     /* no OpenCL platform/device (or none matches) */
+    BRDFFIT_E_OPENCL = 16,        /* an OpenCL call failed                     */
+    BRDFFIT_E_KERNEL_BUILD = 17,  /* the OpenCL program did not build (log in message) */
+    BRDFFIT_E_FIT_FAILED = 18,    /* the optimiser could not produce a result  */
     BRDFFIT_E_CACHE_DIR = 19,    /* PoCL's kernel cache directory is unusable (which, why) */
     BRDFFIT_E_TOO_FEW_SAMPLES = 20, /* fewer distinct sample geometries than the model's unknowns */
     BRDFFIT_E_VALUE_RANGE = 21,  /* a finite stored value too large to fit (bin, value named) */
-    BRDFFIT_STATUS_COUNT
+    BRDFFIT_STATUS_COUNT = 22       /* one more than the last status */
 } brdffit_status;
 
 /* A fixed text for each status; never NULL. */

@@ -378,6 +378,13 @@ START_TEST(abi_values)
     ck_assert_int_eq(BRDFFIT_MAP_LOG, 0);
     ck_assert_int_eq(BRDFFIT_MAP_LINEAR, 1);
     ck_assert_int_eq(BRDFFIT_MAP_DIRECTION, 2);
+    /* status values are pinned: callers and FFI mirrors compare numbers */
+    ck_assert_int_eq(BRDFFIT_E_INVALID_ARGUMENT, 1);
+    ck_assert_int_eq(BRDFFIT_E_FILE_OPEN, 3);
+    ck_assert_int_eq(BRDFFIT_E_FILE_NONFINITE, 10);
+    ck_assert_int_eq(BRDFFIT_E_FIT_FAILED, 18);
+    ck_assert_int_eq(BRDFFIT_E_VALUE_RANGE, 21);
+    ck_assert_int_eq(BRDFFIT_STATUS_COUNT, 22);
 }
 END_TEST
 

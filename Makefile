@@ -24,8 +24,10 @@ PREFIX   ?= /usr/local
 BUILD    ?= build
 CC       ?= cc
 OPT      ?= -O2
-SONAME    = libbrdffit.so.0
-VERSION   = 0.1.0
+SONAME    = libbrdffit.so.$(firstword $(subst ., ,$(VERSION)))
+# The version: the header's BRDFFIT_VERSION_MAJOR/MINOR/PATCH, the one place it is written.
+VERSION  := $(shell sed -n 's/^\#define BRDFFIT_VERSION_\(MAJOR\|MINOR\|PATCH\) *\([0-9][0-9]*\).*/\2/p' \
+                include/brdffit.h | paste -sd. -)
 
 # ---- build dependencies ----
 # `make deps` installs the Debian packages the build needs (.ci/install-deps,

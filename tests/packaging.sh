@@ -43,7 +43,7 @@ expect() {
     if "$@" >"$T/out" 2>&1; then pass; else fail "$what"; sed 's/^/    /' "$T/out" >&2; fi
 }
 
-VERSION=$(sed -n 's/^VERSION *= *//p' Makefile | head -n 1)
+VERSION=$(sed -n 's/^#define BRDFFIT_VERSION_\(MAJOR\|MINOR\|PATCH\) *\([0-9][0-9]*\).*/\2/p' include/brdffit.h | paste -sd. -)
 SOFILE=$BUILD/libbrdffit.so.$VERSION
 
 # ------------------------------------------------------------------ symbols

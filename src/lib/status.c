@@ -10,9 +10,14 @@
 #include <string.h>
 #include <time.h>
 
+#define BF_STR_(x) #x
+#define BF_STR(x) BF_STR_(x)
+
+/* The header's version macros are the one place the version is written. */
 const char *brdffit_version(void)
 {
-    return "0.1.0";
+    return BF_STR(BRDFFIT_VERSION_MAJOR) "." BF_STR(BRDFFIT_VERSION_MINOR) "." BF_STR(
+        BRDFFIT_VERSION_PATCH);
 }
 
 static const char *const status_text[BRDFFIT_STATUS_COUNT] = {

@@ -105,7 +105,7 @@ typedef enum brdffit_status {
     BRDFFIT_E_FILE_TRUNCATED = 7, /* fewer bytes than the header promises      */
     BRDFFIT_E_FILE_DIMS = 8,      /* dimensions other than 90 x 90 x 180       */
     BRDFFIT_E_FILE_TRAILING = 9,  /* bytes after the last sample               */
-    BRDFFIT_E_FILE_NONFINITE = 10, /* NaN or inf stored in the table            */
+    BRDFFIT_E_FILE_NONFINITE = 10, /* NaN or inf in a table (read, or set in memory) */
     BRDFFIT_E_FILE_WRITE = 11,    /* could not write a file                    */
     BRDFFIT_E_UNKNOWN_MODEL = 12,
     BRDFFIT_E_PARAM_RANGE = 13,   /* parameter NaN, inf or outside its bounds  */

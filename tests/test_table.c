@@ -884,9 +884,9 @@ START_TEST(test_sample_options)
     ck_assert_uint_eq(brdffit_samples_count(s), n80 - 1);
     brdffit_samples_free(s);
 
-    /* a non-finite value is refused, not fitted */
+    /* a non-finite value is refused, not fitted, with the status a file read gives it */
     v[NB + 7] = NAN;
-    ck_assert_int_eq(brdffit_samples_create(t, NULL, &s, &e), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_samples_create(t, NULL, &s, &e), BRDFFIT_E_FILE_NONFINITE);
     ck_assert_ptr_null(s);
 
     /* all negative: no samples */

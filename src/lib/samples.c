@@ -60,7 +60,7 @@ static brdffit_status count_bins(const double *v, size_t *masked, size_t *unmask
         if (!isfinite(r) || !isfinite(g) || !isfinite(bl)) {
             int c = !isfinite(r) ? 0 : !isfinite(g) ? 1 : 2, i, j, k;
             bf_bin_ijk(b, &i, &j, &k);
-            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+            return bf_fail(err, BRDFFIT_E_FILE_NONFINITE,
                            "table holds a non-finite value (channel %c, bin %d,%d,%d)",
                            bf_channel_name[c], i, j, k);
         }

@@ -187,8 +187,9 @@ test: $(BUILD)/test_brdffit all
 	$(RUN_ENV) BUILD=$(BUILD) CC="$(CC)" sh tests/packaging.sh || rc=1; \
 	exit $$rc
 
-# The same suite built with ASan + UBSan in its own build directory.  LLVM
-# (inside PoCL) keeps allocations until exit: tests/lsan.supp names them.
+# The same suite built with ASan + UBSan in its own build directory, Check's
+# timeouts x4 (ASan slows every test).  LLVM (inside PoCL) keeps allocations
+# until exit: tests/lsan.supp names them.
 # use_sigaltstack=0: GCC 12's ASan dies ("unable to unmap" its alternate signal
 # stack) when threads exit in the threads suite; with it that suite passes clean.
 sanitize:
@@ -196,6 +197,7 @@ sanitize:
 	    build-san/test_brdffit build-san/brdffit
 	@mkdir -p build-san/pocl-cache
 	POCL_CACHE_DIR="$(CURDIR)/build-san/pocl-cache" BRDFFIT_CLI=./build-san/brdffit \
+	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-4} \
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:use_sigaltstack=0 \
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

@@ -163,7 +163,7 @@ $(BUILD)/fuzz/fuzz_table: $(BUILD)/fuzz/fuzz_table.o $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
 
 $(BUILD)/fuzz/fuzz_options: $(BUILD)/fuzz/fuzz_options.o $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
-	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
 $(BUILD)/fuzz/make_seeds: tests/fuzz/make_seeds.c | $(BUILD)/fuzz
 	$(CC) -std=c11 -O1 -Wall -Wextra -o $@ $<

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* svg.c -- the XML/SVG text writer of svg.h: escaping, element stack, SVG shapes. */
 #include "svg.h"
+#include "utf8.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -10,34 +11,11 @@
 /* ------------------------------------------------------------------ escaping */
 
 /* Code point and length of the UTF-8 sequence at s, or 0 when it is not a
- * valid one (overlong, surrogate, above U+10FFFF, or U+FFFE / U+FFFF, which
- * XML does not allow). */
-static int utf8_seq(const unsigned char *s, unsigned *cp_out)
+ * valid one (utf8_seq's faults, and U+FFFE / U+FFFF, which XML does not allow). */
+static int xml_seq(const unsigned char *s, unsigned *cp)
 {
-    unsigned c = s[0], cp, min;
-    int n;
-    if (c < 0x80) {
-        *cp_out = c;
-        return 1;
-    }
-    if (c >= 0xC2 && c <= 0xDF)
-        n = 2, min = 0x80, cp = c & 0x1F;
-    else if (c >= 0xE0 && c <= 0xEF)
-        n = 3, min = 0x800, cp = c & 0x0F;
-    else if (c >= 0xF0 && c <= 0xF4)
-        n = 4, min = 0x10000, cp = c & 0x07;
-    else
-        return 0;
-    for (int i = 1; i < n; i++) {
-        if ((s[i] & 0xC0) != 0x80)
-            return 0;
-        cp = (cp << 6) | (s[i] & 0x3F);
-    }
-    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF) || cp == 0xFFFE ||
-        cp == 0xFFFF)
-        return 0;
-    *cp_out = cp;
-    return n;
+    int n = utf8_seq(s, cp);
+    return n > 0 && *cp != 0xFFFE && *cp != 0xFFFF ? n : 0;
 }
 
 void xml_escape(FILE *f, const char *s)
@@ -45,7 +23,7 @@ void xml_escape(FILE *f, const char *s)
     const unsigned char *p = (const unsigned char *)(s ? s : "");
     while (*p) {
         unsigned cp;
-        int n = utf8_seq(p, &cp);
+        int n = xml_seq(p, &cp);
         if (n == 0) {
             fputs("\xEF\xBF\xBD", f); /* U+FFFD */
             p++;

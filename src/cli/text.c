@@ -3,25 +3,11 @@
  * or the command line printed with their control characters made harmless,
  * and long paths shortened so that what follows them is not cut off. */
 #include "cli.h"
+#include "utf8.h"
 
 #include <stdarg.h>
 #include <string.h>
 
-/* Length of the well-formed UTF-8 sequence at p (2..4), or 0. */
-static int utf8_len(const unsigned char *p)
-{
-    int n = p[0] >= 0xF0 && p[0] <= 0xF4 ? 4 : p[0] >= 0xE0 ? 3 : p[0] >= 0xC2 && p[0] < 0xE0 ? 2 : 0;
-    if (p[0] >= 0xF5)
-        return 0;
-    for (int i = 1; i < n; i++)
-        if ((p[i] & 0xC0) != 0x80)
-            return 0;
-    if (n == 3 && ((p[0] == 0xE0 && p[1] < 0xA0) || (p[0] == 0xED && p[1] >= 0xA0)))
-        return 0; /* overlong, or a surrogate */
-    if (n == 4 && ((p[0] == 0xF0 && p[1] < 0x90) || (p[0] == 0xF4 && p[1] >= 0x90)))
-        return 0;
-    return n;
-}
 
 /* s with every control character, C1 control and byte outside well-formed
  * UTF-8 written as \xHH; newlines too unless lines, then as a newline and
@@ -38,9 +24,10 @@ static void plain(FILE *f, const char *s, int lines)
             p++;
             continue;
         }
-        int n = *p >= 0x80 ? utf8_len(p) : 0;
+        unsigned cp;
+        int n = *p >= 0x80 ? utf8_seq(p, &cp) : 0;
         /* C1 controls (U+0080..U+009F) act on terminals as ESC sequences do */
-        if (n == 2 && p[0] == 0xC2 && p[1] < 0xA0)
+        if (n > 0 && cp < 0xA0)
             n = 0;
         if (n > 0) {
             fwrite(p, 1, (size_t)n, f);

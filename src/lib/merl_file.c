@@ -89,7 +89,9 @@ static long long read_full(int fd, void *buf, size_t len)
     return (long long)got;
 }
 
-static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brdffit_error *err)
+/* The file's size and header: a regular file of exactly FILE_BYTES whose
+ * header names the MERL dimensions (the fd is left after the header). */
+static brdffit_status read_header(int fd, const char *path, brdffit_error *err)
 {
     struct stat sb;
     if (fstat(fd, &sb) != 0)
@@ -126,58 +128,70 @@ static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brd
         return bf_fail(err, BRDFFIT_E_FILE_TRAILING,
                        "%s: %llu trailing bytes after the table (%llu bytes, %zu expected)", path,
                        size - FILE_BYTES, size, FILE_BYTES);
+    return BRDFFIT_OK;
+}
 
-    brdffit_table *t = malloc(sizeof *t);
-    if (!t)
-        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "%s: cannot allocate %zu bytes for the table",
-                       path, sizeof *t);
-    r = read_full(fd, t->v, DATA_BYTES);
-    if (r < 0) {
-        int e = errno;
-        free(t);
-        return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: read error: %s", path, strerror(e));
-    }
-    if ((size_t)r < DATA_BYTES) { /* the file shrank since fstat */
-        free(t);
+/* The values after the header into v, and nothing after them (the file may
+ * have changed size since fstat). */
+static brdffit_status read_values(int fd, const char *path, double *v, brdffit_error *err)
+{
+    long long r = read_full(fd, v, DATA_BYTES);
+    if (r < 0)
+        return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: read error: %s", path, strerror(errno));
+    if ((size_t)r < DATA_BYTES) /* the file shrank since fstat */
         return bf_fail(err, BRDFFIT_E_FILE_TRUNCATED, "%s: truncated at byte %llu of %zu expected",
                        path, (unsigned long long)HEADER_BYTES + (unsigned long long)r, FILE_BYTES);
-    }
     unsigned char extra;
     r = read_full(fd, &extra, 1);
-    if (r != 0) { /* grew since fstat, or failed */
-        int e = errno;
-        free(t);
-        if (r < 0)
-            return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: read error: %s", path, strerror(e));
+    if (r < 0)
+        return bf_fail(err, BRDFFIT_E_FILE_READ, "%s: read error: %s", path, strerror(errno));
+    if (r > 0) /* grew since fstat */
         return bf_fail(err, BRDFFIT_E_FILE_TRAILING, "%s: trailing bytes after byte %zu", path,
                        FILE_BYTES);
-    }
     if (!host_little_endian())
-        swap8(t->v, BF_NVALUES);
+        swap8(v, BF_NVALUES);
+    return BRDFFIT_OK;
+}
 
+/* Every value finite and at most BRDFFIT_VALUE_MAX; the first that is not is
+ * named by byte, index, channel and bin. */
+static brdffit_status check_values(const double *v, const char *path, brdffit_error *err)
+{
     for (size_t n = 0; n < BF_NVALUES; n++) {
-        double x = t->v[n];
-        if (x > BRDFFIT_VALUE_MAX && isfinite(x)) {
-            size_t c = n / BF_NBINS;
-            int i, j, k;
-            bf_bin_ijk(n % BF_NBINS, &i, &j, &k);
-            free(t);
+        double x = v[n];
+        if (isfinite(x) && x <= BRDFFIT_VALUE_MAX)
+            continue;
+        size_t c = n / BF_NBINS;
+        int i, j, k;
+        bf_bin_ijk(n % BF_NBINS, &i, &j, &k);
+        if (isfinite(x))
             return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
                            "%s: value %.17g at byte %zu (index %zu, channel %c, bin %d,%d,%d) is above "
                            "%g, the largest a table may hold",
                            path, x, HEADER_BYTES + n * sizeof(double), n, bf_channel_name[c], i, j, k,
                            BRDFFIT_VALUE_MAX);
-        }
-        if (!isfinite(x)) {
-            size_t c = n / BF_NBINS;
-            int i, j, k;
-            bf_bin_ijk(n % BF_NBINS, &i, &j, &k);
-            free(t);
-            return bf_fail(err, BRDFFIT_E_FILE_NONFINITE,
-                           "%s: %s at index %zu (channel %c, bin %d,%d,%d)", path,
-                           isnan(x) ? "NaN" : (x > 0 ? "+inf" : "-inf"), n, bf_channel_name[c], i, j,
-                           k);
-        }
+        return bf_fail(err, BRDFFIT_E_FILE_NONFINITE, "%s: %s at index %zu (channel %c, bin %d,%d,%d)",
+                       path, isnan(x) ? "NaN" : (x > 0 ? "+inf" : "-inf"), n, bf_channel_name[c], i,
+                       j, k);
+    }
+    return BRDFFIT_OK;
+}
+
+static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brdffit_error *err)
+{
+    brdffit_status st = read_header(fd, path, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    brdffit_table *t = malloc(sizeof *t);
+    if (!t)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "%s: cannot allocate %zu bytes for the table",
+                       path, sizeof *t);
+    st = read_values(fd, path, t->v, err);
+    if (st == BRDFFIT_OK)
+        st = check_values(t->v, path, err);
+    if (st != BRDFFIT_OK) {
+        free(t);
+        return st;
     }
     *out = t;
     bf_ok(err);

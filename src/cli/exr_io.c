@@ -82,41 +82,28 @@ static int rgba_index(const char *name)
     return -1;
 }
 
-int exr_write_rgba(const char *path, const float *rgba, int width, int height, size_t stride,
-                   brdffit_error *err)
+/* The part's header: one scanline part of float R, G, B, A, ZIP-compressed. */
+static exr_result_t write_header(exr_context_t f, int width, int height, int *part)
 {
-    if (stride == 0)
-        stride = 4 * (size_t)width;
-    exr_context_initializer_t init = initializer();
-    exr_context_t f = NULL;
-    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
-    int part = 0, have_enc = 0, rc = -1;
-    const char *what = "cannot create the file";
-    exr_result_t rv = EXR_ERR_SUCCESS;
-    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) {
-        snprintf(exr_message, sizeof exr_message, "%s", strerror(errno));
-        rv = EXR_ERR_FILE_ACCESS;
-        goto done;
-    }
-    init.user_data = &fd;
-    init.write_fn = write_at;
-    rv = exr_start_write(&f, path, EXR_WRITE_FILE_DIRECTLY, &init);
-    if (rv != EXR_ERR_SUCCESS)
-        goto done;
-    what = "cannot write the header";
-    rv = exr_add_part(f, "rgba", EXR_STORAGE_SCANLINE, &part);
+    exr_result_t rv = exr_add_part(f, "rgba", EXR_STORAGE_SCANLINE, part);
     if (rv == EXR_ERR_SUCCESS)
-        rv = exr_initialize_required_attr_simple(f, part, width, height, EXR_COMPRESSION_ZIP);
+        rv = exr_initialize_required_attr_simple(f, *part, width, height, EXR_COMPRESSION_ZIP);
     static const char *const order[4] = { "R", "G", "B", "A" };
     for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++)
-        rv = exr_add_channel(f, part, order[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
+        rv = exr_add_channel(f, *part, order[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);
     if (rv == EXR_ERR_SUCCESS)
         rv = exr_write_header(f);
+    return rv;
+}
+
+/* Every scanline chunk of the part, encoded from rgba (stride floats per row). */
+static exr_result_t write_pixels(exr_context_t f, int part, const float *rgba, int height,
+                                 size_t stride)
+{
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    int have_enc = 0;
     int32_t lines = 1;
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_get_scanlines_per_chunk(f, part, &lines);
-    what = "cannot write the pixels";
+    exr_result_t rv = exr_get_scanlines_per_chunk(f, part, &lines);
     for (int y = 0; rv == EXR_ERR_SUCCESS && y < height; y += lines) {
         exr_chunk_info_t ci;
         rv = exr_write_scanline_chunk_info(f, part, y, &ci);
@@ -143,11 +130,41 @@ int exr_write_rgba(const char *path, const float *rgba, int width, int height, s
         }
         rv = exr_encoding_run(f, part, &enc);
     }
+    if (have_enc)
+        exr_encoding_destroy(f, &enc);
+    return rv;
+}
+
+int exr_write_rgba(const char *path, const float *rgba, int width, int height, size_t stride,
+                   brdffit_error *err)
+{
+    if (stride == 0)
+        stride = 4 * (size_t)width;
+    exr_context_initializer_t init = initializer();
+    exr_context_t f = NULL;
+    int part = 0, rc = -1;
+    const char *what = "cannot create the file";
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) {
+        snprintf(exr_message, sizeof exr_message, "%s", strerror(errno));
+        rv = EXR_ERR_FILE_ACCESS;
+        goto done;
+    }
+    init.user_data = &fd;
+    init.write_fn = write_at;
+    rv = exr_start_write(&f, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv != EXR_ERR_SUCCESS)
+        goto done;
+    what = "cannot write the header";
+    rv = write_header(f, width, height, &part);
+    if (rv != EXR_ERR_SUCCESS)
+        goto done;
+    what = "cannot write the pixels";
+    rv = write_pixels(f, part, rgba, height, stride);
     if (rv == EXR_ERR_SUCCESS)
         rc = 0;
 done:
-    if (have_enc)
-        exr_encoding_destroy(f, &enc);
     if (f) {
         exr_result_t fr = exr_finish(&f);
         if (rc == 0 && fr != EXR_ERR_SUCCESS) {
@@ -279,6 +296,51 @@ static const char *check_channels(exr_context_t f, exr_image *img)
     return NULL;
 }
 
+/* The file's layout: one scanline or tiled part with a plausible data window
+ * (into img).  What OpenEXR could not read is its status; a layout it read
+ * but that is not supported here is EXR_ERR_SUCCESS with *refusal set. */
+static exr_result_t read_layout(exr_context_t f, exr_image *img, exr_storage_t *storage,
+                                const char **refusal)
+{
+    int parts = 0;
+    exr_attr_box2i_t dw;
+    exr_result_t rv = exr_get_count(f, &parts);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_get_storage(f, 0, storage);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = exr_get_data_window(f, 0, &dw);
+    if (rv != EXR_ERR_SUCCESS)
+        return rv;
+    if (*storage != EXR_STORAGE_SCANLINE && *storage != EXR_STORAGE_TILED) {
+        *refusal = "deep images are not supported";
+        return EXR_ERR_SUCCESS;
+    }
+    if (parts != 1) {
+        *refusal = "multi-part files are not supported (one part of R, G, B)";
+        return EXR_ERR_SUCCESS;
+    }
+    img->x0 = dw.min.x, img->y0 = dw.min.y;
+    img->w = dw.max.x - dw.min.x + 1, img->h = dw.max.y - dw.min.y + 1;
+    if (img->w < 1 || img->h < 1 || (double)img->w * img->h > 1e9) {
+        *refusal = "impossible data window";
+        return EXR_ERR_SUCCESS;
+    }
+    return EXR_ERR_SUCCESS;
+}
+
+/* The first texel that is not finite and >= 0, described into buf; NULL if none. */
+static const char *bad_texel(const exr_image *img, char *buf, size_t len)
+{
+    for (size_t i = 0; i < (size_t)img->w * (size_t)img->h * 3; i++)
+        if (!isfinite(img->rgb[i]) || img->rgb[i] < 0) {
+            snprintf(buf, len, "pixel (%zu, %zu) channel %c is %g (radiance must be finite and >= 0)",
+                     (i / 3) % (size_t)img->w, (i / 3) / (size_t)img->w, "RGB"[i % 3],
+                     (double)img->rgb[i]);
+            return buf;
+        }
+    return NULL;
+}
+
 int exr_read_rgb(const char *path, float **rgb, float **alpha, int *width, int *height,
                  brdffit_error *err)
 {
@@ -287,6 +349,7 @@ int exr_read_rgb(const char *path, float **rgb, float **alpha, int *width, int *
     exr_image img;
     memset(&img, 0, sizeof img);
     const char *what = "not a readable OpenEXR file";
+    char texel[160];
     int rc = -1;
     brdffit_status st = BRDFFIT_E_FILE_READ;
     *rgb = NULL;
@@ -297,61 +360,39 @@ int exr_read_rgb(const char *path, float **rgb, float **alpha, int *width, int *
         st = BRDFFIT_E_FILE_OPEN;
     if (rv != EXR_ERR_SUCCESS)
         goto done;
-    int parts = 0;
     exr_storage_t storage = EXR_STORAGE_SCANLINE;
-    exr_attr_box2i_t dw;
-    rv = exr_get_count(f, &parts);
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_get_storage(f, 0, &storage);
-    if (rv == EXR_ERR_SUCCESS)
-        rv = exr_get_data_window(f, 0, &dw);
-    if (rv != EXR_ERR_SUCCESS)
-        goto done;
-    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
-        what = "deep images are not supported";
+    const char *bad = NULL;
+    rv = read_layout(f, &img, &storage, &bad);
+    if (rv != EXR_ERR_SUCCESS || bad) {
+        what = bad ? bad : what;
         goto done;
     }
-    if (parts != 1) {
-        what = "multi-part files are not supported (one part of R, G, B)";
-        goto done;
-    }
-    img.x0 = dw.min.x, img.y0 = dw.min.y;
-    img.w = dw.max.x - dw.min.x + 1, img.h = dw.max.y - dw.min.y + 1;
-    if (img.w < 1 || img.h < 1 || (double)img.w * img.h > 1e9) {
-        what = "impossible data window";
-        goto done;
-    }
-    const char *bad = check_channels(f, &img);
+    bad = check_channels(f, &img);
     if (bad) {
         what = bad;
         rv = EXR_ERR_SUCCESS; /* OpenEXR had nothing to say */
         goto done;
     }
-    img.rgb = calloc((size_t)img.w * (size_t)img.h * 3, sizeof(float));
-    img.a = malloc((size_t)img.w * (size_t)img.h * sizeof(float));
+    size_t npix = (size_t)img.w * (size_t)img.h;
+    img.rgb = calloc(npix * 3, sizeof(float));
+    img.a = malloc(npix * sizeof(float));
     if (!img.rgb || !img.a) {
         what = "out of memory";
         goto done;
     }
-    for (size_t i = 0; i < (size_t)img.w * (size_t)img.h; i++)
+    for (size_t i = 0; i < npix; i++)
         img.a[i] = 1.0f;
     rv = read_pixels(f, storage, &img, &what);
     if (rv != EXR_ERR_SUCCESS)
         goto done;
     if (!img.have[0] && img.have[4]) /* grey: Y into G and B too */
-        for (size_t i = 0; i < (size_t)img.w * (size_t)img.h; i++)
+        for (size_t i = 0; i < npix; i++)
             img.rgb[3 * i + 1] = img.rgb[3 * i + 2] = img.rgb[3 * i];
-    char bad_texel[160];
-    for (size_t i = 0; i < (size_t)img.w * (size_t)img.h * 3; i++)
-        if (!isfinite(img.rgb[i]) || img.rgb[i] < 0) {
-            snprintf(bad_texel, sizeof bad_texel,
-                     "pixel (%zu, %zu) channel %c is %g (radiance must be finite and >= 0)",
-                     (i / 3) % (size_t)img.w, (i / 3) / (size_t)img.w, "RGB"[i % 3],
-                     (double)img.rgb[i]);
-            what = bad_texel;
-            st = BRDFFIT_E_FILE_NONFINITE;
-            goto done;
-        }
+    if ((bad = bad_texel(&img, texel, sizeof texel)) != NULL) {
+        what = bad;
+        st = BRDFFIT_E_FILE_NONFINITE;
+        goto done;
+    }
     rc = 0;
 done:
     if (f)

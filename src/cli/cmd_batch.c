@@ -715,67 +715,67 @@ static void note_changed(const batch_run *R, const batch_material *m)
 }
 
 /* Fit what is left of one material.  Returns 0 to go on, -1 to stop. */
-static int do_material(batch_run *R, batch_material *m, int i, int n)
+/* The material's identity (file identity, or its bytes for the embedded
+ * table, which is loaded here into *t).  0 when identified; otherwise the
+ * failure is recorded and shown, and the result is do_material's. */
+static int identify_material(batch_run *R, batch_material *m, int i, int n, brdffit_table **t)
 {
     const cli_options *o = &R->b->common;
     brdffit_error err;
     memset(&err, 0, sizeof err);
     if (m->embedded) {
         m->identified = 1; /* identified when its table is made */
-    } else if (bj_identify(m->path, &m->id, &err) == 0) {
-        m->identified = 1;
-        note_changed(R, m);
-    } else {
-        material_failed(R, m, &err);
-        R->P.done_fits += o->nmodels;
-        progress_material(&R->P, i, n, m->name, "failed");
-        return R->out_failed ? -1 : 0;
-    }
-    brdffit_table *t = NULL;
-    brdffit_samples *s = NULL;
-    if (m->embedded) {
-        if (load_table(m, o->sample.scale, &t, &err) != BRDFFIT_OK) {
+        if (load_table(m, o->sample.scale, t, &err) != BRDFFIT_OK) {
             material_failed(R, m, &err);
-            return R->out_failed ? -1 : 0;
+            return R->out_failed ? -1 : 1;
         }
-        bj_identify_bytes("(embedded)", brdffit_table_values_const(t),
+        bj_identify_bytes("(embedded)", brdffit_table_values_const(*t),
                           3 * (size_t)BRDFFIT_MERL_BINS * sizeof(double), &m->id);
-    }
-    todo td = plan(R, m);
-    if (!td.any || find(R, BJ_FAILURE, m, "")) {
-        const bj_record *f = find(R, BJ_FAILURE, m, "");
-        R->P.done_fits += o->nmodels;
-        if (f)
-            R->failures++;
-        progress_material(&R->P, i, n, m->name, f ? "failed (journaled)" : "done (journaled)");
-        brdffit_table_free(t);
         return 0;
     }
-    brdffit_status st = t ? BRDFFIT_OK : load_table(m, o->sample.scale, &t, &err);
+    if (bj_identify(m->path, &m->id, &err) == 0) {
+        m->identified = 1;
+        note_changed(R, m);
+        return 0;
+    }
+    material_failed(R, m, &err);
+    R->P.done_fits += o->nmodels;
+    progress_material(&R->P, i, n, m->name, "failed");
+    return R->out_failed ? -1 : 1;
+}
+
+/* The material's sample set, from *t (read here if not yet); a failure is
+ * recorded with the material's name and shown. */
+static int material_samples(batch_run *R, batch_material *m, int i, int n, brdffit_table **t,
+                            brdffit_samples **s)
+{
+    const cli_options *o = &R->b->common;
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    brdffit_status st = *t ? BRDFFIT_OK : load_table(m, o->sample.scale, t, &err);
     if (st == BRDFFIT_OK)
-        st = brdffit_samples_create(t, &o->sample, &s, &err);
-    if (st != BRDFFIT_OK) {
-        err.status = st;
-        if (!strstr(err.message, m->path) || m->embedded) {
-            char msg[BRDFFIT_MESSAGE_MAX];
-            snprintf(msg, sizeof msg, "%.1000s: %.1000s", m->embedded ? m->name : m->path, err.message);
-            memcpy(err.message, msg, sizeof msg);
-        }
-        material_failed(R, m, &err);
-        R->P.done_fits += o->nmodels;
-        progress_material(&R->P, i, n, m->name, "failed");
-        brdffit_table_free(t);
-        return R->out_failed ? -1 : 0;
+        st = brdffit_samples_create(*t, &o->sample, s, &err);
+    if (st == BRDFFIT_OK)
+        return 0;
+    err.status = st;
+    if (!strstr(err.message, m->path) || m->embedded) {
+        char msg[BRDFFIT_MESSAGE_MAX];
+        snprintf(msg, sizeof msg, "%.1000s: %.1000s", m->embedded ? m->name : m->path, err.message);
+        memcpy(err.message, msg, sizeof msg);
     }
-    if (ensure_context(R, &err) != 0) {
-        brdffit_samples_free(s);
-        brdffit_table_free(t);
-        fprintf(stderr, "brdffit: cannot set up the fitting backend: %s\n", err.message);
-        R->failures++;
-        return -1;
-    }
+    material_failed(R, m, &err);
+    R->P.done_fits += o->nmodels;
+    progress_material(&R->P, i, n, m->name, "failed");
+    return R->out_failed ? -1 : 1;
+}
+
+/* The fits the plan asks for, then the published parameters' scores. */
+static void fit_planned(batch_run *R, batch_material *m, int i, int n, const todo *td,
+                        const brdffit_samples *s)
+{
+    const cli_options *o = &R->b->common;
     for (int k = 0; k < o->nmodels && !R->out_failed; k++) {
-        if (!td.fits[k]) {
+        if (!td->fits[k]) {
             R->P.done_fits++;
             continue;
         }
@@ -786,17 +786,50 @@ static int do_material(batch_run *R, batch_material *m, int i, int n)
         R->P.done_fits++;
     }
     for (int k = 0; k < o->nmodels && !R->out_failed && !stop_signal; k++)
-        if (td.published[k])
+        if (td->published[k])
             published_one(R, m, s, o->models[k]);
-    brdffit_samples_free(s);
+}
+
+static int do_material(batch_run *R, batch_material *m, int i, int n)
+{
+    const cli_options *o = &R->b->common;
+    brdffit_table *t = NULL;
+    brdffit_samples *s = NULL;
+    int rc = identify_material(R, m, i, n, &t);
+    if (rc != 0)
+        goto done;
+    todo td = plan(R, m);
+    const bj_record *f = find(R, BJ_FAILURE, m, "");
+    if (!td.any || f) {
+        R->P.done_fits += o->nmodels;
+        if (f)
+            R->failures++;
+        progress_material(&R->P, i, n, m->name, f ? "failed (journaled)" : "done (journaled)");
+        goto done;
+    }
+    if ((rc = material_samples(R, m, i, n, &t, &s)) != 0)
+        goto done;
+    brdffit_error err;
+    if (ensure_context(R, &err) != 0) {
+        fprintf(stderr, "brdffit: cannot set up the fitting backend: %s\n", err.message);
+        R->failures++;
+        rc = -1;
+        goto done;
+    }
+    fit_planned(R, m, i, n, &td, s);
     if (td.assets && !R->out_failed && !stop_signal) {
+        brdffit_samples_free(s);
+        s = NULL;
         render_start(R, R->job, m, t); /* t is the job's now */
         t = NULL;
     }
-    brdffit_table_free(t);
     if (!R->out_failed)
         progress_material(&R->P, i, n, m->name, stop_signal ? "interrupted" : "done");
-    return R->out_failed ? -1 : 0;
+    rc = R->out_failed ? -1 : 0;
+done:
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
+    return rc < 0 ? -1 : 0;
 }
 
 /* ------------------------------------------------------------------ start and finish */

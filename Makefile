@@ -76,7 +76,7 @@ CLI_SRC  = $(wildcard src/cli/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
-BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_render.c
+BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_render.c bench/bench_stream.c
 
 all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
 

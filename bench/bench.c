@@ -4,7 +4,10 @@
  *  1. per model, on the full alum-bronze table: its kernel build time
  *     (brdffit_context_prepare), then one OpenCL data pass (value + Jacobian
  *     moments) against the same sums from the plain single-threaded C loop
- *     (compiled -O2), measured back to back in one run (ratio);
+ *     (compiled -O2), measured back to back in one run (ratio); the value
+ *     and full passes against a streaming read of the same buffer
+ *     (bench_stream.c: the memory-bandwidth bound), and the host's memcpy and
+ *     sum of it;
  *  2. per model, one complete fit (the fastest of 3 identical runs, kernels
  *     built beforehand): wall time, passes, share inside cminpack; then the
  *     He / Cook-Torrance ratio from 3 more runs of each, alternating (the
@@ -15,14 +18,17 @@
  *  5. a material's renders and plots (bench_render.c; --renders: this alone).
  *
  * Tables come from ../shared/tools/merl-table (BRDFFIT_SHARED overrides).
- * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N] [--renders]
+ * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N] [--parts 1,3,...]
+ *                      [--renders] (--renders: --parts 5)
  */
 #define _POSIX_C_SOURCE 200809L
 #include "pass.h"
 #include "testutil.h"
 #include "bench_batch.h"
 #include "bench_render.h"
+#include "bench_stream.h"
 #include "registry.h"
+#include "samples.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -103,8 +109,23 @@ typedef struct bench_args {
     int quick;            /* --quick: fewer repetitions, 2 materials */
     int nmat;             /* --materials N (1..10)                    */
     const char *models;   /* --models a,b,... or NULL: all            */
-    int renders_only;     /* --renders: part 5 alone                  */
+    unsigned parts;       /* bit k: part k runs (--parts 1,3; --renders: 5) */
 } bench_args;
+
+#define PART(k) (1u << (k))
+
+/* "1,3,5": the parts' bits into *parts; 1, or 0 when the list is not one. */
+static int parse_parts(const char *list, unsigned *parts)
+{
+    *parts = 0;
+    for (const char *p = list; *p; p++) {
+        if (*p >= '1' && *p <= '5' && (p[1] == ',' || p[1] == '\0'))
+            *parts |= PART(*p - '0');
+        else if (*p != ',')
+            return 0;
+    }
+    return *parts != 0;
+}
 
 /* 0, or 2 after printing the usage. */
 static int parse_args(int argc, char **argv, bench_args *a)
@@ -112,18 +133,20 @@ static int parse_args(int argc, char **argv, bench_args *a)
     a->quick = 0;
     a->nmat = 10;
     a->models = NULL;
-    a->renders_only = 0;
+    a->parts = PART(1) | PART(2) | PART(3) | PART(4) | PART(5);
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
             a->quick = 1, a->nmat = 2;
         else if (!strcmp(argv[i], "--renders"))
-            a->renders_only = 1;
+            a->parts = PART(5);
+        else if (!strcmp(argv[i], "--parts") && i + 1 < argc && parse_parts(argv[++i], &a->parts))
+            ;
         else if (!strcmp(argv[i], "--models") && i + 1 < argc)
             a->models = argv[++i];
         else if (!strcmp(argv[i], "--materials") && i + 1 < argc)
             a->nmat = atoi(argv[++i]);
         else {
-            fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N] [--renders]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N] [--parts 1,2,..] [--renders]\n", argv[0]);
             return 2;
         }
     }
@@ -132,45 +155,98 @@ static int parse_args(int argc, char **argv, bench_args *a)
     return 0;
 }
 
+/* Part 1's figures of one model, each the fastest of its repetitions. */
+typedef struct pass_times {
+    double c_loop, value, full, stream; /* seconds */
+} pass_times;
+
+/* One model's passes on an open driver: the C loop (full pass), and, in turn
+ * so that a burst of load hits all three, the kernel's value pass, its full
+ * pass and the streaming read of the same buffer (bs, opened here on first
+ * use).  0, or 1 after printing why. */
+static int time_passes(bf_pass_driver *dr, bench_stream *bs, int reps, int creps, pass_times *t)
+{
+    brdffit_error err;
+    bf_pass_par pp;
+    point_of(dr->model, &pp);
+    double mom[BF_NMOM_MAX], ref[BF_NMOM_MAX], t0;
+    if (!bs->kernel && bench_stream_open(bs, dr->ctx, dr->samples, dr->items) != 0)
+        return 1;
+    if (bf_driver_run(dr, 0, &pp, mom, &err) != BRDFFIT_OK || /* warm-up: first touch */
+        bf_driver_run(dr, 1, &pp, mom, &err) != BRDFFIT_OK)
+        goto failed;
+    if (bench_stream_run(bs, dr, &t0) != 0)
+        return 1;
+    t->c_loop = t->value = t->full = t->stream = 1e30;
+    for (int r = 0; r < reps; r++) {
+        double ts;
+        t0 = bf_now();
+        if (bf_driver_run(dr, 0, &pp, mom, &err) != BRDFFIT_OK)
+            goto failed;
+        t->value = fmin(t->value, bf_now() - t0);
+        t0 = bf_now();
+        if (bf_driver_run(dr, 1, &pp, mom, &err) != BRDFFIT_OK)
+            goto failed;
+        t->full = fmin(t->full, bf_now() - t0);
+        if (bench_stream_run(bs, dr, &ts) != 0)
+            return 1;
+        t->stream = fmin(t->stream, ts);
+    }
+    for (int r = 0; r < creps; r++) {
+        t0 = bf_now();
+        bf_host_loop(dr->samples, dr->model, dr->nk, dr->np, &pp, ref);
+        t->c_loop = fmin(t->c_loop, bf_now() - t0);
+    }
+    return 0;
+failed:
+    fprintf(stderr, "bench: %s\n", err.message);
+    return 1;
+}
+
 /* 1. per model: its kernel build (brdffit_context_prepare), then one pass of
- * the kernel against the plain C loop, the fastest of a few each. */
+ * the kernel against the plain C loop, and the kernel's value and full
+ * passes against a streaming read of the same bytes (bench_stream.c); the
+ * host's memcpy and sum of the buffer for context. */
 static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a)
 {
-    printf("1. one data pass (value + Jacobian moments), alum-bronze; kernel build first\n");
-    printf("%-18s %9s %12s %12s %8s\n", "model", "build s", "C loop ms", "kernel ms", "ratio");
-    for (int m = 0; m < brdffit_model_count(); m++) {
+    int reps = a->quick ? 2 : 5, creps = a->quick ? 1 : 2;
+    double bytes = (double)BF_NFIELDS * sizeof(double) * (double)s->npad, copy_s, sum_s;
+    if (bench_host_memory(s, reps, &copy_s, &sum_s) != 0)
+        return 1;
+    printf("1. one data pass, alum-bronze; kernel build first.  A pass reads %d doubles per sample:\n"
+           "   %.1f bytes per valid sample (padding included), %.1f MB; the host, one thread: memcpy\n"
+           "   %.1f ms (%.1f GB/s copied), sum %.1f ms (%.1f GB/s read).  stream: an OpenCL kernel\n"
+           "   reading the same buffer as the pass does, and only adding it up (the memory bound)\n",
+           (int)BF_NFIELDS, bytes / (double)s->n, bytes * 1e-6, copy_s * 1e3, bytes / copy_s * 1e-9,
+           sum_s * 1e3, bytes / sum_s * 1e-9);
+    printf("%-18s %7s %9s %9s %9s %9s %8s %8s %7s %9s\n", "model", "build s", "C loop ms", "value ms",
+           "full ms", "stream ms", "value/st", "full/st", "C/full", "stream GB/s");
+    bench_stream bs;
+    memset(&bs, 0, sizeof bs);
+    int rc = 0;
+    for (int m = 0; m < brdffit_model_count() && rc == 0; m++) {
         if (!model_selected(a->models, (brdffit_model)m))
             continue;
         brdffit_error err;
         bf_pass_driver dr;
         memset(&dr, 0, sizeof dr); /* closed below whatever happens */
-        int ok = brdffit_context_prepare(ctx, (brdffit_model)m, &err) == BRDFFIT_OK &&
-                 bf_driver_open(&dr, ctx, s, (brdffit_model)m, &err) == BRDFFIT_OK;
-        bf_pass_par pp;
-        point_of((brdffit_model)m, &pp);
-        double mom[BF_NMOM_MAX], ref[BF_NMOM_MAX];
-        ok = ok && bf_driver_run(&dr, 1, &pp, mom, &err) == BRDFFIT_OK; /* warm-up: first touch */
-        int reps = a->quick ? 2 : 5, creps = a->quick ? 1 : 2;
-        double tk = 1e30, tc = 1e30;
-        for (int r = 0; ok && r < reps; r++) {
-            double t0 = bf_now();
-            ok = bf_driver_run(&dr, 1, &pp, mom, &err) == BRDFFIT_OK;
-            tk = fmin(tk, bf_now() - t0);
-        }
-        for (int r = 0; ok && r < creps; r++) {
-            double t0 = bf_now();
-            bf_host_loop(s, (brdffit_model)m, dr.nk, dr.np, &pp, ref);
-            tc = fmin(tc, bf_now() - t0);
+        pass_times t;
+        if (brdffit_context_prepare(ctx, (brdffit_model)m, &err) != BRDFFIT_OK ||
+            bf_driver_open(&dr, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            rc = 1;
+        } else {
+            rc = time_passes(&dr, &bs, reps, creps, &t);
         }
         bf_driver_close(&dr);
-        if (!ok) {
-            fprintf(stderr, "bench: %s\n", err.message);
-            return 1;
-        }
-        printf("%-18s %9.2f %12.1f %12.1f %7.1fx\n", brdffit_model_get((brdffit_model)m)->name,
-               brdffit_context_build_seconds(ctx, (brdffit_model)m), tc * 1e3, tk * 1e3, tc / tk);
+        if (rc == 0)
+            printf("%-18s %7.2f %9.1f %9.1f %9.1f %9.1f %7.2fx %7.2fx %6.1fx %9.1f\n",
+                   brdffit_model_get((brdffit_model)m)->name, brdffit_context_build_seconds(ctx, (brdffit_model)m),
+                   t.c_loop * 1e3, t.value * 1e3, t.full * 1e3, t.stream * 1e3, t.value / t.stream,
+                   t.full / t.stream, t.c_loop / t.full, bytes / t.stream * 1e-9);
     }
-    return 0;
+    bench_stream_close(&bs);
+    return rc;
 }
 
 /* 2. per model one complete fit (kernels built beforehand), the fastest of
@@ -252,31 +328,35 @@ int main(int argc, char **argv)
     bench_args a;
     if (parse_args(argc, argv, &a) != 0)
         return 2;
-    if (a.renders_only)
-        return bench_renders(0) == 0 ? 0 : 1; /* part 5 alone */
     brdffit_error err;
     brdffit_context *ctx = NULL;
     brdffit_samples *s = NULL;
     int rc = 1;
-    if (brdffit_context_create(NULL, &ctx, &err) != BRDFFIT_OK) {
-        fprintf(stderr, "bench: %s\n", err.message);
-        goto done;
+    if (a.parts & (PART(1) | PART(2) | PART(3))) {
+        if (brdffit_context_create(NULL, &ctx, &err) != BRDFFIT_OK) {
+            fprintf(stderr, "bench: %s\n", err.message);
+            goto done;
+        }
+        printf("brdffit %s bench -- %s\n", brdffit_version(), brdffit_context_describe(ctx));
     }
-    printf("brdffit %s bench -- %s\n", brdffit_version(), brdffit_context_describe(ctx));
-    s = load("alum-bronze");
-    if (!s)
-        goto done;
-    printf("alum-bronze: %zu valid samples (cutoff 80 deg, standard scale)\n\n", brdffit_samples_count(s));
-    if (bench_passes(ctx, s, &a) != 0 || bench_fits(ctx, s, &a) != 0)
+    if (a.parts & (PART(1) | PART(2))) {
+        if (!(s = load("alum-bronze")))
+            goto done;
+        printf("alum-bronze: %zu valid samples (cutoff 80 deg, standard scale)\n\n", brdffit_samples_count(s));
+    }
+    if (((a.parts & PART(1)) && bench_passes(ctx, s, &a) != 0) ||
+        ((a.parts & PART(2)) && bench_fits(ctx, s, &a) != 0))
         goto done;
     brdffit_samples_free(s);
     s = NULL;
-    if (bench_end_to_end(ctx, &a) != 0)
+    if ((a.parts & PART(3)) && bench_end_to_end(ctx, &a) != 0)
         goto done;
     brdffit_context_free(ctx); /* the batch runs the program */
     ctx = NULL;
-    rc = bench_batch(materials, a.nmat, a.models) == 0 ? 0 : 1;
-    if (bench_renders(a.quick) != 0)
+    rc = 0;
+    if ((a.parts & PART(4)) && bench_batch(materials, a.nmat, a.models) != 0)
+        rc = 1;
+    if ((a.parts & PART(5)) && bench_renders(a.quick) != 0)
         rc = 1;
 done:
     brdffit_samples_free(s);

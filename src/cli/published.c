@@ -35,6 +35,46 @@ static int bad(brdffit_error *err, const char *path, int line, const char *why)
     return -1;
 }
 
+/* One data row's fields into *row: NULL, or why they are not one. */
+static const char *parse_row(char **fld, pub_row *row, char *why, size_t len)
+{
+    memset(row, 0, sizeof *row);
+    if (strlen(fld[0]) == 0 || strlen(fld[0]) >= sizeof row->material)
+        return "empty or too long material name";
+    strcpy(row->material, fld[0]);
+    if (brdffit_model_from_name(fld[1], &row->model) != BRDFFIT_OK) {
+        snprintf(why, len, "unknown model '%.100s'", fld[1]);
+        return why;
+    }
+    double v[9];
+    for (int k = 0; k < 9; k++) {
+        const char *s = fld[2 + k];
+        if (k >= 6 && s[0] == '\0')
+            v[k] = 0;
+        else if (cli_parse_double(s, &v[k]) != 0)
+            return "a value is not a finite number";
+    }
+    memcpy(row->params.d, v, sizeof row->params.d);
+    memcpy(row->params.s, v + 3, sizeof row->params.s);
+    memcpy(row->params.p, v + 6, sizeof row->params.p);
+    return NULL;
+}
+
+/* row appended to t's rows: NULL, or why not. */
+static const char *append_row(pub_table *t, const pub_row *row, int *cap_rows)
+{
+    if (t->n == *cap_rows) {
+        int cap = *cap_rows ? *cap_rows * 2 : 128;
+        pub_row *g = realloc(t->rows, (size_t)cap * sizeof *g);
+        if (!g)
+            return "out of memory";
+        t->rows = g;
+        *cap_rows = cap;
+    }
+    t->rows[t->n++] = *row;
+    return NULL;
+}
+
 int pub_read(const char *path, pub_table *t, brdffit_error *err)
 {
     memset(t, 0, sizeof *t);
@@ -46,11 +86,11 @@ int pub_read(const char *path, pub_table *t, brdffit_error *err)
                  strerror(errno));
         return -1;
     }
-    char *line = NULL;
+    char *line = NULL, why[256];
     size_t cap = 0;
-    ssize_t n;
-    int lineno = 0, header = 0, rc = 0, cap_rows = 0;
-    while ((n = getline(&line, &cap, f)) > 0) {
+    int lineno = 0, header = 0, cap_rows = 0;
+    const char *fault = NULL;
+    while (!fault && getline(&line, &cap, f) > 0) {
         lineno++;
         line[strcspn(line, "\r\n")] = '\0';
         if (line[0] == '#' || line[0] == '\0')
@@ -58,65 +98,25 @@ int pub_read(const char *path, pub_table *t, brdffit_error *err)
         char *fld[PUB_FIELDS + 1];
         int nf = split_tabs(line, fld, PUB_FIELDS);
         if (!header) {
-            if (nf != PUB_FIELDS || strcmp(fld[0], "material") != 0 || strcmp(fld[1], "model") != 0) {
-                rc = bad(err, path, lineno,
-                         "expected the header 'material<TAB>model<TAB>d_r ... p2' (11 columns)");
-                break;
-            }
+            if (nf != PUB_FIELDS || strcmp(fld[0], "material") != 0 || strcmp(fld[1], "model") != 0)
+                fault = "expected the header 'material<TAB>model<TAB>d_r ... p2' (11 columns)";
             header = 1;
             continue;
         }
-        if (nf != PUB_FIELDS) {
-            rc = bad(err, path, lineno, "expected 11 tab-separated columns");
-            break;
-        }
         pub_row row;
-        memset(&row, 0, sizeof row);
-        if (strlen(fld[0]) == 0 || strlen(fld[0]) >= sizeof row.material) {
-            rc = bad(err, path, lineno, "empty or too long material name");
-            break;
-        }
-        strcpy(row.material, fld[0]);
-        if (brdffit_model_from_name(fld[1], &row.model) != BRDFFIT_OK) {
-            char why[256];
-            snprintf(why, sizeof why, "unknown model '%.100s'", fld[1]);
-            rc = bad(err, path, lineno, why);
-            break;
-        }
-        double v[9];
-        int okv = 1;
-        for (int k = 0; k < 9; k++) {
-            const char *s = fld[2 + k];
-            if (k >= 6 && s[0] == '\0')
-                v[k] = 0;
-            else if (cli_parse_double(s, &v[k]) != 0)
-                okv = 0;
-        }
-        if (!okv) {
-            rc = bad(err, path, lineno, "a value is not a finite number");
-            break;
-        }
-        memcpy(row.params.d, v, sizeof row.params.d);
-        memcpy(row.params.s, v + 3, sizeof row.params.s);
-        memcpy(row.params.p, v + 6, sizeof row.params.p);
-        if (t->n == cap_rows) {
-            cap_rows = cap_rows ? cap_rows * 2 : 128;
-            pub_row *g = realloc(t->rows, (size_t)cap_rows * sizeof *g);
-            if (!g) {
-                rc = bad(err, path, lineno, "out of memory");
-                break;
-            }
-            t->rows = g;
-        }
-        t->rows[t->n++] = row;
+        if (nf != PUB_FIELDS)
+            fault = "expected 11 tab-separated columns";
+        else if ((fault = parse_row(fld, &row, why, sizeof why)) == NULL)
+            fault = append_row(t, &row, &cap_rows);
     }
-    if (rc == 0 && !header)
-        rc = bad(err, path, lineno, "no header line 'material<TAB>model<TAB>...'");
+    if (!fault && !header)
+        fault = "no header line 'material<TAB>model<TAB>...'";
     free(line);
     fclose(f);
-    if (rc != 0)
-        pub_free(t);
-    return rc;
+    if (!fault)
+        return 0;
+    pub_free(t);
+    return bad(err, path, lineno, fault);
 }
 
 void pub_free(pub_table *t)

@@ -497,7 +497,10 @@ typedef enum brdffit_struct_kind {
     BRDFFIT_STRUCT_CONTEXT_OPTIONS = 5, /* brdffit_context_options */
     BRDFFIT_STRUCT_FIT_OPTIONS = 6,     /* brdffit_fit_options    */
     BRDFFIT_STRUCT_FIT_RESULT = 7,      /* brdffit_fit_result     */
-    BRDFFIT_STRUCT_PARAM_INFO = 8       /* brdffit_param_info     */
+    BRDFFIT_STRUCT_PARAM_INFO = 8,      /* brdffit_param_info     */
+    BRDFFIT_STRUCT_LIGHT = 9,           /* brdffit_light          */
+    BRDFFIT_STRUCT_RENDER_OPTIONS = 10, /* brdffit_render_options */
+    BRDFFIT_STRUCT_CURVE_OPTIONS = 11   /* brdffit_curve_options  */
 } brdffit_struct_kind;
 
 /* sizeof the struct of that kind, or 0 for a kind this library does not know. */

@@ -20,6 +20,11 @@ START_TEST(struct_sizes)
     ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_FIT_OPTIONS), sizeof(brdffit_fit_options));
     ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_FIT_RESULT), sizeof(brdffit_fit_result));
     ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_PARAM_INFO), sizeof(brdffit_param_info));
+    ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_LIGHT), sizeof(brdffit_light));
+    ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_RENDER_OPTIONS),
+                      sizeof(brdffit_render_options));
+    ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_CURVE_OPTIONS),
+                      sizeof(brdffit_curve_options));
     ck_assert_uint_eq(brdffit_struct_size((brdffit_struct_kind)999), 0);
     ck_assert_uint_eq(brdffit_struct_size((brdffit_struct_kind)-1), 0);
 }
@@ -38,6 +43,13 @@ START_TEST(struct_offsets)
     ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_SAMPLE, "k"), offsetof(brdffit_sample, k));
     ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_CONTEXT_OPTIONS, "device"),
                       offsetof(brdffit_context_options, device));
+    ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_LIGHT, "rgb"), offsetof(brdffit_light, rgb));
+    ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_RENDER_OPTIONS, "threads"),
+                      offsetof(brdffit_render_options, threads));
+    ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_RENDER_OPTIONS, "env_stride"),
+                      offsetof(brdffit_render_options, env_stride));
+    ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_CURVE_OPTIONS, "scale"),
+                      offsetof(brdffit_curve_options, scale));
     /* a member of another struct, an unknown name, NULL, an unknown kind */
     ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_PARAMS, "message"), SIZE_MAX);
     ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_FIT_RESULT, "no_such"), SIZE_MAX);

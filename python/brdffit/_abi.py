@@ -15,6 +15,12 @@ MESSAGE_MAX = 2048
 MERL_NTH, MERL_NTD, MERL_NPD = 90, 90, 180
 MERL_BINS = MERL_NTH * MERL_NTD * MERL_NPD
 MERL_SHAPE = (3, MERL_NTH, MERL_NTD, MERL_NPD)
+RENDER_MAX_LIGHTS = 16      # BRDFFIT_RENDER_MAX_LIGHTS
+RENDER_DEFAULT_LIGHTS = -1  # BRDFFIT_RENDER_DEFAULT_LIGHTS (nlights)
+RENDER_MAX_WIDTH = 16384    # brdffit_render_options.width: 1..16384
+COVERAGE_MASKED = 0.5       # BRDFFIT_COVERAGE_MASKED
+CURVE_MAX_THETA_I = 16      # BRDFFIT_CURVE_MAX_THETA_I
+CURVE_MAX_POINTS = 100000   # brdffit_curve_options.npoints: 2..100000
 
 c_enum = C.c_int  # every brdffit_* enum is an int-sized C enum
 _d3 = C.c_double * 3
@@ -104,6 +110,38 @@ class FitResult(C.Structure):
     ]
 
 
+class Light(C.Structure):
+    _fields_ = [("dir", _d3), ("rgb", _d3)]
+
+
+class RenderOptions(C.Structure):
+    _fields_ = [
+        ("size", C.c_size_t),
+        ("width", C.c_int),
+        ("nlights", C.c_int),
+        ("lights", Light * RENDER_MAX_LIGHTS),
+        ("env", C.c_void_p),  # const float *: the address of the caller's array
+        ("env_width", C.c_int),
+        ("env_height", C.c_int),
+        ("env_stride", C.c_size_t),
+        ("env_samples", C.c_int),
+        ("interp", c_enum),
+        ("scale", c_enum),
+        ("threads", C.c_int),
+    ]
+
+
+class CurveOptions(C.Structure):
+    _fields_ = [
+        ("size", C.c_size_t),
+        ("ntheta_i", C.c_int),
+        ("theta_i_deg", C.c_double * CURVE_MAX_THETA_I),
+        ("npoints", C.c_int),
+        ("interp", c_enum),
+        ("scale", c_enum),
+    ]
+
+
 # brdffit_struct_kind of each mirror (the values of the C enum).
 STRUCT_KINDS = {
     Error: 0,
@@ -115,7 +153,20 @@ STRUCT_KINDS = {
     FitOptions: 6,
     FitResult: 7,
     ParamInfo: 8,
+    Light: 9,
+    RenderOptions: 10,
+    CurveOptions: 11,
 }
+
+# brdffit_at_bound and brdffit_fit_flag: the bits of brdffit_fit_result's
+# at_bound and flags, by the C name less its prefix (BRDFFIT_AT_BOUND_,
+# BRDFFIT_FIT_).
+AT_BOUND_BITS = {
+    "P0": 1 << 0, "P1": 1 << 1, "P2": 1 << 2, "LOBE": 7,
+    "D_R": 1 << 8, "D_G": 1 << 9, "D_B": 1 << 10,
+    "S_R": 1 << 12, "S_G": 1 << 13, "S_B": 1 << 14,
+}
+FIT_FLAG_BITS = {"LIMIT": 1 << 0}
 
 # brdffit_param_map (pinned values).
 PARAM_MAPS = {0: "log", 1: "linear", 2: "direction"}
@@ -177,5 +228,25 @@ FUNCTIONS = {
     "brdffit_error_of": (
         _status,
         [_P, _P, c_enum, C.POINTER(Params), C.POINTER(C.c_double), _err],
+    ),
+    # renders and incidence-plane curves
+    "brdffit_render_default_lights": (C.c_int, [C.POINTER(Light)]),
+    "brdffit_render_options_default": (None, [C.POINTER(RenderOptions)]),
+    "brdffit_render_table": (
+        _status, [_P, C.POINTER(RenderOptions), _P, C.c_size_t, _err]),
+    "brdffit_render_model": (
+        _status,
+        [c_enum, C.POINTER(Params), C.POINTER(RenderOptions), _P, C.c_size_t, _err],
+    ),
+    "brdffit_image_error": (
+        _status,
+        [_P, _P, C.c_int, C.c_int, C.c_size_t, C.POINTER(C.c_double), C.POINTER(C.c_size_t)],
+    ),
+    "brdffit_curve_options_default": (None, [C.POINTER(CurveOptions)]),
+    "brdffit_curve_theta_o": (_status, [C.POINTER(CurveOptions), _P]),
+    "brdffit_curve_table": (_status, [_P, C.POINTER(CurveOptions), _P, C.c_size_t, _err]),
+    "brdffit_curve_model": (
+        _status,
+        [c_enum, C.POINTER(Params), C.POINTER(CurveOptions), _P, C.c_size_t, _err],
     ),
 }

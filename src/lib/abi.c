@@ -76,6 +76,29 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, at_bound),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, flags),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, seconds_build),
+
+    M(BRDFFIT_STRUCT_LIGHT, brdffit_light, dir),
+    M(BRDFFIT_STRUCT_LIGHT, brdffit_light, rgb),
+
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, size),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, width),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, nlights),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, lights),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, env),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, env_width),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, env_height),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, env_stride),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, env_samples),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, interp),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, scale),
+    M(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options, threads),
+
+    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, size),
+    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, ntheta_i),
+    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, theta_i_deg),
+    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, npoints),
+    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, interp),
+    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, scale),
 };
 
 #undef M
@@ -92,6 +115,9 @@ size_t brdffit_struct_size(brdffit_struct_kind kind)
     case BRDFFIT_STRUCT_FIT_OPTIONS: return sizeof(brdffit_fit_options);
     case BRDFFIT_STRUCT_FIT_RESULT: return sizeof(brdffit_fit_result);
     case BRDFFIT_STRUCT_PARAM_INFO: return sizeof(brdffit_param_info);
+    case BRDFFIT_STRUCT_LIGHT: return sizeof(brdffit_light);
+    case BRDFFIT_STRUCT_RENDER_OPTIONS: return sizeof(brdffit_render_options);
+    case BRDFFIT_STRUCT_CURVE_OPTIONS: return sizeof(brdffit_curve_options);
     }
     return 0;
 }

@@ -11,6 +11,8 @@ struct layouts this package was written for.
     with brdffit.Context() as ctx:
         r = brdffit.fit(ctx, s, "cook-torrance")
     rgb = brdffit.eval("cook-torrance", r.params, wi, wo)   # (n, 3) arrays
+    img = brdffit.render(r)                                 # (256, 256, 4) RGBA
+    theta_o, curves = brdffit.incidence_curves(t)           # (4, 180, 3) measured
 
 Conventions (frame, units, scales, the Error metric) are those of
 include/brdffit.h: wi toward the light, wo toward the viewer, z the normal,
@@ -46,9 +48,11 @@ from .errors import (
     UnknownModelError,
     ValueRangeError,
 )
+from .curves import incidence_curves
 from .evaluate import eval  # noqa: A004 (the C API's name)
 from .fitting import Context, FitResult, error_of, fit
 from .models import Model, Param, Params, metric_name, model, models
+from .render import COVERAGE_MASKED, Light, default_lights, image_error, render
 from .samples import Sample, Samples
 from .table import Table, scale_factors
 
@@ -61,13 +65,13 @@ def library_version():
 
 
 __all__ = [
-    "BrdffitError", "CacheDirError", "Context", "FileDimsError", "FileEmptyError", "FileError",
-    "FileNonfiniteError", "FileNotRegularError", "FileOpenError", "FileReadError",
-    "FileTrailingError", "FileTruncatedError", "FileWriteError", "FitFailedError", "FitResult",
-    "InvalidArgumentError", "KernelBuildError", "Library", "LibraryError", "Model",
-    "NoDeviceError", "NoSamplesError", "OpenCLError", "OutOfMemoryError", "Param", "ParamRangeError",
-    "Params", "Sample", "Samples", "Status", "Table", "TooFewSamplesError", "UnknownModelError",
-    "ValueRangeError", "__version__",
-    "error_of", "eval", "fit", "library_version", "load_library", "metric_name", "model",
-    "models", "scale_factors",
+    "BrdffitError", "COVERAGE_MASKED", "CacheDirError", "Context", "FileDimsError",
+    "FileEmptyError", "FileError", "FileNonfiniteError", "FileNotRegularError", "FileOpenError",
+    "FileReadError", "FileTrailingError", "FileTruncatedError", "FileWriteError", "FitFailedError",
+    "FitResult", "InvalidArgumentError", "KernelBuildError", "Library", "LibraryError",
+    "Light", "Model", "NoDeviceError", "NoSamplesError", "OpenCLError", "OutOfMemoryError",
+    "Param", "ParamRangeError", "Params", "Sample", "Samples", "Status", "Table",
+    "TooFewSamplesError", "UnknownModelError", "ValueRangeError", "__version__",
+    "default_lights", "error_of", "eval", "fit", "image_error", "incidence_curves",
+    "library_version", "load_library", "metric_name", "model", "models", "render", "scale_factors",
 ]

@@ -50,7 +50,7 @@ from .errors import (
 )
 from .curves import incidence_curves
 from .evaluate import eval  # noqa: A004 (the C API's name)
-from .fitting import Context, FitResult, error_of, fit
+from .fitting import AtBound, Context, FitFlag, FitResult, error_of, fit
 from .models import Model, Param, Params, metric_name, model, models
 from .render import COVERAGE_MASKED, Light, default_lights, image_error, render
 from .samples import Sample, Samples
@@ -65,10 +65,10 @@ def library_version():
 
 
 __all__ = [
-    "BrdffitError", "COVERAGE_MASKED", "CacheDirError", "Context", "FileDimsError",
+    "AtBound", "BrdffitError", "COVERAGE_MASKED", "CacheDirError", "Context", "FileDimsError",
     "FileEmptyError", "FileError", "FileNonfiniteError", "FileNotRegularError", "FileOpenError",
     "FileReadError", "FileTrailingError", "FileTruncatedError", "FileWriteError", "FitFailedError",
-    "FitResult", "InvalidArgumentError", "KernelBuildError", "Library", "LibraryError",
+    "FitFlag", "FitResult", "InvalidArgumentError", "KernelBuildError", "Library", "LibraryError",
     "Light", "Model", "NoDeviceError", "NoSamplesError", "OpenCLError", "OutOfMemoryError",
     "Param", "ParamRangeError", "Params", "Sample", "Samples", "Status", "Table",
     "TooFewSamplesError", "UnknownModelError", "ValueRangeError", "__version__",

@@ -2,6 +2,7 @@
 """Contexts (device and kernels), fits and Errors."""
 
 import ctypes
+import enum
 import operator
 from dataclasses import dataclass
 
@@ -13,6 +14,14 @@ from .samples import Samples
 
 _BAD = Status.INVALID_ARGUMENT
 _BACKEND_NAMES = {v: k for k, v in _abi.BACKENDS.items()}
+
+AtBound = enum.IntFlag("AtBound", _abi.AT_BOUND_BITS, module=__name__)
+AtBound.__doc__ = """brdffit_at_bound: the bits of FitResult.at_bound, named as in C
+(BRDFFIT_AT_BOUND_P0 is AtBound.P0): lobe parameter k on a bound is
+P0 << k (LOBE: any), d_c = 0 is D_R << c, s_c = 0 is S_R << c."""
+FitFlag = enum.IntFlag("FitFlag", _abi.FIT_FLAG_BITS, module=__name__)
+FitFlag.__doc__ = """brdffit_fit_flag: the bits of FitResult.flags, named as in C
+(BRDFFIT_FIT_LIMIT is FitFlag.LIMIT: stopped on max_evals, not converged)."""
 
 
 class Context:
@@ -80,9 +89,11 @@ class FitResult:
     of the fit, ``seconds`` its wall time (``seconds_solver`` inside
     cminpack, ``seconds_passes`` in data passes, ``seconds_build`` building
     the model's kernels when the fit had to), ``samples`` fitted,
-    ``backend`` "opencl" or "host", ``at_bound`` the brdffit_at_bound bits
-    (lobe parameter k on a bound: bit k; d_c = 0: bit 8 + c; s_c = 0: bit
-    12 + c), ``flags`` the brdffit_fit_flag bits (1: stopped on max_evals)."""
+    ``backend`` "opencl" or "host", ``at_bound`` an AtBound of the
+    brdffit_at_bound bits (an int: int(at_bound) is the raw mask; lobe
+    parameter k on a bound: AtBound.P0 << k; d_c = 0: AtBound.D_R << c; s_c =
+    0: AtBound.S_R << c; ``at_bound_names`` names them), ``flags`` a FitFlag
+    of the brdffit_fit_flag bits (FitFlag.LIMIT: stopped on max_evals)."""
 
     model: Model
     params: Params
@@ -97,14 +108,25 @@ class FitResult:
     samples: int
     backend: str
     seconds_build: float = 0.0
-    at_bound: int = 0
-    flags: int = 0
+    at_bound: AtBound = AtBound(0)
+    flags: FitFlag = FitFlag(0)
 
     @property
     def converged(self):
         """cminpack reported convergence (info 1..4) and the fit did not stop
         on its evaluation limit."""
-        return 1 <= self.cminpack_info <= 4 and not self.flags & 1
+        return 1 <= self.cminpack_info <= 4 and not self.flags & FitFlag.LIMIT
+
+    @property
+    def at_bound_names(self):
+        """The parameters on a bound, as the program names them: lobe
+        parameters by their registry names ("F0", "m"), then "d_r".."d_b"
+        (d_c = 0) and "s_r".."s_b" (s_c = 0)."""
+        bits = int(self.at_bound)
+        names = [p.name for k, p in enumerate(self.model.params) if bits & (AtBound.P0 << k)]
+        for first, letter in ((AtBound.D_R, "d"), (AtBound.S_R, "s")):
+            names += [f"{letter}_{c}" for k, c in enumerate("rgb") if bits & (first << k)]
+        return names
 
 
 _OPTION_FIELDS = tuple(f[0] for f in _abi.FitOptions._fields_ if f[0] != "size")
@@ -170,8 +192,8 @@ def fit(ctx, samples, model, **options):
         samples=r.samples,
         backend=_BACKEND_NAMES.get(r.backend, "unknown"),
         seconds_build=r.seconds_build,
-        at_bound=r.at_bound,
-        flags=r.flags,
+        at_bound=AtBound(r.at_bound),
+        flags=FitFlag(r.flags),
     )
 
 

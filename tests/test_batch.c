@@ -34,23 +34,7 @@ static const char *cli(void)
 
 static char *slurp(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    size_t cap = 4096, n = 0, got;
-    char *buf = malloc(cap);
-    ck_assert_ptr_nonnull(buf);
-    while ((got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
-        n += got;
-        if (cap - n - 1 == 0) {
-            cap *= 2;
-            buf = realloc(buf, cap);
-            ck_assert_ptr_nonnull(buf);
-        }
-    }
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
+    return tu_slurp(path);
 }
 
 static int exists(const char *path)
@@ -59,27 +43,12 @@ static int exists(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
 }
 
-typedef struct run_out {
-    int status; /* exit status; 128 + signal when killed */
-    char *err;  /* stderr */
-    char *out;
-} run_out;
+typedef tu_run_out run_out;
 
 /* Run `sh -c "PREFIX brdffit ARGS"` (env settings or ulimit in prefix). */
 static run_out run_with(const char *prefix, const char *args)
 {
-    char out[512], err[512], cmd[16384];
-    ck_assert_ptr_nonnull(tu_tmpfile(out, sizeof out));
-    ck_assert_ptr_nonnull(tu_tmpfile(err, sizeof err));
-    snprintf(cmd, sizeof cmd, "%s '%s' %s >'%s' 2>'%s' </dev/null", prefix, cli(), args, out, err);
-    int rc = system(cmd);
-    run_out r;
-    r.status = rc == -1 ? -1 : WIFEXITED(rc) ? WEXITSTATUS(rc) : 128 + WTERMSIG(rc);
-    r.out = slurp(out);
-    r.err = slurp(err);
-    unlink(out);
-    unlink(err);
-    return r;
+    return tu_run_cli(prefix, args);
 }
 
 static run_out run(const char *args)
@@ -89,8 +58,7 @@ static run_out run(const char *args)
 
 static void run_free(run_out *r)
 {
-    free(r->out);
-    free(r->err);
+    tu_run_free(r);
 }
 
 #define expect_status(r, want, what)                                                         \

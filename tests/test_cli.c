@@ -16,60 +16,17 @@
 
 /* ------------------------------------------------------------------ running the program */
 
-static const char *cli(void)
-{
-    const char *p = getenv("BRDFFIT_CLI");
-    return p && *p ? p : "./build/brdffit";
-}
-
-typedef struct run_out {
-    int status; /* exit status, or -1 when the program did not exit normally */
-    char *out;  /* stdout, NUL-terminated */
-    char *err;  /* stderr */
-} run_out;
-
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    ck_assert_msg(f != NULL, "cannot open %s", path);
-    size_t cap = 4096, n = 0;
-    char *buf = malloc(cap);
-    ck_assert_ptr_nonnull(buf);
-    size_t got;
-    while ((got = fread(buf + n, 1, cap - n - 1, f)) > 0) {
-        n += got;
-        if (cap - n - 1 == 0) {
-            cap *= 2;
-            buf = realloc(buf, cap);
-            ck_assert_ptr_nonnull(buf);
-        }
-    }
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
-}
+typedef tu_run_out run_out;
 
 /* Run `brdffit ARGS` (args are already shell-quoted where needed). */
 static run_out run(const char *args)
 {
-    char out[512], err[512], cmd[8192];
-    ck_assert_ptr_nonnull(tu_tmpfile(out, sizeof out));
-    ck_assert_ptr_nonnull(tu_tmpfile(err, sizeof err));
-    snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>'%s' </dev/null", cli(), args, out, err);
-    int rc = system(cmd);
-    run_out r;
-    r.status = (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    unlink(out);
-    unlink(err);
-    return r;
+    return tu_run_cli("", args);
 }
 
 static void run_free(run_out *r)
 {
-    free(r->out);
-    free(r->err);
+    tu_run_free(r);
 }
 
 #define expect_status(r, want, args)                                                          \

@@ -14,17 +14,9 @@
 
 static char *slurp_file(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    ck_assert_ptr_nonnull(f);
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    rewind(f);
-    char *buf = malloc((size_t)n + 1);
-    ck_assert_ptr_nonnull(buf);
-    ck_assert_int_eq(fread(buf, 1, (size_t)n, f), (size_t)n);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
+    char *s = tu_slurp(path);
+    ck_assert_msg(s != NULL, "cannot read %s", path);
+    return s;
 }
 
 START_TEST(svg_parses_and_escapes)

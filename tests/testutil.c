@@ -315,7 +315,7 @@ int tu_in_child(void (*fn)(void *arg, void *out, size_t len), void *arg, void *o
     return got == len ? 0 : 121;
 }
 
-static char *slurp(const char *path)
+char *tu_slurp(const char *path)
 {
     FILE *f = fopen(path, "rb");
     size_t cap = 4096, n = 0;
@@ -357,9 +357,9 @@ tu_run_out tu_run_cli(const char *env, const char *args)
              args, out, err);
     int rc = system(cmd);
     free(cmd);
-    r.status = (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
+    r.status = rc == -1 ? -1 : WIFEXITED(rc) ? WEXITSTATUS(rc) : 128 + WTERMSIG(rc);
+    r.out = tu_slurp(out);
+    r.err = tu_slurp(err);
     unlink(out);
     unlink(err);
     return r;

@@ -73,7 +73,7 @@ int tu_in_child(void (*fn)(void *arg, void *out, size_t len), void *arg, void *o
 
 /* What a run of the brdffit program left. */
 typedef struct tu_run_out {
-    int status; /* exit status, or -1 when it did not exit normally */
+    int status; /* exit status; 128 + signal when killed; -1 when it could not run */
     char *out;  /* stdout, NUL-terminated (free with tu_run_free) */
     char *err;  /* stderr */
 } tu_run_out;
@@ -82,6 +82,9 @@ typedef struct tu_run_out {
  * already quoted), stdin from /dev/null. */
 tu_run_out tu_run_cli(const char *env, const char *args);
 void tu_run_free(tu_run_out *r);
+
+/* The whole of a file, NUL-terminated (free it), or NULL when it cannot be read. */
+char *tu_slurp(const char *path);
 
 /* Every lobe parameter of a model at the registry's start value (unused 0). */
 void tu_start_params(brdffit_model model, double p[BRDFFIT_MAX_LOBE_PARAMS]);

@@ -1,10 +1,28 @@
 # SPDX-License-Identifier: MIT
 """NumPy arrays in and out of the C calls: (..., 3) direction pairs, no copy
-when the caller's arrays are already float64 and C-contiguous."""
+when the caller's arrays are already float64 and C-contiguous; C ints."""
+
+import operator
 
 import numpy as np
 
 from .errors import InvalidArgumentError, Status
+
+
+_INT_MIN, _INT_MAX = -(2 ** 31), 2 ** 31 - 1
+
+
+def c_int(name, value):
+    """value as a Python int that a C int holds (InvalidArgumentError otherwise:
+    ctypes would silently wrap it)."""
+    try:
+        v = operator.index(value)
+    except TypeError:
+        raise InvalidArgumentError(Status.INVALID_ARGUMENT,
+                                   f"{name}: {value!r} is not an integer") from None
+    if not _INT_MIN <= v <= _INT_MAX:
+        raise InvalidArgumentError(Status.INVALID_ARGUMENT, f"{name}: {v} is out of range")
+    return v
 
 
 class Handle:

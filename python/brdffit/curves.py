@@ -14,9 +14,9 @@ import ctypes
 import numpy as np
 
 from . import _abi, _lib
+from ._arrays import c_int
 from ._source import shading_source
 from .errors import InvalidArgumentError, Status
-from .render import c_int
 from .table import interp_id, scale_id
 
 _BAD = Status.INVALID_ARGUMENT

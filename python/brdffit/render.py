@@ -10,13 +10,13 @@ lights' irradiance per steradian; A the coverage (0 off the sphere, 1 on it,
 COVERAGE_MASKED where a table lookup met a masked bin)."""
 
 import ctypes
-import operator
 from dataclasses import dataclass
 from typing import Tuple
 
 import numpy as np
 
 from . import _abi, _lib
+from ._arrays import c_int
 from ._source import shading_source
 from .errors import InvalidArgumentError, NoSamplesError, Status
 from .models import _vector3
@@ -24,7 +24,6 @@ from .table import interp_id, scale_id
 
 _BAD = Status.INVALID_ARGUMENT
 COVERAGE_MASKED = _abi.COVERAGE_MASKED
-_INT_MIN, _INT_MAX = -(2 ** 31), 2 ** 31 - 1
 
 
 @dataclass(frozen=True)
@@ -43,17 +42,6 @@ def default_lights():
     buf = (_abi.Light * 2)()
     n = _lib.cdll().brdffit_render_default_lights(buf)
     return [Light(tuple(buf[k].dir), tuple(buf[k].rgb)) for k in range(n)]
-
-
-def c_int(name, value):
-    """value as a Python int that a C int holds (InvalidArgumentError otherwise)."""
-    try:
-        v = operator.index(value)
-    except TypeError:
-        raise InvalidArgumentError(_BAD, f"{name}: {value!r} is not an integer") from None
-    if not _INT_MIN <= v <= _INT_MAX:
-        raise InvalidArgumentError(_BAD, f"{name}: {v} is out of range")
-    return v
 
 
 def _set_lights(opt, lights):
@@ -86,10 +74,10 @@ def _set_lights(opt, lights):
 
 def _set_env(opt, env, env_samples):
     """Point opt at env's rows (float32, rows of contiguous RGB texels, any
-    row stride; other arrays are copied so); returns the array to keep alive."""
+    row stride; other arrays are copied so), kept alive as long as opt."""
     opt.env_samples = c_int("env_samples", env_samples)
     if env is None:
-        return None
+        return
     try:
         arr = np.asarray(env)
     except (TypeError, ValueError):
@@ -103,9 +91,9 @@ def _set_env(opt, env, env_samples):
     if not rows_ok:
         arr = np.ascontiguousarray(arr, dtype=np.float32)
     opt.env = arr.ctypes.data
+    opt.env_array = arr  # what opt.env points into
     opt.env_width, opt.env_height = w, h
     opt.env_stride = arr.strides[0] // 4 if h > 1 else 3 * w
-    return arr
 
 
 def _image_out(out, n):
@@ -143,7 +131,7 @@ def render(source, params=None, *, size=256, lights=None, env=None, env_samples=
     n = c_int("size", size)
     opt.width = n
     _set_lights(opt, lights)
-    keep = _set_env(opt, env, env_samples)
+    _set_env(opt, env, env_samples)
     opt.interp = interp_id(interp)
     opt.scale = scale_id(scale)
     opt.threads = c_int("threads", threads)
@@ -156,7 +144,6 @@ def render(source, params=None, *, size=256, lights=None, env=None, env_samples=
         _lib.call("brdffit_render_table", table._h.ptr, ctypes.byref(opt), addr, stride)
     else:
         _lib.call("brdffit_render_model", m.id, ctypes.byref(cp), ctypes.byref(opt), addr, stride)
-    del keep
     if rgba is None:
         raise InvalidArgumentError(_BAD, f"render: size {n}")
     return rgba

@@ -54,6 +54,11 @@
 #define BF_HE_U_FLAT 6.0     /* u >= 6: erfc(u) and e^(-u^2) taken as 0 */
 #define BF_HE_R_LIN 1e-9     /* r <= 1e-9: x = r                    */
 #define BF_HE_LN_SQRT_2PI 0.91893853320467274178
+/* ln 18, ln 19, ln 400 (BF_HE_G_LO, BF_HE_G_HI, BF_HE_MMAX), correctly rounded:
+ * written out, as the kernel compiler does not fold log() of a constant */
+#define BF_HE_LN_G_LO 2.8903717578961645
+#define BF_HE_LN_G_HI 2.9444389791664403
+#define BF_HE_LN_MMAX 5.991464547107982
 
 /* bf_he_lkk[k] = ln(k k!) for k = 1..BF_HE_MMAX, correctly rounded (so that
  * a term of the series costs one exp and no log). */
@@ -267,7 +272,7 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
                              BF_REAL act, int deriv, BF_REAL *vg, BF_REAL *va, BF_REAL *lpko,
                              BF_REAL *sumo)
 {
-    const double mmax = (double)BF_HE_MMAX, lnmmax = log(mmax);
+    const double mmax = (double)BF_HE_MMAX, lnmmax = BF_HE_LN_MMAX;
     if (deriv) {
         *vg = BF_R(0.0);
         *va = BF_R(0.0);
@@ -369,7 +374,7 @@ BF_FN BF_REAL bf_he_blend_t(BF_REAL g)
 
 BF_FN BF_REAL bf_he_limit(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL lk)
 {
-    return exp(lk - a / fmax(g, BF_HE_G_LO) - fmax(lng, BF_R(log(BF_HE_G_LO))));
+    return exp(lk - a / fmax(g, BF_HE_G_LO) - fmax(lng, BF_R(BF_HE_LN_G_LO)));
 }
 
 BF_FN BF_REAL bf_he_blend(BF_REAL t, BF_REAL ser, BF_REAL lim)
@@ -398,7 +403,37 @@ BF_FN BF_REAL bf_he_blend(BF_REAL t, BF_REAL ser, BF_REAL lim)
 #define BF_HE_FD_MARGIN 1.001
 #define BF_HE_MEMO_TOL 1e-12
 
+/* The logs of the constants of a pass's point that bf_he_fd_base and
+ * bf_he_fd_channel use (scalar logs cost as much as the vector work of a
+ * sample vector): made for (tau, lam[0..2]) = key, once per run of a pass
+ * through the memo (key[0] = 0: not made yet; tau >= 1). */
+typedef struct bf_he_pconst {
+    double key[4];
+    double lkl2[3], lkt2[3], l4kt2[3]; /* ln (2 pi / lam)^2, ln kt^2, ln 4 kt^2, kt = pi tau / (2 lam) */
+    double ltau16;                     /* ln (tau^2 / 16)                     */
+} bf_he_pconst;
+
+BF_FN void bf_he_pconst_make(double tau, const double *lam, bf_he_pconst *pc)
+{
+    pc->key[0] = tau;
+    for (int ch = 0; ch < 3; ch++) {
+        double kl = 2.0 * BF_PI / lam[ch];
+        double kt = BF_PI * tau / (2.0 * lam[ch]);
+        pc->key[1 + ch] = lam[ch];
+        pc->lkl2[ch] = log(kl * kl);
+        pc->lkt2[ch] = log(kt * kt);
+        pc->l4kt2[ch] = log(4.0 * (kt * kt));
+    }
+    pc->ltau16 = log(tau * tau / 16.0);
+}
+
+BF_FN int bf_he_pconst_for(const bf_he_pconst *pc, double tau, const double *lam)
+{
+    return pc->key[0] == tau && pc->key[1] == lam[0] && pc->key[2] == lam[1] && pc->key[3] == lam[2];
+}
+
 typedef struct bf_he_memo {
+    bf_he_pconst pc;            /* the point's constants (see above)        */
     double g[3], a[3];          /* the (clamped) g and a of the stored lane */
     double ok[3];               /* 1: a lane is stored (active, peak found) */
     double lpk[3], sum[3];      /* its series e^lpk sum (sum 0: dead)       */
@@ -408,6 +443,10 @@ typedef struct bf_he_memo {
 
 BF_FN void bf_he_memo_clear(bf_he_memo *m)
 {
+    for (int c = 0; c < 3; c++) {
+        m->pc.key[1 + c] = m->pc.lkl2[c] = m->pc.lkt2[c] = m->pc.l4kt2[c] = 0.0;
+    }
+    m->pc.key[0] = m->pc.ltau16 = 0.0;
     for (int c = 0; c < 3; c++) {
         m->g[c] = m->a[c] = m->ok[c] = 0.0;
         m->lpk[c] = m->sum[c] = m->vg[c] = m->va[c] = 0.0;
@@ -487,7 +526,7 @@ BF_FN BF_REAL bf_he_dblend(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REA
 {
     BF_REAL t = bf_he_blend_t(g);
     BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), g < BF_HE_G_HI * margin);
-    *V = bf_he_series_memo(fmin(g, BF_HE_G_HI), fmin(lng, BF_R(log(BF_HE_G_HI))), a, la, lk, act,
+    *V = bf_he_series_memo(fmin(g, BF_HE_G_HI), fmin(lng, BF_R(BF_HE_LN_G_HI)), a, la, lk, act,
                            deriv, memo, ch, vg, va);
     return bf_he_blend(t, *V, lim);
 }
@@ -650,7 +689,8 @@ typedef struct bf_he_base {
 
 /* The direction pair, the shadowing and sigma (with their partials), F and
  * the rough limit shared by the channels, at p0 = (tau, sigma0, n). */
-BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam, bf_he_base *b)
+BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam,
+                         const bf_he_pconst *pc, bf_he_base *b)
 {
     const double tau = p0[0], sigma0 = p0[1], n = p0[2];
     bf_he_dir_make(g, &b->d);
@@ -673,19 +713,20 @@ BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam, 
     b->lim0 = BF_R(0.0);
     if (BF_ANY(b->klmax2 * (b->sv * b->sv) > BF_HE_G_LO / BF_HE_FD_MARGIN)) {
         b->q0 = (0.25 * tau * tau) * b->d.vxy2 / (b->sv * b->sv);
-        b->lim0 = exp(fmin(b->lc - b->q0 - b->lsv2 + log(tau * tau / 16.0), BF_R(700.0)));
+        b->lim0 = exp(fmin(b->lc - b->q0 - b->lsv2 + pc->ltau16, BF_R(700.0)));
     }
 }
 
 /* K(p0) of channel ch (wavelength lam um): bf_he's operations, with the
  * partials of the series and what the neighbours need kept in b. */
-BF_FN BF_REAL bf_he_fd_channel(bf_he_base *b, double tau, double lam, int ch, bf_he_memo *memo)
+BF_FN BF_REAL bf_he_fd_channel(bf_he_base *b, double tau, double lam, int ch,
+                               const bf_he_pconst *pc, bf_he_memo *memo)
 {
     double kl = 2.0 * BF_PI / lam;
     double kt = BF_PI * tau / (2.0 * lam);
     double kl2 = kl * kl, kt2 = kt * kt;
-    BF_REAL gg = kl2 * (b->sv * b->sv), lng = log(kl2) + b->lsv2, lk = b->lc + log(kt2);
-    BF_REAL aa = (4.0 * kt2) * b->d.vxy2, la = log(4.0 * kt2) + b->d.lvxy2;
+    BF_REAL gg = kl2 * (b->sv * b->sv), lng = pc->lkl2[ch] + b->lsv2, lk = b->lc + pc->lkt2[ch];
+    BF_REAL aa = (4.0 * kt2) * b->d.vxy2, la = pc->l4kt2[ch] + b->d.lvxy2;
     BF_REAL lim = BF_R(0.0);
     b->gl[ch] = fmax(gg, BF_HE_G_LO);
     b->agl[ch] = BF_R(0.0);
@@ -793,10 +834,13 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
 BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                     BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {
+    bf_he_pconst own, *pc = memo ? &memo->pc : &own;
+    if (!memo || !bf_he_pconst_for(pc, p[0][0], lam))
+        bf_he_pconst_make(p[0][0], lam, pc);
     bf_he_base b;
-    bf_he_fd_base(g, p[0], lam, &b);
+    bf_he_fd_base(g, p[0], lam, pc, &b);
     for (int ch = 0; ch < 3; ch++)
-        K0[ch] = bf_he_fd_channel(&b, p[0][0], lam[ch], ch, memo);
+        K0[ch] = bf_he_fd_channel(&b, p[0][0], lam[ch], ch, pc, memo);
     for (int j = 0; j < np; j++)
         bf_he_fd_neighbour(&b, p[0], p[1 + j], lam, Kj[j]);
 }

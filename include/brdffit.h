@@ -67,6 +67,26 @@
  *   lights, environment map, coverage and image-error conventions are at
  *   brdffit_render_options below, the curves' directions at
  *   brdffit_curve_options.
+ *
+ * ABI CONVENTIONS
+ *
+ *   Sized options.  Every options struct (brdffit_sample_options,
+ *   brdffit_context_options, brdffit_fit_options, brdffit_render_options,
+ *   brdffit_curve_options) starts with `size_t size`, which its _default()
+ *   function sets to sizeof the struct as the CALLER was compiled; members
+ *   are only ever appended, and no options struct ends in padding (tested),
+ *   so a member appended later never lies inside an older caller's struct.
+ *   The library reads the members that lie wholly within `size` and gives
+ *   every other member its default: a caller compiled against an older
+ *   header (a smaller struct, the same first members) keeps working.  It
+ *   refuses, with BRDFFIT_E_OPTIONS_SIZE and a message naming the struct and
+ *   the sizes: size 0 (the struct was not set by _default()), a size smaller
+ *   than the `size` member itself, one that ends inside a member, and one
+ *   larger than this library's struct (a caller built against a newer
+ *   header).  Every member has a default, so the smallest struct is `size`
+ *   alone.  A NULL options pointer means all the defaults.  A struct the
+ *   library fills (brdffit_samples_options) gets the members within its size.
+ *   Mirrors (FFI) check their layout with brdffit_struct_size/_offset.
  */
 #ifndef BRDFFIT_H
 #define BRDFFIT_H
@@ -117,7 +137,8 @@ typedef enum brdffit_status {
     BRDFFIT_E_CACHE_DIR = 19,    /* PoCL's kernel cache directory is unusable (which, why) */
     BRDFFIT_E_TOO_FEW_SAMPLES = 20, /* fewer distinct sample geometries than the model's unknowns */
     BRDFFIT_E_VALUE_RANGE = 21,  /* a finite stored value too large to fit (bin, value named) */
-    BRDFFIT_STATUS_COUNT = 22       /* one more than the last status */
+    BRDFFIT_E_OPTIONS_SIZE = 22, /* an options struct's `size` the library cannot take (ABI CONVENTIONS) */
+    BRDFFIT_STATUS_COUNT = 23       /* one more than the last status */
 } brdffit_status;
 
 /* A fixed text for each status; never NULL. */
@@ -297,8 +318,9 @@ brdffit_status brdffit_table_lookup_batch(const brdffit_table *table, size_t n,
 /* ------------------------------------------------------------------ sample sets */
 
 typedef struct brdffit_sample_options {
-    double cutoff_deg;     /* theta_i, theta_o <= cutoff; default 80      */
+    size_t size;           /* sizeof(brdffit_sample_options), set by _default() */
     brdffit_scale scale;   /* default BRDFFIT_SCALE_STANDARD              */
+    double cutoff_deg;     /* theta_i, theta_o <= cutoff; default 80      */
 } brdffit_sample_options;
 
 void brdffit_sample_options_default(brdffit_sample_options *opt);
@@ -325,7 +347,11 @@ size_t brdffit_samples_masked(const brdffit_samples *samples);
 size_t brdffit_samples_beyond_cutoff(const brdffit_samples *samples);
 brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
                                    brdffit_sample *out);
-void brdffit_samples_options(const brdffit_samples *samples, brdffit_sample_options *out);
+/* The options the set was made with (samples NULL: the defaults), into out:
+ * out->size as set by brdffit_sample_options_default (the members within it
+ * are written). */
+brdffit_status brdffit_samples_options(const brdffit_samples *samples,
+                                       brdffit_sample_options *out, brdffit_error *err);
 
 /* ------------------------------------------------------------------ fitting */
 
@@ -336,6 +362,7 @@ typedef enum brdffit_backend {
 } brdffit_backend;
 
 typedef struct brdffit_context_options {
+    size_t size;                /* sizeof(brdffit_context_options), set by _default() */
     brdffit_backend backend;    /* default AUTO                                 */
     const char *device;         /* "PLATFORM:DEVICE" by index or name substring;
                                    NULL: $BRDFFIT_DEVICE, else the first PoCL CPU
@@ -397,6 +424,7 @@ brdffit_status brdffit_context_prepare(brdffit_context *ctx, brdffit_model model
 double brdffit_context_build_seconds(const brdffit_context *ctx, brdffit_model model);
 
 typedef struct brdffit_fit_options {
+    size_t size;         /* sizeof(brdffit_fit_options), set by _default()  */
     int starts;          /* starting points screened; 0 (default): the model's
                             default_starts (brdffit_model_info)             */
     int refine;          /* best starts refined by LM; default 1             */
@@ -620,8 +648,8 @@ brdffit_status brdffit_image_error(const float *ref, const float *img, int width
 typedef struct brdffit_curve_options {
     size_t size;            /* sizeof(brdffit_curve_options), set by _default()   */
     int ntheta_i;           /* 1..16; default 4                                     */
-    double theta_i_deg[BRDFFIT_CURVE_MAX_THETA_I]; /* each in [0, 90); default 20, 40, 60, 75 */
     int npoints;            /* theta_o samples, 2..100000; default 180 (1 deg apart) */
+    double theta_i_deg[BRDFFIT_CURVE_MAX_THETA_I]; /* each in [0, 90); default 20, 40, 60, 75 */
     brdffit_interp interp;  /* table lookup; default BRDFFIT_INTERP_TRILINEAR      */
     brdffit_scale scale;    /* table channel scale; default BRDFFIT_SCALE_STANDARD */
 } brdffit_curve_options;

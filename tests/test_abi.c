@@ -25,6 +25,7 @@ START_TEST(struct_sizes)
                       sizeof(brdffit_render_options));
     ck_assert_uint_eq(brdffit_struct_size(BRDFFIT_STRUCT_CURVE_OPTIONS),
                       sizeof(brdffit_curve_options));
+    ck_assert_uint_eq(brdffit_struct_size((brdffit_struct_kind)12), 0);
     ck_assert_uint_eq(brdffit_struct_size((brdffit_struct_kind)999), 0);
     ck_assert_uint_eq(brdffit_struct_size((brdffit_struct_kind)-1), 0);
 }

@@ -384,7 +384,8 @@ START_TEST(abi_values)
     ck_assert_int_eq(BRDFFIT_E_FILE_NONFINITE, 10);
     ck_assert_int_eq(BRDFFIT_E_FIT_FAILED, 18);
     ck_assert_int_eq(BRDFFIT_E_VALUE_RANGE, 21);
-    ck_assert_int_eq(BRDFFIT_STATUS_COUNT, 22);
+    ck_assert_int_eq(BRDFFIT_E_OPTIONS_SIZE, 22);
+    ck_assert_int_eq(BRDFFIT_STATUS_COUNT, 23);
 }
 END_TEST
 

@@ -306,11 +306,11 @@ START_TEST(render_rejects_bad_options)
     brdffit_render_options b = o;
     b.size = 0;
     ck_assert_int_eq(brdffit_render_model(BRDFFIT_COOK_TORRANCE, &p, &b, img, 0, &err),
-                     BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_ptr_nonnull(strstr(err.message, "size"));
+                     BRDFFIT_E_OPTIONS_SIZE);
+    ck_assert_ptr_nonnull(strstr(err.message, "brdffit_render_options: size 0"));
     b.size = sizeof b + 8;
     ck_assert_int_eq(brdffit_render_model(BRDFFIT_COOK_TORRANCE, &p, &b, img, 0, NULL),
-                     BRDFFIT_E_INVALID_ARGUMENT);
+                     BRDFFIT_E_OPTIONS_SIZE);
     b = o;
     b.nlights = 1;
     b.lights[0].dir[0] = NAN;
@@ -444,7 +444,7 @@ START_TEST(curves_equal_eval_and_lookup)
     ck_assert_int_eq(brdffit_curve_model(BRDFFIT_COOK_TORRANCE, &p, &o, m, 10, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
     o.size = 0;
-    ck_assert_int_eq(brdffit_curve_table(t, &o, r, 0, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_curve_table(t, &o, r, 0, NULL), BRDFFIT_E_OPTIONS_SIZE);
     free(m);
     free(r);
     brdffit_table_free(t);

@@ -720,10 +720,15 @@ START_TEST(test_null_arguments)
     ck_assert_uint_eq(brdffit_samples_count(NULL), 0);
     ck_assert_uint_eq(brdffit_samples_masked(NULL), 0);
     ck_assert_uint_eq(brdffit_samples_beyond_cutoff(NULL), 0);
-    brdffit_sample_options o = { 0, BRDFFIT_SCALE_FLAT };
-    brdffit_samples_options(NULL, &o);
+    brdffit_sample_options o;
+    brdffit_sample_options_default(&o);
+    o.cutoff_deg = 0;
+    o.scale = BRDFFIT_SCALE_FLAT;
+    ck_assert_int_eq(brdffit_samples_options(NULL, &o, &e), BRDFFIT_OK);
     ck_assert_double_eq(o.cutoff_deg, 80.0);
     ck_assert_int_eq(o.scale, BRDFFIT_SCALE_STANDARD);
+    ck_assert_int_eq(brdffit_samples_options(NULL, NULL, &e), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_ptr_nonnull(strstr(e.message, "out is NULL"));
     brdffit_sample_options_default(NULL);
     ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_FLAT, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_scale_from_name(NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
@@ -769,7 +774,7 @@ START_TEST(test_scales)
     o.scale = BRDFFIT_SCALE_FLAT;
     ck_assert_int_eq(brdffit_samples_create(t, &o, &sf, NULL), BRDFFIT_OK);
     ck_assert_uint_eq(brdffit_samples_count(ss), brdffit_samples_count(sf));
-    brdffit_samples_options(sf, &o);
+    ck_assert_int_eq(brdffit_samples_options(sf, &o, NULL), BRDFFIT_OK);
     ck_assert_int_eq(o.scale, BRDFFIT_SCALE_FLAT);
     double fs[3], ff[3];
     brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, fs);
@@ -851,7 +856,8 @@ START_TEST(test_sample_options)
     ck_assert_uint_eq(brdffit_samples_masked(s), 0);
     ck_assert_uint_eq(brdffit_samples_beyond_cutoff(s), NB - above);
     brdffit_sample_options got;
-    brdffit_samples_options(s, &got);
+    brdffit_sample_options_default(&got);
+    ck_assert_int_eq(brdffit_samples_options(s, &got, &e), BRDFFIT_OK);
     ck_assert_double_eq(got.cutoff_deg, 90.0);
     size_t n90 = brdffit_samples_count(s);
     brdffit_samples_free(s);

@@ -5,7 +5,9 @@ Every ctypes struct here mirrors one struct of include/brdffit.h member by
 member.  At load time brdffit._lib compares each mirror's size and every
 member's offset with what the library reports (brdffit_struct_size and
 brdffit_struct_offset) and refuses the library on any difference, so a
-mirror that drifted from the header is an error, never garbage.
+mirror that drifted from the header is an error, never garbage.  The
+options structs start with ``size``, which their brdffit_*_options_default()
+sets: the library reads the members within it.
 """
 
 import ctypes as C
@@ -60,7 +62,7 @@ class Params(C.Structure):
 
 
 class SampleOptions(C.Structure):
-    _fields_ = [("cutoff_deg", C.c_double), ("scale", c_enum)]
+    _fields_ = [("size", C.c_size_t), ("scale", c_enum), ("cutoff_deg", C.c_double)]
 
 
 class Sample(C.Structure):
@@ -76,11 +78,12 @@ class Sample(C.Structure):
 
 
 class ContextOptions(C.Structure):
-    _fields_ = [("backend", c_enum), ("device", C.c_char_p)]
+    _fields_ = [("size", C.c_size_t), ("backend", c_enum), ("device", C.c_char_p)]
 
 
 class FitOptions(C.Structure):
     _fields_ = [
+        ("size", C.c_size_t),
         ("starts", C.c_int),
         ("refine", C.c_int),
         ("ftol", C.c_double),
@@ -135,8 +138,8 @@ class CurveOptions(C.Structure):
     _fields_ = [
         ("size", C.c_size_t),
         ("ntheta_i", C.c_int),
-        ("theta_i_deg", C.c_double * CURVE_MAX_THETA_I),
         ("npoints", C.c_int),
+        ("theta_i_deg", C.c_double * CURVE_MAX_THETA_I),
         ("interp", c_enum),
         ("scale", c_enum),
     ]
@@ -213,7 +216,7 @@ FUNCTIONS = {
     "brdffit_samples_masked": (C.c_size_t, [_P]),
     "brdffit_samples_beyond_cutoff": (C.c_size_t, [_P]),
     "brdffit_samples_get": (_status, [_P, C.c_size_t, C.POINTER(Sample)]),
-    "brdffit_samples_options": (None, [_P, C.POINTER(SampleOptions)]),
+    "brdffit_samples_options": (_status, [_P, C.POINTER(SampleOptions), _err]),
     # contexts and fits
     "brdffit_context_options_default": (None, [C.POINTER(ContextOptions)]),
     "brdffit_context_create": (_status, [C.POINTER(ContextOptions), C.POINTER(_P), _err]),

@@ -30,6 +30,7 @@ class Status(enum.IntEnum):
     CACHE_DIR = 19
     TOO_FEW_SAMPLES = 20
     VALUE_RANGE = 21
+    OPTIONS_SIZE = 22
 
 
 class BrdffitError(Exception):
@@ -145,6 +146,10 @@ class ValueRangeError(BrdffitError, ValueError):
     """A finite stored value above BRDFFIT_VALUE_MAX (bin and value in the message)."""
 
 
+class OptionsSizeError(BrdffitError, ValueError):
+    """An options struct of a size the library does not take (a mirror of another layout)."""
+
+
 _CLASSES = {
     Status.INVALID_ARGUMENT: InvalidArgumentError,
     Status.NO_MEMORY: OutOfMemoryError,
@@ -167,6 +172,7 @@ _CLASSES = {
     Status.CACHE_DIR: CacheDirError,
     Status.TOO_FEW_SAMPLES: TooFewSamplesError,
     Status.VALUE_RANGE: ValueRangeError,
+    Status.OPTIONS_SIZE: OptionsSizeError,
 }
 
 

@@ -63,7 +63,8 @@ class Samples:
 
     def _options(self):
         opt = _abi.SampleOptions()
-        _lib.cdll().brdffit_samples_options(self._h.ptr, ctypes.byref(opt))
+        _lib.cdll().brdffit_sample_options_default(ctypes.byref(opt))
+        _lib.call("brdffit_samples_options", self._h.ptr, ctypes.byref(opt))
         return opt
 
     @property

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* abi.c -- the layout of the public structs as compiled, for FFI mirrors. */
-#include "brdffit.h"
+/* abi.c -- the layout of the public structs as compiled: reported to FFI
+ * mirrors, and used to read a caller's sized options struct by its size. */
+#include "internal.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -9,10 +10,10 @@
 typedef struct abi_member {
     brdffit_struct_kind kind;
     const char *name;
-    size_t offset;
+    size_t offset, size;
 } abi_member;
 
-#define M(kind, type, member) { kind, #member, offsetof(type, member) }
+#define M(kind, type, member) { kind, #member, offsetof(type, member), sizeof(((type *)0)->member) }
 
 /* Every member of every public struct, in declaration order. */
 static const abi_member members[] = {
@@ -40,8 +41,9 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_PARAMS, brdffit_params, p),
     M(BRDFFIT_STRUCT_PARAMS, brdffit_params, lambda_um),
 
-    M(BRDFFIT_STRUCT_SAMPLE_OPTIONS, brdffit_sample_options, cutoff_deg),
+    M(BRDFFIT_STRUCT_SAMPLE_OPTIONS, brdffit_sample_options, size),
     M(BRDFFIT_STRUCT_SAMPLE_OPTIONS, brdffit_sample_options, scale),
+    M(BRDFFIT_STRUCT_SAMPLE_OPTIONS, brdffit_sample_options, cutoff_deg),
 
     M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, wi),
     M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, wo),
@@ -51,9 +53,11 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, j),
     M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, k),
 
+    M(BRDFFIT_STRUCT_CONTEXT_OPTIONS, brdffit_context_options, size),
     M(BRDFFIT_STRUCT_CONTEXT_OPTIONS, brdffit_context_options, backend),
     M(BRDFFIT_STRUCT_CONTEXT_OPTIONS, brdffit_context_options, device),
 
+    M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, size),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, starts),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, refine),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, ftol),
@@ -95,39 +99,126 @@ static const abi_member members[] = {
 
     M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, size),
     M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, ntheta_i),
-    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, theta_i_deg),
     M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, npoints),
+    M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, theta_i_deg),
     M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, interp),
     M(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options, scale),
 };
 
 #undef M
 
+typedef struct abi_struct {
+    const char *name;
+    size_t size;
+} abi_struct;
+
+#define S(kind, type) [kind] = { #type, sizeof(type) }
+
+/* Every public struct by kind. */
+static const abi_struct structs[] = {
+    S(BRDFFIT_STRUCT_ERROR, brdffit_error),
+    S(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info),
+    S(BRDFFIT_STRUCT_PARAMS, brdffit_params),
+    S(BRDFFIT_STRUCT_SAMPLE_OPTIONS, brdffit_sample_options),
+    S(BRDFFIT_STRUCT_SAMPLE, brdffit_sample),
+    S(BRDFFIT_STRUCT_CONTEXT_OPTIONS, brdffit_context_options),
+    S(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options),
+    S(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result),
+    S(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info),
+    S(BRDFFIT_STRUCT_LIGHT, brdffit_light),
+    S(BRDFFIT_STRUCT_RENDER_OPTIONS, brdffit_render_options),
+    S(BRDFFIT_STRUCT_CURVE_OPTIONS, brdffit_curve_options),
+};
+
+#undef S
+
+#define NSTRUCTS (sizeof structs / sizeof structs[0])
+#define NMEMBERS (sizeof members / sizeof members[0])
+
 size_t brdffit_struct_size(brdffit_struct_kind kind)
 {
-    switch (kind) {
-    case BRDFFIT_STRUCT_ERROR: return sizeof(brdffit_error);
-    case BRDFFIT_STRUCT_MODEL_INFO: return sizeof(brdffit_model_info);
-    case BRDFFIT_STRUCT_PARAMS: return sizeof(brdffit_params);
-    case BRDFFIT_STRUCT_SAMPLE_OPTIONS: return sizeof(brdffit_sample_options);
-    case BRDFFIT_STRUCT_SAMPLE: return sizeof(brdffit_sample);
-    case BRDFFIT_STRUCT_CONTEXT_OPTIONS: return sizeof(brdffit_context_options);
-    case BRDFFIT_STRUCT_FIT_OPTIONS: return sizeof(brdffit_fit_options);
-    case BRDFFIT_STRUCT_FIT_RESULT: return sizeof(brdffit_fit_result);
-    case BRDFFIT_STRUCT_PARAM_INFO: return sizeof(brdffit_param_info);
-    case BRDFFIT_STRUCT_LIGHT: return sizeof(brdffit_light);
-    case BRDFFIT_STRUCT_RENDER_OPTIONS: return sizeof(brdffit_render_options);
-    case BRDFFIT_STRUCT_CURVE_OPTIONS: return sizeof(brdffit_curve_options);
-    }
-    return 0;
+    return (size_t)kind < NSTRUCTS ? structs[kind].size : 0;
 }
 
 size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member)
 {
     if (!member)
         return SIZE_MAX;
-    for (size_t m = 0; m < sizeof members / sizeof members[0]; m++)
+    for (size_t m = 0; m < NMEMBERS; m++)
         if (members[m].kind == kind && strcmp(members[m].name, member) == 0)
             return members[m].offset;
     return SIZE_MAX;
+}
+
+size_t bf_struct_members_end(brdffit_struct_kind kind)
+{
+    size_t end = 0;
+    for (size_t m = 0; m < NMEMBERS; m++)
+        if (members[m].kind == kind && members[m].offset + members[m].size > end)
+            end = members[m].offset + members[m].size;
+    return end;
+}
+
+/* The size a caller's sized struct of `kind` (an options struct: `size` is
+ * its first member) claims, checked against this library's struct. */
+static brdffit_status options_size(brdffit_struct_kind kind, const void *opt, size_t *size,
+                                   brdffit_error *err)
+{
+    const abi_struct *s = &structs[kind];
+    memcpy(size, opt, sizeof *size);
+    if (*size == 0)
+        return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
+                       "%s: size 0 (set it with %s_default(): the struct's size as the "
+                       "caller was compiled; %zu bytes in this library)",
+                       s->name, s->name, s->size);
+    if (*size < sizeof *size)
+        return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
+                       "%s: size %zu is smaller than its `size` member (%zu bytes)", s->name,
+                       *size, sizeof *size);
+    if (*size > s->size)
+        return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
+                       "%s: size %zu is larger than this library's struct (%zu bytes): the "
+                       "caller was compiled against a newer brdffit.h than this library %s",
+                       s->name, *size, s->size, brdffit_version());
+    for (size_t m = 0; m < NMEMBERS; m++) {
+        const abi_member *a = &members[m];
+        if (a->kind == kind && *size > a->offset && *size < a->offset + a->size)
+            return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
+                           "%s: size %zu ends inside member '%s' (bytes %zu..%zu): not the size "
+                           "of a struct of whole members",
+                           s->name, *size, a->name, a->offset, a->offset + a->size);
+    }
+    return BRDFFIT_OK;
+}
+
+/* The members of `kind` but `size` that lie wholly within the first n bytes, src to dst. */
+static void copy_members(brdffit_struct_kind kind, void *dst, const void *src, size_t n)
+{
+    for (size_t m = 0; m < NMEMBERS; m++) {
+        const abi_member *a = &members[m];
+        if (a->kind == kind && a->offset > 0 && a->offset + a->size <= n)
+            memcpy((char *)dst + a->offset, (const char *)src + a->offset, a->size);
+    }
+}
+
+brdffit_status bf_options_read(brdffit_struct_kind kind, const void *opt, void *out,
+                               brdffit_error *err)
+{
+    if (!opt)
+        return BRDFFIT_OK;
+    size_t size;
+    brdffit_status st = options_size(kind, opt, &size, err);
+    if (st == BRDFFIT_OK)
+        copy_members(kind, out, opt, size);
+    return st;
+}
+
+brdffit_status bf_options_write(brdffit_struct_kind kind, const void *src, void *out,
+                                brdffit_error *err)
+{
+    size_t size;
+    brdffit_status st = options_size(kind, out, &size, err);
+    if (st == BRDFFIT_OK)
+        copy_members(kind, out, src, size);
+    return st;
 }

@@ -28,6 +28,8 @@ void brdffit_context_options_default(brdffit_context_options *opt)
 {
     if (!opt)
         return;
+    memset(opt, 0, sizeof *opt);
+    opt->size = sizeof *opt;
     opt->backend = BRDFFIT_BACKEND_AUTO;
     opt->device = NULL;
 }
@@ -274,8 +276,9 @@ brdffit_status brdffit_context_create(const brdffit_context_options *opt, brdffi
     *out = NULL;
     brdffit_context_options o;
     brdffit_context_options_default(&o);
-    if (opt)
-        o = *opt;
+    brdffit_status ost = bf_options_read(BRDFFIT_STRUCT_CONTEXT_OPTIONS, opt, &o, err);
+    if (ost != BRDFFIT_OK)
+        return ost;
     if (o.backend != BRDFFIT_BACKEND_AUTO && o.backend != BRDFFIT_BACKEND_OPENCL &&
         o.backend != BRDFFIT_BACKEND_HOST)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "unknown backend %d", (int)o.backend);

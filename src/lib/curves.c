@@ -32,15 +32,9 @@ static brdffit_status read_options(const brdffit_curve_options *opt, brdffit_cur
                                    brdffit_error *err)
 {
     brdffit_curve_options_default(o);
-    if (opt) {
-        if (opt->size == 0 || opt->size > sizeof *o)
-            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
-                           "curve options: size %zu (expected 1..%zu: set it with "
-                           "brdffit_curve_options_default)",
-                           opt->size, sizeof *o);
-        memcpy(o, opt, opt->size);
-        o->size = sizeof *o;
-    }
+    brdffit_status st = bf_options_read(BRDFFIT_STRUCT_CURVE_OPTIONS, opt, o, err);
+    if (st != BRDFFIT_OK)
+        return st;
     if (o->ntheta_i < 1 || o->ntheta_i > BRDFFIT_CURVE_MAX_THETA_I)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "curves: ntheta_i = %d (1..%d)",
                        o->ntheta_i, BRDFFIT_CURVE_MAX_THETA_I);

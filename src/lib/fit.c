@@ -308,6 +308,7 @@ void brdffit_fit_options_default(brdffit_fit_options *opt)
     if (!opt)
         return;
     memset(opt, 0, sizeof *opt);
+    opt->size = sizeof *opt;
     opt->starts = 0; /* the model's default_starts */
     opt->refine = 1;
     opt->ftol = 1e-8;
@@ -577,9 +578,10 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
     brdffit_fit_options o;
     brdffit_fit_options_default(&o);
-    if (opt)
-        o = *opt;
-    brdffit_status st = check_fit_options(&o, err);
+    brdffit_status st = bf_options_read(BRDFFIT_STRUCT_FIT_OPTIONS, opt, &o, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    st = check_fit_options(&o, err);
     if (st != BRDFFIT_OK)
         return st;
     st = check_enough_samples(samples, model, err);

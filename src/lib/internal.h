@@ -42,6 +42,21 @@ int bf_scale_known(brdffit_scale scale);
 /* The default He wavelengths (um) where params->lambda_um[c] is 0. */
 void bf_lambdas(const brdffit_params *params, double lam[3]);
 
+/* Sized options structs (include/brdffit.h: `size` first, set by _default()).
+ * bf_options_read: out holds the defaults of struct `kind`; the members of
+ * the caller's opt that lie wholly within opt->size replace them (opt NULL:
+ * nothing to do).  bf_options_write: the members of src (a whole struct of
+ * `kind`) that lie within out->size are copied into the caller's out.  Both
+ * check the caller's size first: BRDFFIT_E_OPTIONS_SIZE naming the struct
+ * for size 0, smaller than `size` itself, larger than the library's struct,
+ * or ending inside a member. */
+brdffit_status bf_options_read(brdffit_struct_kind kind, const void *opt, void *out,
+                               brdffit_error *err);
+brdffit_status bf_options_write(brdffit_struct_kind kind, const void *src, void *out,
+                                brdffit_error *err);
+/* The end of the last member of struct `kind` (its size without tail padding). */
+size_t bf_struct_members_end(brdffit_struct_kind kind);
+
 /* The model registry's internal side (bf_model_ncoords, ...): registry.h. */
 
 #endif /* BRDFFIT_INTERNAL_H */

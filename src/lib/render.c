@@ -269,16 +269,7 @@ static brdffit_status read_options(const brdffit_render_options *opt, brdffit_re
                                    brdffit_error *err)
 {
     brdffit_render_options_default(o);
-    if (!opt)
-        return BRDFFIT_OK;
-    if (opt->size == 0 || opt->size > sizeof *o)
-        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
-                       "render options: size %zu (expected 1..%zu: set it with "
-                       "brdffit_render_options_default)",
-                       opt->size, sizeof *o);
-    memcpy(o, opt, opt->size);
-    o->size = sizeof *o;
-    return BRDFFIT_OK;
+    return bf_options_read(BRDFFIT_STRUCT_RENDER_OPTIONS, opt, o, err);
 }
 
 static int finite3(const double v[3])

@@ -18,6 +18,8 @@ void brdffit_sample_options_default(brdffit_sample_options *opt)
 {
     if (!opt)
         return;
+    memset(opt, 0, sizeof *opt);
+    opt->size = sizeof *opt;
     opt->cutoff_deg = 80.0;
     opt->scale = BRDFFIT_SCALE_STANDARD;
 }
@@ -37,8 +39,9 @@ static brdffit_status check_options(const brdffit_sample_options *opt, brdffit_s
                                     brdffit_error *err)
 {
     brdffit_sample_options_default(o);
-    if (opt)
-        *o = *opt;
+    brdffit_status st = bf_options_read(BRDFFIT_STRUCT_SAMPLE_OPTIONS, opt, o, err);
+    if (st != BRDFFIT_OK)
+        return st;
     if (!isfinite(o->cutoff_deg) || !(o->cutoff_deg > 0) || !(o->cutoff_deg <= 90))
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
                        "sample options: cutoff %g deg must be in (0, 90]", o->cutoff_deg);
@@ -266,14 +269,18 @@ brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
     return BRDFFIT_OK;
 }
 
-void brdffit_samples_options(const brdffit_samples *samples, brdffit_sample_options *out)
+brdffit_status brdffit_samples_options(const brdffit_samples *samples,
+                                       brdffit_sample_options *out, brdffit_error *err)
 {
     if (!out)
-        return;
-    if (samples)
-        *out = samples->opt;
-    else
-        brdffit_sample_options_default(out);
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_samples_options: out is NULL");
+    brdffit_sample_options dflt;
+    brdffit_sample_options_default(&dflt);
+    brdffit_status st = bf_options_write(BRDFFIT_STRUCT_SAMPLE_OPTIONS,
+                                         samples ? &samples->opt : &dflt, out, err);
+    if (st == BRDFFIT_OK)
+        bf_ok(err);
+    return st;
 }
 
 /* Two geometries closer than this in every invariant are the same one. */

@@ -26,21 +26,65 @@ static int bin_ok(int i, int j, int k)
     return i >= 0 && i < BF_NTH && j >= 0 && j < BF_NTD && k >= 0 && k < BF_NPD;
 }
 
-/* The same arithmetic, in the same order, as ../shared/tools/merl-from-nbrdf.c,
+/* The directions from the sines and cosines of theta_h, theta_d and phi_d:
+ * the same arithmetic, in the same order, as ../shared/tools/merl-from-nbrdf.c,
  * so that directions (and the horizon test) agree bit for bit. */
-void bf_bin_dirs(int i, int j, int k, double wi[3], double wo[3])
+static void dirs_from(double sth, double cth, double std, double ctd, double spd, double cpd,
+                      double wi[3], double wo[3])
 {
-    double u = (double)i / BF_NTH, th = u * u * M_PI / 2;
-    double td = (double)j / BF_NTD * M_PI / 2;
-    double pd = (double)k / BF_NPD * M_PI;
-    double d[3] = { sin(td) * cos(pd), sin(td) * sin(pd), cos(td) };
-    double h[3] = { sin(th), 0.0, cos(th) };
-    wi[0] = d[0] * cos(th) + d[2] * sin(th);
+    double d[3] = { std * cpd, std * spd, ctd };
+    double h[3] = { sth, 0.0, cth };
+    wi[0] = d[0] * cth + d[2] * sth;
     wi[1] = d[1];
-    wi[2] = -d[0] * sin(th) + d[2] * cos(th);
+    wi[2] = -d[0] * sth + d[2] * cth;
     double hd = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2];
     for (int c = 0; c < 3; c++)
         wo[c] = 2 * hd * h[c] - wi[c];
+}
+
+static double theta_h(int i)
+{
+    double u = (double)i / BF_NTH;
+    return u * u * M_PI / 2;
+}
+
+static double theta_d(int j)
+{
+    return (double)j / BF_NTD * M_PI / 2;
+}
+
+static double phi_d(int k)
+{
+    return (double)k / BF_NPD * M_PI;
+}
+
+void bf_bin_dirs(int i, int j, int k, double wi[3], double wo[3])
+{
+    double th = theta_h(i), td = theta_d(j), pd = phi_d(k);
+    dirs_from(sin(th), cos(th), sin(td), cos(td), sin(pd), cos(pd), wi, wo);
+}
+
+void bf_grid_trig_init(bf_grid_trig *g)
+{
+    for (int i = 0; i < BF_NTH; i++) {
+        g->sth[i] = sin(theta_h(i));
+        g->cth[i] = cos(theta_h(i));
+        for (int j = 0; j < BF_NTD; j++)
+            g->w[i][j] = brdffit_bin_weight(i, j);
+    }
+    for (int j = 0; j < BF_NTD; j++) {
+        g->std[j] = sin(theta_d(j));
+        g->ctd[j] = cos(theta_d(j));
+    }
+    for (int k = 0; k < BF_NPD; k++) {
+        g->spd[k] = sin(phi_d(k));
+        g->cpd[k] = cos(phi_d(k));
+    }
+}
+
+void bf_bin_dirs_trig(const bf_grid_trig *g, int i, int j, int k, double wi[3], double wo[3])
+{
+    dirs_from(g->sth[i], g->cth[i], g->std[j], g->ctd[j], g->spd[k], g->cpd[k], wi, wo);
 }
 
 brdffit_status brdffit_bin_directions(int i, int j, int k, double wi[3], double wo[3])

@@ -29,6 +29,17 @@ void bf_bin_ijk(size_t b, int *i, int *j, int *k);
  * (brdffit_bin_directions checks). */
 void bf_bin_dirs(int i, int j, int k, double wi[3], double wo[3]);
 
+/* The sines and cosines of every bin's angles and every bin's solid-angle
+ * weight, for walking all the bins without a sin or cos per bin:
+ * bf_bin_dirs_trig gives bf_bin_dirs's directions bit for bit, w[i][j] is
+ * brdffit_bin_weight(i, j). */
+typedef struct bf_grid_trig {
+    double sth[BF_NTH], cth[BF_NTH], std[BF_NTD], ctd[BF_NTD], spd[BF_NPD], cpd[BF_NPD];
+    double w[BF_NTH][BF_NTD];
+} bf_grid_trig;
+void bf_grid_trig_init(bf_grid_trig *g);
+void bf_bin_dirs_trig(const bf_grid_trig *g, int i, int j, int k, double wi[3], double wo[3]);
+
 /* The continuous grid coordinates of a direction pair (the inverse of
  * bf_bin_dirs): u[0] = theta_h index, u[1] = theta_d index, u[2] = phi_d
  * index, phi_d folded into [0, pi].  Returns 0 for a non-finite or zero

@@ -29,9 +29,6 @@ double bf_now(void);
 
 /* 64-byte-aligned allocation (for OpenCL CL_MEM_USE_HOST_PTR); free with bf_free_aligned. */
 void *bf_alloc_aligned(size_t bytes);
-/* p (from bf_alloc_aligned) shrunk to bytes, still aligned (moved if need be);
- * NULL when it had to move and could not: p is then freed. */
-void *bf_shrink_aligned(void *p, size_t bytes);
 void bf_free_aligned(void *p);
 
 /* The channel factors of a scale mode; factors must hold 3. */

@@ -51,13 +51,12 @@ static brdffit_status check_options(const brdffit_sample_options *opt, brdffit_s
     return BRDFFIT_OK;
 }
 
-/* From the values alone: the bins masked (a negative value in some channel)
- * and the unmasked ones; a non-finite value, or one above BRDFFIT_VALUE_MAX,
+/* From the values alone: the bins masked (a negative value in some channel);
+ * a non-finite value, or one above BRDFFIT_VALUE_MAX,
  * is an error naming its bin. */
-static brdffit_status count_bins(const double *v, size_t *masked, size_t *unmasked,
-                                 brdffit_error *err)
+static brdffit_status count_bins(const double *v, size_t *masked, brdffit_error *err)
 {
-    *masked = *unmasked = 0;
+    *masked = 0;
     for (size_t b = 0; b < BF_NBINS; b++) {
         double r = v[b], g = v[BF_NBINS + b], bl = v[2 * BF_NBINS + b];
         if (!isfinite(r) || !isfinite(g) || !isfinite(bl)) {
@@ -78,8 +77,6 @@ static brdffit_status count_bins(const double *v, size_t *masked, size_t *unmask
         }
         if (r < 0 || g < 0 || bl < 0)
             ++*masked;
-        else
-            ++*unmasked;
     }
     return BRDFFIT_OK;
 }
@@ -103,10 +100,43 @@ static brdffit_status alloc_samples(brdffit_samples *samples, size_t cap, brdffi
     return BRDFFIT_OK;
 }
 
-/* Each unmasked bin's directions, computed once: the bins within the cutoff
- * (both directions above the horizon) become samples 0..n-1, the others
- * count as beyond it.  Fields at stride samples->npad; sets samples->n and samples->sum_w. */
-static void take_bins(brdffit_samples *samples, const double *v, double cosc)
+/* Bin b's directions; 1 when it is within the cutoff (both directions above
+ * the horizon and at cos(theta) >= cosc). */
+static int bin_within(const bf_grid_trig *gt, size_t b, double cosc, double wi[3], double wo[3],
+                      int *i, int *j)
+{
+    int k;
+    bf_bin_ijk(b, i, j, &k);
+    bf_bin_dirs_trig(gt, *i, *j, k, wi, wo);
+    return wi[2] > 0 && wo[2] > 0 && wi[2] >= cosc && wo[2] >= cosc;
+}
+
+static int bin_masked(const double *v, size_t b)
+{
+    return v[b] < 0 || v[BF_NBINS + b] < 0 || v[2 * BF_NBINS + b] < 0;
+}
+
+/* How many unmasked bins are within the cutoff (the samples); the others
+ * count as beyond it (samples->beyond_cutoff). */
+static size_t count_within(brdffit_samples *samples, const double *v, double cosc, const bf_grid_trig *gt)
+{
+    size_t n = 0;
+    for (size_t b = 0; b < BF_NBINS; b++) {
+        double wi[3], wo[3];
+        int i, j;
+        if (bin_masked(v, b))
+            continue;
+        if (bin_within(gt, b, cosc, wi, wo, &i, &j))
+            n++;
+        else
+            samples->beyond_cutoff++;
+    }
+    return n;
+}
+
+/* The unmasked bins within the cutoff become samples 0..n-1 (n as
+ * count_within found), fields at stride samples->npad; sets samples->sum_w. */
+static void take_bins(brdffit_samples *samples, const double *v, double cosc, const bf_grid_trig *gt)
 {
     double f[3];
     bf_scale_factors(samples->opt.scale, f);
@@ -114,17 +144,11 @@ static void take_bins(brdffit_samples *samples, const double *v, double cosc)
     double *F = samples->data;
     size_t m = 0;
     double sum_w = 0;
-    for (size_t b = 0; b < BF_NBINS; b++) {
-        if (v[b] < 0 || v[BF_NBINS + b] < 0 || v[2 * BF_NBINS + b] < 0)
-            continue;
-        int i, j, k;
+    for (size_t b = 0; b < BF_NBINS && m < samples->n; b++) {
         double wi[3], wo[3];
-        bf_bin_ijk(b, &i, &j, &k);
-        bf_bin_dirs(i, j, k, wi, wo);
-        if (!(wi[2] > 0 && wo[2] > 0 && wi[2] >= cosc && wo[2] >= cosc)) {
-            samples->beyond_cutoff++;
+        int i, j;
+        if (bin_masked(v, b) || !bin_within(gt, b, cosc, wi, wo, &i, &j))
             continue;
-        }
         bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
         bf_geom_derive(&g);
         F[BF_F_IX * stride + m] = wi[0];
@@ -139,33 +163,11 @@ static void take_bins(brdffit_samples *samples, const double *v, double cosc)
         F[BF_F_G * stride + m] = v[BF_NBINS + b] * f[1];
         F[BF_F_B * stride + m] = v[2 * BF_NBINS + b] * f[2];
         samples->bin[m] = (int)b;
-        samples->w[m] = brdffit_bin_weight(i, j);
+        samples->w[m] = gt->w[i][j];
         sum_w += samples->w[m];
         m++;
     }
-    samples->n = m;
     samples->sum_w = sum_w;
-}
-
-/* Fields from stride samples->npad down to stride padded(samples->n), in place, and the
- * block (and the weights and bins) shrunk to fit. */
-static brdffit_status shrink_to_fit(brdffit_samples *samples, brdffit_error *err)
-{
-    size_t npad = padded(samples->n);
-    for (int q = 1; q < BF_NFIELDS; q++) /* field 0 stays; each moves down, after the one before */
-        memmove(samples->data + (size_t)q * npad, samples->data + (size_t)q * samples->npad, samples->n * sizeof(double));
-    samples->npad = npad;
-    samples->data = bf_shrink_aligned(samples->data, (size_t)BF_NFIELDS * npad * sizeof(double));
-    if (!samples->data)
-        return bf_fail(err, BRDFFIT_E_NO_MEMORY,
-                       "brdffit_samples_create: cannot allocate %zu samples", samples->n);
-    double *w = realloc(samples->w, samples->n * sizeof *samples->w);
-    int *bin = realloc(samples->bin, samples->n * sizeof *samples->bin);
-    if (w) /* a failed shrink keeps the larger block */
-        samples->w = w;
-    if (bin)
-        samples->bin = bin;
-    return BRDFFIT_OK;
 }
 
 /* The metric weight of each sample, and the padding: harmless samples that
@@ -202,20 +204,25 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
     if (st != BRDFFIT_OK)
         return st;
     const double *v = brdffit_table_values_const(table);
-    size_t masked, unmasked;
-    st = count_bins(v, &masked, &unmasked, err);
+    size_t masked;
+    st = count_bins(v, &masked, err);
     if (st != BRDFFIT_OK)
         return st;
 
+    bf_grid_trig *gt = NULL;
     brdffit_samples *samples = calloc(1, sizeof *samples);
     if (!samples)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "brdffit_samples_create: out of memory");
     samples->opt = o;
     samples->masked = masked;
-    st = alloc_samples(samples, unmasked, err);
-    if (st != BRDFFIT_OK)
+    gt = malloc(sizeof *gt);
+    if (!gt) {
+        st = bf_fail(err, BRDFFIT_E_NO_MEMORY, "brdffit_samples_create: out of memory");
         goto done;
-    take_bins(samples, v, cos(o.cutoff_deg * (BF_PI / 180.0)) - COS_TOL);
+    }
+    bf_grid_trig_init(gt);
+    double cosc = cos(o.cutoff_deg * (BF_PI / 180.0)) - COS_TOL;
+    samples->n = count_within(samples, v, cosc, gt);
     if (samples->n == 0) {
         st = bf_fail(err, BRDFFIT_E_NO_SAMPLES,
                      "no valid samples (%zu bins masked, %zu beyond the %g deg cutoff or the "
@@ -223,11 +230,13 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
                      samples->masked, samples->beyond_cutoff, o.cutoff_deg);
         goto done;
     }
-    st = shrink_to_fit(samples, err);
+    st = alloc_samples(samples, samples->n, err);
     if (st != BRDFFIT_OK)
         goto done;
+    take_bins(samples, v, cosc, gt);
     finish_fields(samples);
 done:
+    free(gt);
     if (st != BRDFFIT_OK) {
         brdffit_samples_free(samples);
         return st;

@@ -4,7 +4,6 @@
 #include "internal.h"
 
 #include <stdarg.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -109,25 +108,6 @@ void *bf_alloc_aligned(size_t bytes)
     if (posix_memalign(&p, 64, bytes) != 0)
         return NULL;
     return p;
-}
-
-void *bf_shrink_aligned(void *p, size_t bytes)
-{
-    if (bytes == 0)
-        bytes = 64;
-    void *q = realloc(p, bytes); /* shrinks in place in practice */
-    if (!q)
-        return p; /* the larger block stays valid */
-    if (((uintptr_t)q & 63) == 0)
-        return q;
-    void *a = bf_alloc_aligned(bytes); /* moved off the alignment: copy */
-    if (!a) {
-        free(q);
-        return NULL;
-    }
-    memcpy(a, q, bytes);
-    free(q);
-    return a;
 }
 
 void bf_free_aligned(void *p)

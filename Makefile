@@ -76,7 +76,7 @@ CLI_SRC  = $(wildcard src/cli/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
-BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_render.c bench/bench_stream.c
+BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_render.c bench/bench_stream.c
 
 all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
 
@@ -144,12 +144,13 @@ $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 $(BUILD)/test_brdffit: $(TEST_SRC:tests/%.c=$(BUILD)/tests/%.o) $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit-internal.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CHECK_LIBS) -lexpat $(CLI_LIBS) $(LDLIBS)
 
-# The benchmark reads its tables with the tests' helpers (tests/testutil.c).
+# The benchmark reads its tables with the tests' helpers (tests/testutil.c) and
+# the program's JSON records with their parser (tests/jsoncheck.c).
 $(BUILD)/bench/%.o: bench/%.c | $(BUILD)/bench
 	$(CC) $(CPPFLAGS) $(LIB_INC) $(CLI_INC) -Itests $(CFLAGS) -c -o $@ $<
 
 # it also times the program's per-material render and plot files (src/cli)
-$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit-internal.a
+$(BUILD)/bench_brdffit: $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%.o) $(BUILD)/tests/testutil.o $(BUILD)/tests/jsoncheck.o $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit-internal.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
 # libFuzzer targets (tests/fuzz/) and their seed writer.

@@ -12,7 +12,9 @@
  *     built beforehand): wall time, passes, share inside cminpack; then the
  *     He / Cook-Torrance ratio from 3 more runs of each, alternating (the
  *     fastest of each);
- *  3. all models on 10 materials end to end;
+ *  3. `brdffit fit` over 10 materials x every model end to end (bench_cli.c):
+ *     wall time, inside and outside the fits, median fits, the projection to
+ *     the 100 tables;
  *  4. `brdffit batch` on the same materials (bench_batch.c): its time and the
  *     share outside fitting;
  *  5. a material's renders and plots (bench_render.c; --renders: this alone).
@@ -25,6 +27,7 @@
 #include "pass.h"
 #include "testutil.h"
 #include "bench_batch.h"
+#include "bench_cli.h"
 #include "bench_render.h"
 #include "bench_stream.h"
 #include "registry.h"
@@ -292,37 +295,6 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
     return 0;
 }
 
-/* 3. every selected model on a->nmat materials, end to end (read + prepare + fit). */
-static int bench_end_to_end(brdffit_context *ctx, const bench_args *a)
-{
-    printf("\n3. end to end: %d materials x the models (read, prepare, fit)\n", a->nmat);
-    double t0 = bf_now();
-    int fits = 0;
-    for (int i = 0; i < a->nmat; i++) {
-        double tm = bf_now();
-        brdffit_samples *ms = load(materials[i]);
-        if (!ms)
-            return 1;
-        for (int m = 0; m < brdffit_model_count(); m++) {
-            if (!model_selected(a->models, (brdffit_model)m))
-                continue;
-            brdffit_fit_result r;
-            brdffit_error err;
-            if (brdffit_fit(ctx, ms, (brdffit_model)m, NULL, &r, &err) != BRDFFIT_OK) {
-                fprintf(stderr, "bench: %s: %s\n", materials[i], err.message);
-                brdffit_samples_free(ms);
-                return 1;
-            }
-            fits++;
-        }
-        printf("  %-24s %6.2f s\n", materials[i], bf_now() - tm);
-        brdffit_samples_free(ms);
-    }
-    double total = bf_now() - t0;
-    printf("  total %d fits in %.2f s (%.2f s per fit)\n", fits, total, fits ? total / fits : 0.0);
-    return 0;
-}
-
 int main(int argc, char **argv)
 {
     bench_args a;
@@ -332,7 +304,7 @@ int main(int argc, char **argv)
     brdffit_context *ctx = NULL;
     brdffit_samples *s = NULL;
     int rc = 1;
-    if (a.parts & (PART(1) | PART(2) | PART(3))) {
+    if (a.parts & (PART(1) | PART(2))) {
         if (brdffit_context_create(NULL, &ctx, &err) != BRDFFIT_OK) {
             fprintf(stderr, "bench: %s\n", err.message);
             goto done;
@@ -349,11 +321,11 @@ int main(int argc, char **argv)
         goto done;
     brdffit_samples_free(s);
     s = NULL;
-    if ((a.parts & PART(3)) && bench_end_to_end(ctx, &a) != 0)
-        goto done;
-    brdffit_context_free(ctx); /* the batch runs the program */
+    brdffit_context_free(ctx); /* parts 3 and 4 run the program */
     ctx = NULL;
     rc = 0;
+    if ((a.parts & PART(3)) && bench_cli_fit(materials, a.nmat, a.models) != 0)
+        rc = 1;
     if ((a.parts & PART(4)) && bench_batch(materials, a.nmat, a.models) != 0)
         rc = 1;
     if ((a.parts & PART(5)) && bench_renders(a.quick) != 0)

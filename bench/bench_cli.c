@@ -45,7 +45,7 @@ static void take_record(const char *line, fit_times *T)
     double sec = 0, build = 0;
     brdffit_model m;
     if (!tu_json_get_string(line, "model", name, sizeof name) ||
-        brdffit_model_from_name(name, &m) != BRDFFIT_OK ||
+        brdffit_model_from_name(name, &m, NULL) != BRDFFIT_OK ||
         !tu_json_get_string(line, "status", status, sizeof status) ||
         !tu_json_get_number(line, "seconds", &sec)) {
         T->failed++;

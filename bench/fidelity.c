@@ -120,7 +120,7 @@ static int read_rows(const char *path, int published, rowset *rs)
         int n = split_tabs(line, fl, 16);
         row *r = &rs->rows[rs->n];
         if (n < (published ? 9 : 3) || rs->n >= MAX_ROWS ||
-            brdffit_model_from_name(fl[1], &r->model) != BRDFFIT_OK) {
+            brdffit_model_from_name(fl[1], &r->model, NULL) != BRDFFIT_OK) {
             fprintf(stderr, "bench_fidelity: %s:%d: not a row (material, model, ...)\n", path, lineno);
             rc = -1;
             break;
@@ -382,7 +382,7 @@ static int parse_args(int argc, char **argv, config *c)
             snprintf(buf, sizeof buf, "%s", v);
             for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
                 brdffit_model m;
-                if (brdffit_model_from_name(t, &m) != BRDFFIT_OK) {
+                if (brdffit_model_from_name(t, &m, NULL) != BRDFFIT_OK) {
                     fprintf(stderr, "bench_fidelity: unknown model %s\n", t);
                     return -1;
                 }

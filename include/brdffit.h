@@ -4,9 +4,11 @@
  *
  * One public header, plain C11, usable from C++ and through FFI.  Every name
  * is prefixed brdffit_ / BRDFFIT_.  Objects are opaque handles with
- * create/free pairs; every fallible function returns a brdffit_status and,
- * when the caller passes a brdffit_error, fills it with a message that names
- * the file and the problem.  The library never prints, exits or aborts.
+ * create/free pairs; every fallible function returns a brdffit_status and
+ * takes a brdffit_error * as its last argument (NULL: no message wanted),
+ * which it fills with a message naming the fault: the file and byte, the
+ * argument, the index, the value.  The library never prints, exits or
+ * aborts.
  *
  * CONVENTIONS (all of them; README.md repeats them)
  *
@@ -215,8 +217,9 @@ int brdffit_model_count(void);
 const brdffit_model_info *brdffit_model_get(brdffit_model model);
 /* Lobe parameter `index` (0-based) of a model, or NULL when either is out of range. */
 const brdffit_param_info *brdffit_model_param(brdffit_model model, int index);
-/* Look a model up by name ("cook-torrance"; '_' is accepted for '-'). */
-brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out);
+/* Look a model up by name ("cook-torrance"; '_' is accepted for '-'):
+ * BRDFFIT_E_UNKNOWN_MODEL, the message listing the models, for any other. */
+brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brdffit_error *err);
 
 typedef struct brdffit_params {
     double d[3];          /* Lambertian albedo per channel (diffuse = d/pi), >= 0 */
@@ -231,16 +234,21 @@ brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *p
                                     brdffit_error *err);
 
 /* f(wi, wo) per channel (no cosine factor) into rgb[3].  Allocates nothing.
- * Directions need not be normalised but must be finite and non-zero. */
+ * Directions need not be normalised but must be finite and non-zero
+ * (BRDFFIT_E_INVALID_ARGUMENT naming the direction and its value);
+ * parameters as brdffit_params_check. */
 brdffit_status brdffit_eval(brdffit_model model, const brdffit_params *params,
-                            const double wi[3], const double wo[3], double rgb[3]);
+                            const double wi[3], const double wo[3], double rgb[3],
+                            brdffit_error *err);
 
 /* The same for n pairs: wi, wo are 3n doubles (x, y, z per pair), rgb 3n.
  * Every pair is evaluated; a pair with a non-finite or zero direction gets
- * rgb = 0 and the call then returns BRDFFIT_E_INVALID_ARGUMENT. */
+ * rgb = 0 and the call then returns BRDFFIT_E_INVALID_ARGUMENT, the message
+ * naming the first such pair (its index and the direction's value) and how
+ * many there were. */
 brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *params,
                                   size_t n, const double *wi, const double *wo,
-                                  double *rgb);
+                                  double *rgb, brdffit_error *err);
 
 /* ------------------------------------------------------------------ MERL tables */
 
@@ -260,10 +268,10 @@ typedef enum brdffit_scale {
 } brdffit_scale;
 
 /* The three channel factors of a scale mode (stored x factor = BRDF). */
-brdffit_status brdffit_scale_factors(brdffit_scale scale, double factors[3]);
-/* "standard" / "flat" */
+brdffit_status brdffit_scale_factors(brdffit_scale scale, double factors[3], brdffit_error *err);
+/* "standard" / "flat" ("unknown" for any other value) */
 const char *brdffit_scale_name(brdffit_scale scale);
-brdffit_status brdffit_scale_from_name(const char *name, brdffit_scale *out);
+brdffit_status brdffit_scale_from_name(const char *name, brdffit_scale *out, brdffit_error *err);
 
 typedef struct brdffit_table brdffit_table;
 
@@ -283,8 +291,10 @@ const double *brdffit_table_values_const(const brdffit_table *table);
 
 /* Index of bin (i, j, k) within a plane: k + 180*(j + 90*i). */
 size_t brdffit_bin_index(int i, int j, int k);
-/* The directions a bin stands for (see the conventions above). */
-brdffit_status brdffit_bin_directions(int i, int j, int k, double wi[3], double wo[3]);
+/* The directions a bin stands for (see the conventions above); an index out
+ * of range is BRDFFIT_E_INVALID_ARGUMENT naming it. */
+brdffit_status brdffit_bin_directions(int i, int j, int k, double wi[3], double wo[3],
+                                      brdffit_error *err);
 /* The bin's solid-angle weight w (see the conventions above). */
 double brdffit_bin_weight(int i, int j);
 
@@ -302,18 +312,20 @@ typedef enum brdffit_interp {
 /* Value at (wi, wo) in BRDF units (stored x scale), MERL's BRDFRead mapping:
  * theta_h index = floor(sqrt(theta_h / (pi/2)) * 90), phi_d folded into
  * [0, pi) by reciprocity.  Masked (negative) bins give -1 in that channel;
- * trilinear lookup gives -1 where any contributing bin is masked. */
+ * trilinear lookup gives -1 where any contributing bin is masked.  A
+ * non-finite or zero direction, or wo = -wi, is BRDFFIT_E_INVALID_ARGUMENT. */
 brdffit_status brdffit_table_lookup(const brdffit_table *table, const double wi[3],
                                     const double wo[3], brdffit_scale scale,
-                                    brdffit_interp interp, double rgb[3]);
+                                    brdffit_interp interp, double rgb[3], brdffit_error *err);
 /* The values of n (wi, wo) pairs as brdffit_table_lookup gives them, in one
  * call: wi, wo are 3n doubles (x, y, z per pair), rgb 3n.  Every pair is
- * looked up; a pair with a non-finite or zero direction gets rgb = -1 (no
- * value) and the call then returns BRDFFIT_E_INVALID_ARGUMENT. */
+ * looked up; a pair with a non-finite or zero direction (or wo = -wi) gets
+ * rgb = -1 (no value) and the call then returns BRDFFIT_E_INVALID_ARGUMENT,
+ * the message naming the first such pair and how many there were. */
 brdffit_status brdffit_table_lookup_batch(const brdffit_table *table, size_t n,
                                           const double *wi, const double *wo,
                                           brdffit_scale scale, brdffit_interp interp,
-                                          double *rgb);
+                                          double *rgb, brdffit_error *err);
 
 /* ------------------------------------------------------------------ sample sets */
 
@@ -345,8 +357,9 @@ size_t brdffit_samples_count(const brdffit_samples *samples);
 size_t brdffit_samples_masked(const brdffit_samples *samples);
 /* Bins with valid values whose directions fall outside the cutoff. */
 size_t brdffit_samples_beyond_cutoff(const brdffit_samples *samples);
+/* Sample `index` (0 .. count-1; beyond: BRDFFIT_E_INVALID_ARGUMENT). */
 brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
-                                   brdffit_sample *out);
+                                   brdffit_sample *out, brdffit_error *err);
 /* The options the set was made with (samples NULL: the defaults), into out:
  * out->size as set by brdffit_sample_options_default (the members within it
  * are written). */
@@ -626,9 +639,11 @@ brdffit_status brdffit_render_model(brdffit_model model, const brdffit_params *p
 /* The image error of img against ref (both RGBA as rendered, width x height,
  * the same stride, 0: 4 width) over the pixels whose ref A is 1; covered
  * (may be NULL) gets their number.  BRDFFIT_E_NO_SAMPLES when no pixel is
- * covered or the reference is black on all of them (the error is undefined). */
+ * covered or the reference is black on all of them (the error is undefined);
+ * BRDFFIT_E_INVALID_ARGUMENT for a non-finite value on a covered pixel. */
 brdffit_status brdffit_image_error(const float *ref, const float *img, int width, int height,
-                                   size_t stride, double *error, size_t *covered);
+                                   size_t stride, double *error, size_t *covered,
+                                   brdffit_error *err);
 
 /* ------------------------------------------------------------------ incidence-plane curves
  *
@@ -657,7 +672,8 @@ typedef struct brdffit_curve_options {
 void brdffit_curve_options_default(brdffit_curve_options *opt);
 
 /* The theta_o of the npoints samples, in degrees, into theta_o_deg. */
-brdffit_status brdffit_curve_theta_o(const brdffit_curve_options *opt, double *theta_o_deg);
+brdffit_status brdffit_curve_theta_o(const brdffit_curve_options *opt, double *theta_o_deg,
+                                     brdffit_error *err);
 /* The measured curves (brdffit_table_lookup) / a model's (brdffit_eval). */
 brdffit_status brdffit_curve_table(const brdffit_table *table, const brdffit_curve_options *opt,
                                    double *rgb, size_t stride, brdffit_error *err);

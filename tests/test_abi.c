@@ -75,33 +75,33 @@ START_TEST(lookup_batch)
     for (int interp = 0; interp < 2; interp++) {
         double rgb[3 * N];
         ck_assert_int_eq(brdffit_table_lookup_batch(t, N, wi, wo, BRDFFIT_SCALE_STANDARD,
-                                                    (brdffit_interp)interp, rgb),
+                                                    (brdffit_interp)interp, rgb, NULL),
                          BRDFFIT_E_INVALID_ARGUMENT);
         for (int s = 0; s < N; s++) {
             double one[3];
             brdffit_status st = brdffit_table_lookup(t, wi + 3 * s, wo + 3 * s,
                                                      BRDFFIT_SCALE_STANDARD,
-                                                     (brdffit_interp)interp, one);
+                                                     (brdffit_interp)interp, one, NULL);
             for (int c = 0; c < 3; c++)
                 ck_assert(rgb[3 * s + c] == (st == BRDFFIT_OK ? one[c] : -1.0));
             ck_assert_int_eq(st, s == 3 ? BRDFFIT_E_INVALID_ARGUMENT : BRDFFIT_OK);
         }
         ck_assert_int_eq(brdffit_table_lookup_batch(t, 3, wi, wo, BRDFFIT_SCALE_FLAT,
-                                                    (brdffit_interp)interp, rgb),
+                                                    (brdffit_interp)interp, rgb, NULL),
                          BRDFFIT_OK);
     }
     double rgb[3];
     ck_assert_int_eq(brdffit_table_lookup_batch(t, 0, NULL, NULL, BRDFFIT_SCALE_FLAT,
-                                                BRDFFIT_INTERP_NEAREST, NULL),
+                                                BRDFFIT_INTERP_NEAREST, NULL, NULL),
                      BRDFFIT_OK);
     ck_assert_int_eq(brdffit_table_lookup_batch(NULL, 1, wi, wo, BRDFFIT_SCALE_FLAT,
-                                                BRDFFIT_INTERP_NEAREST, rgb),
+                                                BRDFFIT_INTERP_NEAREST, rgb, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup_batch(t, 1, wi, wo, (brdffit_scale)7,
-                                                BRDFFIT_INTERP_NEAREST, rgb),
+                                                BRDFFIT_INTERP_NEAREST, rgb, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup_batch(t, 1, wi, wo, BRDFFIT_SCALE_FLAT,
-                                                (brdffit_interp)7, rgb),
+                                                (brdffit_interp)7, rgb, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
     brdffit_table_free(t);
 }

@@ -70,7 +70,7 @@ static void check_fit_record(const char *line, const char *want_material, const 
     if (want_model)
         ck_assert_str_eq(s, want_model);
     brdffit_model m;
-    ck_assert_int_eq(brdffit_model_from_name(s, &m), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_model_from_name(s, &m, NULL), BRDFFIT_OK);
     double e;
     ck_assert_msg(tu_json_get_number(line, "error", &e) && isfinite(e) && e >= 0, "error in %s", line);
     ck_assert_int_eq(tu_json_array_len(line, "d"), 3);
@@ -440,7 +440,7 @@ START_TEST(eval_matches_library)
         expect_status(r, 0, args);
         double got[3], want[3];
         ck_assert_msg(sscanf(r.out, "%lf %lf %lf", &got[0], &got[1], &got[2]) == 3, "%s", r.out);
-        ck_assert_int_eq(brdffit_eval(cases[c].model, &cases[c].p, wi, wo, want), BRDFFIT_OK);
+        ck_assert_int_eq(brdffit_eval(cases[c].model, &cases[c].p, wi, wo, want, NULL), BRDFFIT_OK);
         for (int k = 0; k < 3; k++)
             ck_assert_msg(got[k] == want[k], "%s: channel %d %.17g != %.17g", args, k, got[k],
                           want[k]);

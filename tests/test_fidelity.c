@@ -95,7 +95,7 @@ static brdffit_table *wide_ward_table(double alpha)
             for (int k = 0; k < BRDFFIT_MERL_NPD; k++) {
                 double wi[3], wo[3];
                 size_t b = brdffit_bin_index(i, j, k);
-                ck_assert_int_eq(brdffit_bin_directions(i, j, k, wi, wo), BRDFFIT_OK);
+                ck_assert_int_eq(brdffit_bin_directions(i, j, k, wi, wo, NULL), BRDFFIT_OK);
                 int above = wi[2] > 0 && wo[2] > 0;
                 double h[3] = { wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2] };
                 double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]), ch = h[2] / hl;

@@ -31,7 +31,7 @@ START_TEST(reference_values)
             continue;
         }
         brdffit_model m;
-        ck_assert_int_eq(brdffit_model_from_name(fl[0], &m), BRDFFIT_OK);
+        ck_assert_int_eq(brdffit_model_from_name(fl[0], &m, NULL), BRDFFIT_OK);
         ck_assert_int_eq(m, BRDFFIT_GGX);
         brdffit_params p;
         tu_params_from_row(fl, &p);
@@ -40,7 +40,7 @@ START_TEST(reference_values)
             wi[k] = atof(fl[11 + k]);
             wo[k] = atof(fl[14 + k]);
         }
-        ck_assert_int_eq(brdffit_eval(m, &p, wi, wo, rgb), BRDFFIT_OK);
+        ck_assert_int_eq(brdffit_eval(m, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
         for (int c = 0; c < 3; c++) {
             double ref = atof(fl[17 + c]), rd = tu_reldiff(rgb[c], ref);
             worst = fmax(worst, rd);
@@ -93,7 +93,7 @@ START_TEST(formula_as_printed)
             tu_rand_dir(&st, 0.05, wo);
             p.p[0] = tu_urand(&st);
             p.p[1] = alphas[ai];
-            ck_assert_int_eq(brdffit_eval(BRDFFIT_GGX, &p, wi, wo, rgb), BRDFFIT_OK);
+            ck_assert_int_eq(brdffit_eval(BRDFFIT_GGX, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
             double want = (double)pbrt_ggx(p.p[0], p.p[1], wi, wo);
             ck_assert_msg(tu_reldiff(rgb[0], want) <= 1e-13, "alpha %g F0 %g: %.17g vs %.17g",
                           p.p[1], p.p[0], rgb[0], want);
@@ -179,7 +179,7 @@ START_TEST(program_fits_all_models)
         ck_assert(tu_json_get_string(line, "status", status, sizeof status));
         ck_assert_msg(strcmp(status, "ok") == 0, "%s: %s", name, line);
         brdffit_model m;
-        ck_assert_int_eq(brdffit_model_from_name(name, &m), BRDFFIT_OK);
+        ck_assert_int_eq(brdffit_model_from_name(name, &m, NULL), BRDFFIT_OK);
         seen[m]++;
         double e;
         ck_assert(tu_json_get_number(line, "error", &e));

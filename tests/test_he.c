@@ -90,7 +90,7 @@ START_TEST(reference_values)
             wi[k] = atof(fl[4 + k]);
             wo[k] = atof(fl[7 + k]);
         }
-        ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb), BRDFFIT_OK);
+        ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
         bf_geom g = geom(wi, wo);
         bf_he(&g, p.p[0], p.p[1], p.p[2], default_lam, K);
         for (int c = 0; c < 3; c++) {
@@ -463,7 +463,7 @@ static void make_dirs(void)
         for (int j = 0; j < 90; j += 3)
             for (int k = 0; k < 180; k += 6) {
                 double *d = dirs[n_dirs];
-                ck_assert_int_eq(brdffit_bin_directions(i, j, k, d, d + 3), BRDFFIT_OK);
+                ck_assert_int_eq(brdffit_bin_directions(i, j, k, d, d + 3, NULL), BRDFFIT_OK);
                 if (d[2] > 0 && d[5] > 0)
                     n_dirs++;
             }
@@ -483,7 +483,7 @@ static void check_finite(const brdffit_params *p, const char *what)
     make_dirs();
     for (int s = 0; s < n_dirs; s++) {
         double rgb[3];
-        ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, p, dirs[s], dirs[s] + 3, rgb), BRDFFIT_OK);
+        ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, p, dirs[s], dirs[s] + 3, rgb, NULL), BRDFFIT_OK);
         for (int c = 0; c < 3; c++)
             ck_assert_msg(isfinite(rgb[c]) && rgb[c] >= 0,
                           "%s (tau %g sigma0 %g n %g): f = %g at wi (%g %g %g) wo (%g %g %g)", what,
@@ -528,7 +528,7 @@ START_TEST(corners_finite)
     double rgb[3], wi[3], wo[3];
     tu_dir_at(30, 0, wi);
     tu_dir_at(30, 180, wo);
-    ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
     ck_assert(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0);
 }
 END_TEST
@@ -543,13 +543,13 @@ START_TEST(extreme_directions)
                 double wi[3] = { 1, 0, eps[i] }, wo[3] = { -1, 1e-3, eps[j] }, rgb[3];
                 brdffit_params p;
                 he_params(&p, param_sets[s][0], param_sets[s][1], param_sets[s][2]);
-                ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb), BRDFFIT_OK);
+                ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
                 for (int c = 0; c < 3; c++)
                     ck_assert_msg(isfinite(rgb[c]) && rgb[c] >= 0, "eps %g %g set %d: %g", eps[i],
                                   eps[j], s, rgb[c]);
                 wo[0] = 1; /* wi = wo at the horizon */
                 wo[1] = 0;
-                ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb), BRDFFIT_OK);
+                ck_assert_int_eq(brdffit_eval(BRDFFIT_HE, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
                 for (int c = 0; c < 3; c++)
                     ck_assert_msg(isfinite(rgb[c]) && rgb[c] >= 0, "eps %g %g set %d: %g", eps[i],
                                   eps[j], s, rgb[c]);
@@ -690,7 +690,7 @@ START_TEST(pass_memo)
         for (int j = 1; j < 90; j += 8)       /* theta_d bins */
             for (int k = 0; k < 180; k++) {   /* phi_d, as the table stores them */
                 double wi[3], wo[3];
-                if (brdffit_bin_directions(i, j, k, wi, wo) != BRDFFIT_OK || wi[2] <= 0.0 ||
+                if (brdffit_bin_directions(i, j, k, wi, wo, NULL) != BRDFFIT_OK || wi[2] <= 0.0 ||
                     wo[2] <= 0.0)
                     continue;
                 bf_geom g = geom(wi, wo);

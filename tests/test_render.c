@@ -21,7 +21,7 @@ static brdffit_table *lambert_table(const double d[3])
     brdffit_table *t = NULL;
     ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
     double f[3], *v = brdffit_table_values(t);
-    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f);
+    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f, NULL);
     for (int c = 0; c < 3; c++)
         for (size_t b = 0; b < BRDFFIT_MERL_BINS; b++)
             v[c * (size_t)BRDFFIT_MERL_BINS + b] = d[c] / M_PI / f[c];
@@ -177,7 +177,7 @@ START_TEST(table_from_model_matches_model)
                       BRDFFIT_OK, "%s", err.message);
     double e = -1;
     size_t covered = 0, sphere = 0, masked = 0;
-    ck_assert_int_eq(brdffit_image_error(ref, mod, N, N, 0, &e, &covered), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_image_error(ref, mod, N, N, 0, &e, &covered, NULL), BRDFFIT_OK);
     for (size_t i = 0; i < (size_t)N * N; i++) {
         sphere += ref[4 * i + 3] > 0;
         masked += ref[4 * i + 3] == BRDFFIT_COVERAGE_MASKED;
@@ -190,7 +190,7 @@ START_TEST(table_from_model_matches_model)
     /* the model with other parameters is far off: the error measures something */
     p.p[1] = 0.15;
     ck_assert_int_eq(brdffit_render_model(BRDFFIT_COOK_TORRANCE, &p, NULL, mod, 0, NULL), BRDFFIT_OK);
-    ck_assert_int_eq(brdffit_image_error(ref, mod, N, N, 0, &e, NULL), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_image_error(ref, mod, N, N, 0, &e, NULL, NULL), BRDFFIT_OK);
     ck_assert_msg(e > 20 * CT_TABLE_IMAGE_ERROR, "other m: image error %g", e);
     free(ref);
     free(mod);
@@ -283,7 +283,7 @@ START_TEST(masked_bins_marked_in_coverage)
     /* the image error counts only the fully covered pixels */
     double e;
     size_t covered;
-    ck_assert_int_eq(brdffit_image_error(img, mod, 64, 64, 0, &e, &covered), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_image_error(img, mod, 64, 64, 0, &e, &covered, NULL), BRDFFIT_OK);
     ck_assert(e < 1e-6);
     ck_assert(covered >= (size_t)full);
     free(img);
@@ -379,12 +379,12 @@ START_TEST(image_error_values)
     float img[4 * 3] = { 1, 1, 2, 1, 2, 2, 2, 1, 0, 0, 0, 1 };
     double e;
     size_t n;
-    ck_assert_int_eq(brdffit_image_error(ref, img, 3, 1, 0, &e, &n), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_image_error(ref, img, 3, 1, 0, &e, &n, NULL), BRDFFIT_OK);
     ck_assert_uint_eq(n, 2);                        /* the masked pixel is left out */
     ck_assert_double_eq_tol(e, sqrt(1.0 / 15.0), 1e-15); /* sum d^2 = 1, sum ref^2 = 3 + 12 */
     float black[4 * 3] = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1 };
-    ck_assert_int_eq(brdffit_image_error(black, img, 3, 1, 0, &e, &n), BRDFFIT_E_NO_SAMPLES);
-    ck_assert_int_eq(brdffit_image_error(ref, img, 3, 1, 11, &e, &n), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_image_error(black, img, 3, 1, 0, &e, &n, NULL), BRDFFIT_E_NO_SAMPLES);
+    ck_assert_int_eq(brdffit_image_error(ref, img, 3, 1, 11, &e, &n, NULL), BRDFFIT_E_INVALID_ARGUMENT);
 }
 END_TEST
 
@@ -401,7 +401,7 @@ START_TEST(curves_equal_eval_and_lookup)
     ck_assert_double_eq(o.theta_i_deg[3], 75);
     ck_assert_int_eq(o.npoints, 180);
     double th[180];
-    ck_assert_int_eq(brdffit_curve_theta_o(&o, th), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_curve_theta_o(&o, th, NULL), BRDFFIT_OK);
     ck_assert_double_eq_tol(th[0], -89.5, 1e-12);
     ck_assert_double_eq_tol(th[179], 89.5, 1e-12);
     size_t stride = 3 * 180 + 5;
@@ -416,9 +416,9 @@ START_TEST(curves_equal_eval_and_lookup)
         for (int k = 0; k < 180; k++) {
             double to = th[k] * (M_PI / 180);
             double wo[3] = { sin(to), 0, cos(to) }, f[3], g[3];
-            ck_assert_int_eq(brdffit_eval(BRDFFIT_COOK_TORRANCE, &p, wi, wo, f), BRDFFIT_OK);
+            ck_assert_int_eq(brdffit_eval(BRDFFIT_COOK_TORRANCE, &p, wi, wo, f, NULL), BRDFFIT_OK);
             ck_assert_int_eq(brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_STANDARD,
-                                                  BRDFFIT_INTERP_TRILINEAR, g), BRDFFIT_OK);
+                                                  BRDFFIT_INTERP_TRILINEAR, g, NULL), BRDFFIT_OK);
             for (int c = 0; c < 3; c++) {
                 ck_assert(m[a * stride + 3 * k + c] == f[c]);
                 ck_assert_msg(r[a * stride + 3 * k + c] == g[c], "a %d k %d c %d: %.17g %.17g", a, k, c, r[a * stride + 3 * k + c], g[c]);

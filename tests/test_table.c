@@ -145,7 +145,7 @@ START_TEST(test_fill_model_values)
     brdffit_table *t = ct_table(BRDFFIT_SCALE_STANDARD);
     const double *v = brdffit_table_values_const(t);
     double f[3];
-    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f, NULL), BRDFFIT_OK);
     size_t above = 0, below = 0;
     EXPECT_RESET();
     for (int i = 0; i < 90; i++)
@@ -153,7 +153,7 @@ START_TEST(test_fill_model_values)
             for (int k = 0; k < 180; k++) {
                 double wi[3], wo[3], lib_wi[3], lib_wo[3];
                 my_bin_dirs(i, j, k, wi, wo);
-                EXPECT(brdffit_bin_directions(i, j, k, lib_wi, lib_wo) == BRDFFIT_OK);
+                EXPECT(brdffit_bin_directions(i, j, k, lib_wi, lib_wo, NULL) == BRDFFIT_OK);
                 EXPECT(memcmp(wi, lib_wi, sizeof wi) == 0 && memcmp(wo, lib_wo, sizeof wo) == 0);
                 size_t b = brdffit_bin_index(i, j, k);
                 EXPECT(b == (size_t)k + 180 * ((size_t)j + 90 * (size_t)i));
@@ -162,7 +162,7 @@ START_TEST(test_fill_model_values)
                     /* spot check one bin in 97 against brdffit_eval */
                     if (b % 97 == 0) {
                         double rgb[3];
-                        EXPECT(brdffit_eval(BRDFFIT_COOK_TORRANCE, &ct_params, wi, wo, rgb) ==
+                        EXPECT(brdffit_eval(BRDFFIT_COOK_TORRANCE, &ct_params, wi, wo, rgb, NULL) ==
                                BRDFFIT_OK);
                         for (int c = 0; c < 3; c++)
                             EXPECT(tu_reldiff(v[c * NB + b] * f[c], rgb[c]) <= 1e-14);
@@ -277,21 +277,21 @@ START_TEST(test_lookup_own_bins)
     brdffit_table *t = ct_table(BRDFFIT_SCALE_STANDARD);
     const double *v = brdffit_table_values_const(t);
     double f[3];
-    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f);
+    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f, NULL);
     size_t checked = 0, bad_near = 0, bad_tri = 0;
     EXPECT_RESET();
     for (int i = 0; i < 90; i++)
         for (int j = 0; j < 90; j++)
             for (int k = 0; k < 180; k++) {
                 double wi[3], wo[3], a[3], b[3];
-                brdffit_bin_directions(i, j, k, wi, wo);
+                brdffit_bin_directions(i, j, k, wi, wo, NULL);
                 if (!(wi[2] > 0 && wo[2] > 0))
                     continue;
                 size_t n = brdffit_bin_index(i, j, k);
                 EXPECT(brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_STANDARD,
-                                            BRDFFIT_INTERP_NEAREST, a) == BRDFFIT_OK);
+                                            BRDFFIT_INTERP_NEAREST, a, NULL) == BRDFFIT_OK);
                 EXPECT(brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_STANDARD,
-                                            BRDFFIT_INTERP_TRILINEAR, b) == BRDFFIT_OK);
+                                            BRDFFIT_INTERP_TRILINEAR, b, NULL) == BRDFFIT_OK);
                 checked++;
                 for (int c = 0; c < 3; c++) {
                     double want = v[c * NB + n] * f[c];
@@ -320,9 +320,9 @@ START_TEST(test_lookup_own_bins)
         for (int j = 0; j < 90; j++)
             for (int k = 0; k < 180; k++) {
                 double wi[3], wo[3], a[3];
-                brdffit_bin_directions(i, j, k, wi, wo);
+                brdffit_bin_directions(i, j, k, wi, wo, NULL);
                 EXPECT(brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT,
-                                            BRDFFIT_INTERP_NEAREST, a) == BRDFFIT_OK);
+                                            BRDFFIT_INTERP_NEAREST, a, NULL) == BRDFFIT_OK);
                 size_t got = (size_t)llround(a[0] * 1500.0) - 1;
                 size_t want = brdffit_bin_index(i, j, k);
                 /* theta_d = 0: any bin (i, 0, k') is the same pair of directions */
@@ -350,15 +350,15 @@ START_TEST(test_lookup_interp)
                 v[2 * NB + n] = 3 + sin(0.1 * k);
             }
     double f[3];
-    brdffit_scale_factors(BRDFFIT_SCALE_FLAT, f);
+    brdffit_scale_factors(BRDFFIT_SCALE_FLAT, f, NULL);
     double wi[3], wo[3], a[3], b[3];
 
     /* the middle of a cell: the mean of its 8 corners; nearest: the lower corner */
     grid_dirs(10.5, 20.5, 30.5, wi, wo);
     ck_assert_int_eq(brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR,
-                                          a), BRDFFIT_OK);
+                                          a, NULL), BRDFFIT_OK);
     ck_assert_int_eq(brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST,
-                                          b), BRDFFIT_OK);
+                                          b, NULL), BRDFFIT_OK);
     for (int c = 0; c < 3; c++) {
         double mean = 0;
         for (int di = 0; di < 2; di++)
@@ -371,7 +371,7 @@ START_TEST(test_lookup_interp)
 
     /* a quarter of the way along theta_d only */
     grid_dirs(40, 30.25, 100, wi, wo);
-    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a);
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a, NULL);
     {
         double lo = v[brdffit_bin_index(40, 30, 100)], hi = v[brdffit_bin_index(40, 31, 100)];
         ck_assert_double_le(tu_reldiff(a[0], (0.75 * lo + 0.25 * hi) * f[0]), 1e-9);
@@ -379,7 +379,7 @@ START_TEST(test_lookup_interp)
 
     /* phi_d wraps: between k = 179 and k = 0 */
     grid_dirs(5, 50, 179.5, wi, wo);
-    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a);
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a, NULL);
     {
         double lo = v[2 * NB + brdffit_bin_index(5, 50, 179)];
         double hi = v[2 * NB + brdffit_bin_index(5, 50, 0)];
@@ -393,13 +393,13 @@ START_TEST(test_lookup_interp)
         grid_dirs(33.2, 44.7, 55.3 + 180, wi2, wo2);
         for (int m = 0; m < 2; m++) {
             brdffit_interp in = m ? BRDFFIT_INTERP_TRILINEAR : BRDFFIT_INTERP_NEAREST;
-            brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, in, c1);
-            brdffit_table_lookup(t, wi2, wo2, BRDFFIT_SCALE_FLAT, in, c2);
+            brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, in, c1, NULL);
+            brdffit_table_lookup(t, wi2, wo2, BRDFFIT_SCALE_FLAT, in, c2, NULL);
             for (int c = 0; c < 3; c++)
                 ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-9);
         }
         /* swapping wi and wo (reciprocity) gives the same value */
-        brdffit_table_lookup(t, wo, wi, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2);
+        brdffit_table_lookup(t, wo, wi, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2, NULL);
         for (int c = 0; c < 3; c++)
             ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-9);
     }
@@ -412,60 +412,60 @@ START_TEST(test_lookup_interp)
             wi3[c] = 3 * wi[c];
             wo3[c] = 0.5 * wo[c];
         }
-        brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c1);
-        brdffit_table_lookup(t, wi3, wo3, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2);
+        brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c1, NULL);
+        brdffit_table_lookup(t, wi3, wo3, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2, NULL);
         for (int c = 0; c < 3; c++)
             ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-12);
     }
 
     /* clamped beyond the last theta_h bin centre (89 < uh < 90) */
     grid_dirs(89.5, 10, 20, wi, wo);
-    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a);
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a, NULL);
     ck_assert_double_eq(a[1], v[NB + brdffit_bin_index(89, 10, 20)] * f[1]);
 
     /* a masked corner: -1 in that channel only, for trilinear; nearest of the
      * lower corner is unaffected unless it is the masked one */
     v[NB + brdffit_bin_index(11, 21, 31)] = -1;
     grid_dirs(10.5, 20.5, 30.5, wi, wo);
-    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a);
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a, NULL);
     ck_assert_double_eq(a[1], -1.0);
     ck_assert_double_gt(a[0], 0.0);
     ck_assert_double_gt(a[2], 0.0);
-    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST, a);
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST, a, NULL);
     ck_assert_double_gt(a[1], 0.0);
     /* ... but a masked bin with zero weight does not matter */
     grid_dirs(10, 20, 30, wi, wo);
-    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a);
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a, NULL);
     ck_assert_double_eq(a[1], v[NB + brdffit_bin_index(10, 20, 30)] * f[1]);
     grid_dirs(11, 21, 31, wi, wo);
-    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST, a);
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST, a, NULL);
     ck_assert_double_eq(a[1], -1.0);
 
     /* invalid arguments */
     const double zero[3] = { 0, 0, 0 }, nan3[3] = { NAN, 0, 1 }, inf3[3] = { 0, INFINITY, 1 };
     const double up[3] = { 0, 0, 1 }, down[3] = { 0, 0, -1 };
     ck_assert_int_eq(brdffit_table_lookup(t, zero, up, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST,
-                                          a), BRDFFIT_E_INVALID_ARGUMENT);
+                                          a, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, up, nan3, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST,
-                                          a), BRDFFIT_E_INVALID_ARGUMENT);
+                                          a, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, inf3, up, BRDFFIT_SCALE_FLAT,
-                                          BRDFFIT_INTERP_TRILINEAR, a),
+                                          BRDFFIT_INTERP_TRILINEAR, a, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, up, down, BRDFFIT_SCALE_FLAT,
-                                          BRDFFIT_INTERP_TRILINEAR, a),
+                                          BRDFFIT_INTERP_TRILINEAR, a, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(NULL, up, up, BRDFFIT_SCALE_FLAT,
-                                          BRDFFIT_INTERP_NEAREST, a), BRDFFIT_E_INVALID_ARGUMENT);
+                                          BRDFFIT_INTERP_NEAREST, a, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, NULL, up, BRDFFIT_SCALE_FLAT,
-                                          BRDFFIT_INTERP_NEAREST, a), BRDFFIT_E_INVALID_ARGUMENT);
+                                          BRDFFIT_INTERP_NEAREST, a, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, up, up, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST,
-                                          NULL), BRDFFIT_E_INVALID_ARGUMENT);
+                                          NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, up, up, (brdffit_scale)9, BRDFFIT_INTERP_NEAREST,
-                                          a), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_table_lookup(t, up, up, BRDFFIT_SCALE_FLAT, (brdffit_interp)9, a),
+                                          a, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_table_lookup(t, up, up, BRDFFIT_SCALE_FLAT, (brdffit_interp)9, a, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, up, up, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST,
-                                          a), BRDFFIT_OK);
+                                          a, NULL), BRDFFIT_OK);
     ck_assert_double_eq(a[0], v[0] * f[0]);
     brdffit_table_free(t);
 }
@@ -528,13 +528,13 @@ static void check_material(const char *name)
     ck_assert_double_le(tu_reldiff(sa2, swc / (3 * sw)), 1e-12);
 
     double f[3];
-    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f);
+    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f, NULL);
     const size_t np = sm->npad;
     int prev = -1;
     EXPECT_RESET();
     for (size_t m = 0; m < n; m++) {
         brdffit_sample x;
-        EXPECT(brdffit_samples_get(sm, m, &x) == BRDFFIT_OK);
+        EXPECT(brdffit_samples_get(sm, m, &x, NULL) == BRDFFIT_OK);
         int b = (int)brdffit_bin_index(x.i, x.j, x.k);
         EXPECT(b > prev); /* each bin once, in table order */
         prev = b;
@@ -565,9 +565,9 @@ static void check_material(const char *name)
     }
     EXPECT_NONE();
     brdffit_sample x;
-    ck_assert_int_eq(brdffit_samples_get(sm, n, &x), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_samples_get(sm, 0, NULL), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_samples_get(NULL, 0, &x), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_samples_get(sm, n, &x, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_samples_get(sm, 0, NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_samples_get(NULL, 0, &x, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     brdffit_samples_free(sm);
     brdffit_table_free(t);
 }
@@ -598,14 +598,14 @@ START_TEST(test_bin_weights)
     ck_assert_double_eq(brdffit_bin_weight(0, 90), 0.0);
 
     double wi[3], wo[3];
-    ck_assert_int_eq(brdffit_bin_directions(90, 0, 0, wi, wo), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_bin_directions(0, -1, 0, wi, wo), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_bin_directions(0, 0, 180, wi, wo), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_bin_directions(0, 0, 0, NULL, wo), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_bin_directions(89, 89, 179, wi, wo), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_bin_directions(90, 0, 0, wi, wo, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_bin_directions(0, -1, 0, wi, wo, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_bin_directions(0, 0, 180, wi, wo, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_bin_directions(0, 0, 0, NULL, wo, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_bin_directions(89, 89, 179, wi, wo, NULL), BRDFFIT_OK);
     ck_assert_uint_eq(brdffit_bin_index(89, 89, 179), NB - 1);
     /* bin (0, 0, 0): both directions along the normal */
-    ck_assert_int_eq(brdffit_bin_directions(0, 0, 0, wi, wo), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_bin_directions(0, 0, 0, wi, wo, NULL), BRDFFIT_OK);
     ck_assert_double_eq(wi[2], 1.0);
     ck_assert_double_eq(wo[2], 1.0);
 }
@@ -730,8 +730,8 @@ START_TEST(test_null_arguments)
     ck_assert_int_eq(brdffit_samples_options(NULL, NULL, &e), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_ptr_nonnull(strstr(e.message, "out is NULL"));
     brdffit_sample_options_default(NULL);
-    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_FLAT, NULL), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_scale_from_name(NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_FLAT, NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_scale_from_name(NULL, NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     brdffit_table_free(t);
 }
 END_TEST
@@ -741,27 +741,27 @@ END_TEST
 START_TEST(test_scales)
 {
     double f[3];
-    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f, NULL), BRDFFIT_OK);
     ck_assert_double_le(tu_reldiff(f[0], 1.0 / 1500), 1e-15);
     ck_assert_double_le(tu_reldiff(f[1], 1.15 / 1500), 1e-15);
     ck_assert_double_le(tu_reldiff(f[2], 1.66 / 1500), 1e-15);
-    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_FLAT, f), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_scale_factors(BRDFFIT_SCALE_FLAT, f, NULL), BRDFFIT_OK);
     for (int c = 0; c < 3; c++)
         ck_assert_double_le(tu_reldiff(f[c], 1.0 / 1500), 1e-15);
-    ck_assert_int_eq(brdffit_scale_factors((brdffit_scale)2, f), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_scale_factors((brdffit_scale)2, f, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_str_eq(brdffit_scale_name(BRDFFIT_SCALE_STANDARD), "standard");
     ck_assert_str_eq(brdffit_scale_name(BRDFFIT_SCALE_FLAT), "flat");
     ck_assert_ptr_nonnull(brdffit_scale_name((brdffit_scale)7));
     brdffit_scale sc = (brdffit_scale)5;
-    ck_assert_int_eq(brdffit_scale_from_name("flat", &sc), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_scale_from_name("flat", &sc, NULL), BRDFFIT_OK);
     ck_assert_int_eq(sc, BRDFFIT_SCALE_FLAT);
-    ck_assert_int_eq(brdffit_scale_from_name("standard", &sc), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_scale_from_name("standard", &sc, NULL), BRDFFIT_OK);
     ck_assert_int_eq(sc, BRDFFIT_SCALE_STANDARD);
-    ck_assert_int_eq(brdffit_scale_from_name("merl", &sc), BRDFFIT_E_INVALID_ARGUMENT);
-    ck_assert_int_eq(brdffit_scale_from_name("", &sc), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_scale_from_name("merl", &sc, NULL), BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_int_eq(brdffit_scale_from_name("", &sc, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     double g[3];
     bf_scale_factors(BRDFFIT_SCALE_STANDARD, g);
-    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f);
+    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f, NULL);
     ck_assert_int_eq(memcmp(f, g, sizeof f), 0);
 
     /* the same table under both scales: rgb = stored x factor */
@@ -777,13 +777,13 @@ START_TEST(test_scales)
     ck_assert_int_eq(brdffit_samples_options(sf, &o, NULL), BRDFFIT_OK);
     ck_assert_int_eq(o.scale, BRDFFIT_SCALE_FLAT);
     double fs[3], ff[3];
-    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, fs);
-    brdffit_scale_factors(BRDFFIT_SCALE_FLAT, ff);
+    brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, fs, NULL);
+    brdffit_scale_factors(BRDFFIT_SCALE_FLAT, ff, NULL);
     EXPECT_RESET();
     for (size_t m = 0; m < brdffit_samples_count(ss); m++) {
         brdffit_sample a, b;
-        EXPECT(brdffit_samples_get(ss, m, &a) == BRDFFIT_OK);
-        EXPECT(brdffit_samples_get(sf, m, &b) == BRDFFIT_OK);
+        EXPECT(brdffit_samples_get(ss, m, &a, NULL) == BRDFFIT_OK);
+        EXPECT(brdffit_samples_get(sf, m, &b, NULL) == BRDFFIT_OK);
         size_t n = brdffit_bin_index(a.i, a.j, a.k);
         for (int c = 0; c < 3; c++) {
             EXPECT(a.rgb[c] == v[c * NB + n] * fs[c]);
@@ -794,7 +794,7 @@ START_TEST(test_scales)
         /* the table was filled under the standard scale: it gives back f */
         if (m % 101 == 0) {
             double rgb[3];
-            EXPECT(brdffit_eval(BRDFFIT_COOK_TORRANCE, &ct_params, a.wi, a.wo, rgb) ==
+            EXPECT(brdffit_eval(BRDFFIT_COOK_TORRANCE, &ct_params, a.wi, a.wo, rgb, NULL) ==
                    BRDFFIT_OK);
             for (int c = 0; c < 3; c++)
                 EXPECT(tu_reldiff(a.rgb[c], rgb[c]) <= 1e-13);
@@ -872,7 +872,7 @@ START_TEST(test_sample_options)
     EXPECT_RESET();
     for (size_t m = 0; m < n30; m++) {
         brdffit_sample x;
-        EXPECT(brdffit_samples_get(s, m, &x) == BRDFFIT_OK);
+        EXPECT(brdffit_samples_get(s, m, &x, NULL) == BRDFFIT_OK);
         EXPECT(x.wi[2] >= cos(30 * PI / 180) - 1e-12);
         EXPECT(x.wo[2] >= cos(30 * PI / 180) - 1e-12);
     }

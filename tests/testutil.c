@@ -122,7 +122,7 @@ static int published_rows(const char *material, brdffit_model model, brdffit_par
     while (n < max && tu_tsv_next(f, line, sizeof line, fl, 16) >= 11) {
         brdffit_model m;
         if ((material && strcmp(fl[0], material) != 0) ||
-            brdffit_model_from_name(fl[1], &m) != BRDFFIT_OK || m != model)
+            brdffit_model_from_name(fl[1], &m, NULL) != BRDFFIT_OK || m != model)
             continue;
         tu_params_from_row(fl, &params[n]);
         if (names)

@@ -31,7 +31,7 @@ int main(int argc, char **argv)
     }
     int reps = atoi(argv[2]);
     brdffit_model model;
-    if (reps < 1 || brdffit_model_from_name(argv[3], &model) != BRDFFIT_OK) {
+    if (reps < 1 || brdffit_model_from_name(argv[3], &model, NULL) != BRDFFIT_OK) {
         fprintf(stderr, "bench_eval_c: bad REPS or MODEL\n");
         return 2;
     }
@@ -61,7 +61,7 @@ int main(int argc, char **argv)
     double best = 1e300;
     for (int r = 0; r < reps; r++) {
         double t0 = now();
-        brdffit_status st = brdffit_eval_batch(model, &p, (size_t)n, wi, wo, rgb);
+        brdffit_status st = brdffit_eval_batch(model, &p, (size_t)n, wi, wo, rgb, NULL);
         double t = now() - t0;
         if (st != BRDFFIT_OK) {
             fprintf(stderr, "bench_eval_c: %s\n", brdffit_strerror(st));

@@ -194,12 +194,12 @@ FUNCTIONS = {
     "brdffit_model_count": (C.c_int, []),
     "brdffit_model_get": (C.POINTER(ModelInfo), [c_enum]),
     "brdffit_model_param": (C.POINTER(ParamInfo), [c_enum, C.c_int]),
-    "brdffit_model_from_name": (_status, [C.c_char_p, C.POINTER(c_enum)]),
+    "brdffit_model_from_name": (_status, [C.c_char_p, C.POINTER(c_enum), _err]),
     "brdffit_params_check": (_status, [c_enum, C.POINTER(Params), _err]),
-    "brdffit_eval": (_status, [c_enum, C.POINTER(Params), _P, _P, _P]),
-    "brdffit_eval_batch": (_status, [c_enum, C.POINTER(Params), C.c_size_t, _P, _P, _P]),
+    "brdffit_eval": (_status, [c_enum, C.POINTER(Params), _P, _P, _P, _err]),
+    "brdffit_eval_batch": (_status, [c_enum, C.POINTER(Params), C.c_size_t, _P, _P, _P, _err]),
     # tables
-    "brdffit_scale_factors": (_status, [c_enum, _P]),
+    "brdffit_scale_factors": (_status, [c_enum, _P, _err]),
     "brdffit_scale_name": (C.c_char_p, [c_enum]),
     "brdffit_table_create": (_status, [C.POINTER(_P), _err]),
     "brdffit_table_read": (_status, [C.c_char_p, C.POINTER(_P), _err]),
@@ -207,7 +207,9 @@ FUNCTIONS = {
     "brdffit_table_free": (None, [_P]),
     "brdffit_table_values": (C.POINTER(C.c_double), [_P]),
     "brdffit_table_fill_model": (_status, [_P, c_enum, C.POINTER(Params), c_enum, _err]),
-    "brdffit_table_lookup_batch": (_status, [_P, C.c_size_t, _P, _P, c_enum, c_enum, _P]),
+    "brdffit_table_lookup": (_status, [_P, _P, _P, c_enum, c_enum, _P, _err]),
+    "brdffit_table_lookup_batch": (
+        _status, [_P, C.c_size_t, _P, _P, c_enum, c_enum, _P, _err]),
     # samples
     "brdffit_sample_options_default": (None, [C.POINTER(SampleOptions)]),
     "brdffit_samples_create": (_status, [_P, C.POINTER(SampleOptions), C.POINTER(_P), _err]),
@@ -215,7 +217,7 @@ FUNCTIONS = {
     "brdffit_samples_count": (C.c_size_t, [_P]),
     "brdffit_samples_masked": (C.c_size_t, [_P]),
     "brdffit_samples_beyond_cutoff": (C.c_size_t, [_P]),
-    "brdffit_samples_get": (_status, [_P, C.c_size_t, C.POINTER(Sample)]),
+    "brdffit_samples_get": (_status, [_P, C.c_size_t, C.POINTER(Sample), _err]),
     "brdffit_samples_options": (_status, [_P, C.POINTER(SampleOptions), _err]),
     # contexts and fits
     "brdffit_context_options_default": (None, [C.POINTER(ContextOptions)]),
@@ -243,10 +245,11 @@ FUNCTIONS = {
     ),
     "brdffit_image_error": (
         _status,
-        [_P, _P, C.c_int, C.c_int, C.c_size_t, C.POINTER(C.c_double), C.POINTER(C.c_size_t)],
+        [_P, _P, C.c_int, C.c_int, C.c_size_t, C.POINTER(C.c_double), C.POINTER(C.c_size_t),
+         _err],
     ),
     "brdffit_curve_options_default": (None, [C.POINTER(CurveOptions)]),
-    "brdffit_curve_theta_o": (_status, [C.POINTER(CurveOptions), _P]),
+    "brdffit_curve_theta_o": (_status, [C.POINTER(CurveOptions), _P, _err]),
     "brdffit_curve_table": (_status, [_P, C.POINTER(CurveOptions), _P, C.c_size_t, _err]),
     "brdffit_curve_model": (
         _status,

@@ -93,26 +93,3 @@ def output(out, shape):
             f"out: must be a writable C-contiguous float64 array of shape {tuple(shape)}",
         )
     return out
-
-
-def bad_pairs(wi, wo):
-    """Indices (flat, over the pairs) whose wi or wo is non-finite or zero."""
-    a = wi.reshape(-1, 3)
-    b = wo.reshape(-1, 3)
-
-    def bad(v):
-        return ~np.all(np.isfinite(v), axis=1) | ~np.any(v != 0, axis=1)
-
-    return np.flatnonzero(bad(a) | bad(b))
-
-
-def describe_bad(wi, wo, what):
-    idx = bad_pairs(wi, wo)
-    if idx.size == 0:
-        return f"{what}: invalid directions"
-    a = wi.reshape(-1, 3)[idx[0]]
-    b = wo.reshape(-1, 3)[idx[0]]
-    return (
-        f"{what}: {idx.size} direction pair(s) non-finite or zero, the first at pair "
-        f"{int(idx[0])} (wi {a.tolist()}, wo {b.tolist()}); those pairs got no value"
-    )

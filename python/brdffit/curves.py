@@ -62,7 +62,5 @@ def incidence_curves(source, params=None, *, theta_i=(20, 40, 60, 75), points=18
     if rgb is None:
         raise InvalidArgumentError(_BAD, f"curves: {angles.size} theta_i, {n} points")
     theta_o = np.empty(n, dtype=np.float64)
-    status = lib.brdffit_curve_theta_o(ctypes.byref(opt), theta_o.ctypes.data)
-    if status != 0:
-        _lib.raise_status(status)
+    _lib.call("brdffit_curve_theta_o", ctypes.byref(opt), theta_o.ctypes.data)
     return theta_o, (rgb[0] if single else rgb)

@@ -3,8 +3,7 @@
 
 import ctypes
 
-from . import _abi, _arrays, _lib
-from .errors import Status, make_error
+from . import _arrays, _lib
 from .models import resolve
 
 
@@ -18,24 +17,11 @@ def eval(model, params, wi, wo, out=None):  # noqa: A001 (the C API's name)
     or fills out.  One brdffit_eval_batch call for all pairs; no copy of
     float64 C-contiguous inputs.  Raises ParamRangeError for parameters
     outside the model's bounds, InvalidArgumentError for a non-finite or
-    zero direction."""
+    zero direction (the library's message: the first such pair, flat index
+    over the broadcast pairs, and how many)."""
     m, _, cp = resolve(model, params)
     a, b, shape = _arrays.pairs(wi, wo)
     rgb = _arrays.output(out, shape)
-    lib = _lib.cdll()
-    status = lib.brdffit_eval_batch(
-        m.id, ctypes.byref(cp), a.size // 3, a.ctypes.data, b.ctypes.data, rgb.ctypes.data
-    )
-    if status != 0:
-        _raise(lib, m, cp, status, a, b)
+    _lib.call("brdffit_eval_batch", m.id, ctypes.byref(cp), a.size // 3, a.ctypes.data,
+              b.ctypes.data, rgb.ctypes.data)
     return rgb
-
-
-def _raise(lib, m, cp, status, a, b):
-    if status == Status.PARAM_RANGE:
-        err = _abi.Error()
-        lib.brdffit_params_check(m.id, ctypes.byref(cp), ctypes.byref(err))
-        _lib.raise_status(status, err)
-    if status == Status.INVALID_ARGUMENT:
-        raise make_error(status, _arrays.describe_bad(a, b, f"eval {m.name}"))
-    _lib.raise_status(status)

@@ -105,11 +105,11 @@ def model(which):
         raise UnknownModelError(Status.UNKNOWN_MODEL, f"no model with id {int(which)}")
     if isinstance(which, str):
         out = _abi.c_enum()
-        status = _lib.cdll().brdffit_model_from_name(which.encode("utf-8"), ctypes.byref(out))
-        if status != 0 or not 0 <= out.value < len(all_models):
-            names = ", ".join(m.name for m in all_models)
-            raise UnknownModelError(status or Status.UNKNOWN_MODEL,
-                                    f"unknown model '{which}' (models: {names})")
+        _lib.call("brdffit_model_from_name", which.encode("utf-8"), ctypes.byref(out))
+        if not 0 <= out.value < len(all_models):
+            raise UnknownModelError(Status.UNKNOWN_MODEL,
+                                    f"model '{which}' has id {out.value}, beyond the "
+                                    f"{len(all_models)} models the registry lists")
         return all_models[out.value]
     raise InvalidArgumentError(_BAD, f"a model is a name, an id or a Model, not {type(which).__name__}")
 

@@ -18,7 +18,7 @@ import numpy as np
 from . import _abi, _lib
 from ._arrays import c_int
 from ._source import shading_source
-from .errors import InvalidArgumentError, NoSamplesError, Status
+from .errors import InvalidArgumentError, Status
 from .models import _vector3
 from .table import interp_id, scale_id
 
@@ -163,18 +163,13 @@ def image_error(ref, img):
     """(error, covered): the RMS of img - ref over the pixels whose reference
     A is 1, relative to the reference's RMS there (brdffit_image_error), and
     the number of those pixels.  Both (height, width, 4) RGBA renders.
-    NoSamplesError when no pixel is covered or the reference is black on all."""
+    NoSamplesError (the library's message) when no pixel is covered or the
+    reference is black on all of them."""
     a, b = _image_in("ref", ref), _image_in("img", img)
     if a.shape != b.shape:
         raise InvalidArgumentError(_BAD, f"image_error: ref {a.shape} and img {b.shape} differ")
     h, w = c_int("height", a.shape[0]), c_int("width", a.shape[1])
-    err, covered = ctypes.c_double(), ctypes.c_size_t()
-    status = _lib.cdll().brdffit_image_error(a.ctypes.data, b.ctypes.data, w, h, 0,
-                                             ctypes.byref(err), ctypes.byref(covered))
-    if status == Status.NO_SAMPLES:
-        raise NoSamplesError(
-            status, f"image_error: {covered.value} pixels covered (reference A = 1)"
-            + (", the reference black on all of them" if covered.value else ""))
-    if status != 0:
-        _lib.raise_status(status)
-    return err.value, covered.value
+    error, covered = ctypes.c_double(), ctypes.c_size_t()
+    _lib.call("brdffit_image_error", a.ctypes.data, b.ctypes.data, w, h, 0, ctypes.byref(error),
+              ctypes.byref(covered))
+    return error.value, covered.value

@@ -86,9 +86,7 @@ class Samples:
         if not 0 <= index < n:
             raise IndexError(f"sample {index} out of range (count {n})")
         s = _abi.Sample()
-        status = _lib.cdll().brdffit_samples_get(self._h.ptr, index, ctypes.byref(s))
-        if status != 0:
-            _lib.raise_status(status)
+        _lib.call("brdffit_samples_get", self._h.ptr, index, ctypes.byref(s))
         return Sample(tuple(s.wi), tuple(s.wo), tuple(s.rgb), s.weight, (s.i, s.j, s.k))
 
     def __repr__(self):

@@ -7,7 +7,7 @@ import os
 import numpy as np
 
 from . import _abi, _arrays, _lib
-from .errors import InvalidArgumentError, Status, make_error
+from .errors import InvalidArgumentError, Status
 from .models import resolve
 
 _BAD = Status.INVALID_ARGUMENT
@@ -41,9 +41,7 @@ def interp_id(interp):
 def scale_factors(scale="standard"):
     """The three channel factors of a scale: stored value x factor = BRDF (1/sr)."""
     f = np.empty(3, dtype=np.float64)
-    status = _lib.cdll().brdffit_scale_factors(scale_id(scale), f.ctypes.data)
-    if status != 0:
-        _lib.raise_status(status)
+    _lib.call("brdffit_scale_factors", scale_id(scale), f.ctypes.data)
     return f
 
 
@@ -137,17 +135,13 @@ class Table:
         wi, wo of shape (..., 3), per channel: shape (..., 3).  MERL's BRDFRead
         mapping; interp "nearest" (its bin) or "trilinear".  A masked bin
         gives -1 in that channel (trilinear: where any contributing bin is
-        masked).  One C call for all pairs."""
+        masked).  One C call for all pairs; a non-finite or zero direction
+        (or wo = -wi) raises InvalidArgumentError with the library's message."""
         a, b, shape = _arrays.pairs(wi, wo)
         rgb = _arrays.output(out, shape)
         s, ip = scale_id(scale), interp_id(interp)
-        status = _lib.cdll().brdffit_table_lookup_batch(
-            self._h.ptr, a.size // 3, a.ctypes.data, b.ctypes.data, s, ip, rgb.ctypes.data
-        )
-        if status == _BAD:
-            raise make_error(status, _arrays.describe_bad(a, b, "lookup"))
-        if status != 0:
-            _lib.raise_status(status)
+        _lib.call("brdffit_table_lookup_batch", self._h.ptr, a.size // 3, a.ctypes.data,
+                  b.ctypes.data, s, ip, rgb.ctypes.data)
         return rgb
 
     def __repr__(self):

@@ -228,7 +228,7 @@ def test_image_error(brdffit):
     d = other[cov][:, :3].astype(np.float64) - ref[cov][:, :3]
     want = np.sqrt((d * d).sum() / (ref[cov][:, :3].astype(np.float64) ** 2).sum())
     assert brdffit.image_error(ref, other)[0] == pytest.approx(want, rel=1e-12)
-    with pytest.raises(brdffit.NoSamplesError, match="0 pixels covered"):
+    with pytest.raises(brdffit.NoSamplesError, match="no pixel of the reference is covered"):
         brdffit.image_error(np.zeros((4, 4, 4)), np.zeros((4, 4, 4)))
     black = ref.copy()
     black[..., :3] = 0

@@ -27,7 +27,7 @@ def test_samples_equal_the_c_samples(brdffit, cdll, alum_bronze):
     del t  # the samples do not need the table
     for index in (0, 1, 777, s.count - 1):
         c = _abi.Sample()
-        assert cdll.brdffit_samples_get(s._h.ptr, index, ctypes.byref(c)) == 0
+        assert cdll.brdffit_samples_get(s._h.ptr, index, ctypes.byref(c), None) == 0
         py = s[index]
         assert py.wi == tuple(c.wi) and py.wo == tuple(c.wo) and py.rgb == tuple(c.rgb)
         assert py.weight == c.weight and py.bin == (c.i, c.j, c.k)

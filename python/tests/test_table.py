@@ -160,7 +160,7 @@ def test_lookup_equals_the_c_lookup(brdffit, cdll, alum_bronze):
                 a, b = np.ascontiguousarray(wi[k]), np.ascontiguousarray(wo[k])
                 assert cdll.brdffit_table_lookup(
                     t._h.ptr, a.ctypes.data, b.ctypes.data, brdffit._abi.SCALES[scale],
-                    brdffit._abi.INTERPS[interp], one.ctypes.data) == 0
+                    brdffit._abi.INTERPS[interp], one.ctypes.data, None) == 0
                 assert np.array_equal(got[k], one)
     # a bin's own directions give its stored value x scale
     v = t.values
@@ -176,8 +176,11 @@ def test_lookup_bad_input(brdffit):
     t = brdffit.Table.zeros()
     wi = np.array([[0, 0, 1.0], [0, 0, 0], [0.1, 0.2, 0.9]])
     wo = np.array([[0, 0, 1.0]] * 3)
-    with pytest.raises(brdffit.InvalidArgumentError, match=r"1 direction pair\(s\).*pair 1"):
+    with pytest.raises(brdffit.InvalidArgumentError) as e:
         t.lookup(wi, wo)
+    assert e.value.message == (
+        "brdffit_table_lookup_batch: pair 1 of 3 (1 bad pair, rgb -1 there): wi = (0, 0, 0) is "
+        "not a finite, non-zero direction")
     with pytest.raises(brdffit.InvalidArgumentError, match="interp"):
         t.lookup(wi, wo, interp="cubic")
     with pytest.raises(brdffit.InvalidArgumentError, match="scale"):

@@ -41,7 +41,7 @@ int batch_assets(const char *dir, const char *material, const brdffit_table *tab
     int n = nfits < RF_MAX_FITS ? nfits : RF_MAX_FITS;
     for (int i = 0; i < n; i++) {
         memset(&rf[i], 0, sizeof rf[i]);
-        if (brdffit_model_from_name(fits[i]->model, &rf[i].model) != BRDFFIT_OK) {
+        if (brdffit_model_from_name(fits[i]->model, &rf[i].model, NULL) != BRDFFIT_OK) {
             err->status = BRDFFIT_E_UNKNOWN_MODEL;
             snprintf(err->message, sizeof err->message, "unknown model '%s'", fits[i]->model);
             return -1;

@@ -62,7 +62,7 @@ static int eval_params(const eval_args *e, brdffit_model *model, brdffit_params 
     char names[512];
     if (!e->model_name)
         return cli_usage_error("eval needs MODEL d_r d_g d_b s_r s_g s_b p... --wi X Y Z --wo X Y Z");
-    if (brdffit_model_from_name(e->model_name, model) != BRDFFIT_OK)
+    if (brdffit_model_from_name(e->model_name, model, NULL) != BRDFFIT_OK)
         return cli_usage_error("unknown model '%s' (valid: %s)", e->model_name,
                                cli_model_names(names, sizeof names));
     const brdffit_model_info *mi = brdffit_model_get(*model);
@@ -99,10 +99,9 @@ int cmd_eval(int argc, char **argv)
     if (rc != CLI_OK)
         return rc;
     double rgb[3];
-    brdffit_status st = brdffit_eval(model, &p, e.wi, e.wo, rgb);
-    if (st != BRDFFIT_OK)
-        return cli_usage_error("eval: %s (directions must be finite and non-zero)",
-                               brdffit_strerror(st));
+    brdffit_error err;
+    if (brdffit_eval(model, &p, e.wi, e.wo, rgb, &err) != BRDFFIT_OK)
+        return cli_usage_error("eval: %s", err.message);
     printf("%.17g %.17g %.17g\n", rgb[0], rgb[1], rgb[2]);
     return CLI_OK;
 }

@@ -141,7 +141,7 @@ static void json_fit(FILE *f, const bj_record *fit, const bj_record *pub)
 {
     const brdffit_model_info *mi = NULL;
     brdffit_model model;
-    if (brdffit_model_from_name(fit->model, &model) == BRDFFIT_OK)
+    if (brdffit_model_from_name(fit->model, &model, NULL) == BRDFFIT_OK)
         mi = brdffit_model_get(model);
     fputs("{\"model\":", f);
     json_string(f, fit->model);

@@ -39,13 +39,13 @@ static int take_record(const jr_object *o, const char *material, const brdffit_m
         return 0;
     brdffit_model m;
     *why = "unknown model";
-    if (brdffit_model_from_name(mod->str, &m) != BRDFFIT_OK)
+    if (brdffit_model_from_name(mod->str, &m, NULL) != BRDFFIT_OK)
         return -1;
     if (!wanted(models, nmodels, m))
         return 0;
     const jr_member *sc = met ? jr_get_in(o, met, "scale") : NULL;
     brdffit_scale rs;
-    if (sc && sc->type == JR_STRING && brdffit_scale_from_name(sc->str, &rs) == BRDFFIT_OK &&
+    if (sc && sc->type == JR_STRING && brdffit_scale_from_name(sc->str, &rs, NULL) == BRDFFIT_OK &&
         rs != scale) {
         *why = scale == BRDFFIT_SCALE_FLAT ? "fitted with --scale standard (pass it)"
                                            : "fitted with --scale flat (pass it)";

@@ -44,7 +44,7 @@ static int add_model_named(cli_options *o, const char *one)
     if (strcmp(one, "all") == 0) {
         for (int k = 0; k < brdffit_model_count(); k++)
             add_model(o, (brdffit_model)k);
-    } else if (brdffit_model_from_name(one, &m) == BRDFFIT_OK) {
+    } else if (brdffit_model_from_name(one, &m, NULL) == BRDFFIT_OK) {
         add_model(o, m);
     } else {
         return cli_usage_error("unknown model '%s' (valid: all, %s)", one,
@@ -81,7 +81,7 @@ static int set_models(cli_options *o, const char *value)
 
 static int set_scale(cli_options *o, const char *v)
 {
-    if (brdffit_scale_from_name(v, &o->sample.scale) != BRDFFIT_OK)
+    if (brdffit_scale_from_name(v, &o->sample.scale, NULL) != BRDFFIT_OK)
         return cli_usage_error("--scale '%s': expected standard or flat", v);
     return CLI_OK;
 }

@@ -42,7 +42,7 @@ static const char *parse_row(char **fld, pub_row *row, char *why, size_t len)
     if (strlen(fld[0]) == 0 || strlen(fld[0]) >= sizeof row->material)
         return "empty or too long material name";
     strcpy(row->material, fld[0]);
-    if (brdffit_model_from_name(fld[1], &row->model) != BRDFFIT_OK) {
+    if (brdffit_model_from_name(fld[1], &row->model, NULL) != BRDFFIT_OK) {
         snprintf(why, len, "unknown model '%.100s'", fld[1]);
         return why;
     }

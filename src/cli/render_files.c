@@ -147,7 +147,7 @@ static int write_model(render_job *j, const rf_fit *f, int k, const rf_settings 
     if (write_pair(j, j->img, stem_of(f), caption, k) != 0)
         return -1;
     double e;
-    j->r->image_error[k] = brdffit_image_error(j->ref, j->img, j->n, j->n, 0, &e, NULL) ==
+    j->r->image_error[k] = brdffit_image_error(j->ref, j->img, j->n, j->n, 0, &e, NULL, NULL) ==
                                    BRDFFIT_OK ? e : NAN;
     tm_difference8(j->ref, j->img, j->n, j->n, 0, j->r->diff_scale, j->rgb8);
     snprintf(name, sizeof name, "%s-diff.png", stem_of(f));
@@ -291,7 +291,7 @@ static int write_plots(const char *dir, const char *material, const brdffit_tabl
         failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the curves", dir);
         goto done;
     }
-    if (brdffit_curve_theta_o(o, th) != BRDFFIT_OK ||
+    if (brdffit_curve_theta_o(o, th, &lerr) != BRDFFIT_OK ||
         brdffit_curve_table(table, o, meas, 0, &lerr) != BRDFFIT_OK) {
         failf(err, BRDFFIT_E_INVALID_ARGUMENT, "curves measured: %s", lerr.message);
         goto done;

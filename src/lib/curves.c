@@ -57,16 +57,18 @@ static double theta_o_deg(const brdffit_curve_options *o, int k)
     return -90.0 + 180.0 * (k + 0.5) / o->npoints;
 }
 
-brdffit_status brdffit_curve_theta_o(const brdffit_curve_options *opt, double *out)
+brdffit_status brdffit_curve_theta_o(const brdffit_curve_options *opt, double *out,
+                                     brdffit_error *err)
 {
     brdffit_curve_options o;
-    brdffit_status st = read_options(opt, &o, NULL);
+    brdffit_status st = read_options(opt, &o, err);
     if (st != BRDFFIT_OK)
         return st;
     if (!out)
-        return BRDFFIT_E_INVALID_ARGUMENT;
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_curve_theta_o: theta_o_deg is NULL");
     for (int k = 0; k < o.npoints; k++)
         out[k] = theta_o_deg(&o, k);
+    bf_ok(err);
     return BRDFFIT_OK;
 }
 
@@ -102,11 +104,12 @@ static brdffit_status curves(const brdffit_table *table, brdffit_model model,
         for (int k = 0; k < o.npoints; k++) {
             double wi[3], wo[3], *out = rgb + (size_t)a * stride + 3 * (size_t)k;
             directions(&o, a, k, wi, wo);
-            st = table ? brdffit_table_lookup(table, wi, wo, o.scale, o.interp, out)
-                       : brdffit_eval(model, params, wi, wo, out);
+            brdffit_error why;
+            st = table ? brdffit_table_lookup(table, wi, wo, o.scale, o.interp, out, &why)
+                       : brdffit_eval(model, params, wi, wo, out, &why);
             if (st != BRDFFIT_OK)
                 return bf_fail(err, st, "curves: theta_i %g, theta_o %g: %s", o.theta_i_deg[a],
-                               theta_o_deg(&o, k), brdffit_strerror(st));
+                               theta_o_deg(&o, k), why.message);
         }
     }
     bf_ok(err);

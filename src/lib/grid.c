@@ -3,6 +3,7 @@
  * and the bins' solid-angle weights. */
 #define _DEFAULT_SOURCE /* M_PI */
 #include "grid.h"
+#include "internal.h"
 
 #include <float.h>
 #include <math.h>
@@ -19,11 +20,6 @@ void bf_bin_ijk(size_t b, int *i, int *j, int *k)
     *k = (int)(b % BF_NPD);
     *j = (int)((b / BF_NPD) % BF_NTD);
     *i = (int)(b / ((size_t)BF_NPD * BF_NTD));
-}
-
-static int bin_ok(int i, int j, int k)
-{
-    return i >= 0 && i < BF_NTH && j >= 0 && j < BF_NTD && k >= 0 && k < BF_NPD;
 }
 
 /* The directions from the sines and cosines of theta_h, theta_d and phi_d:
@@ -87,11 +83,21 @@ void bf_bin_dirs_trig(const bf_grid_trig *g, int i, int j, int k, double wi[3], 
     dirs_from(g->sth[i], g->cth[i], g->std[j], g->ctd[j], g->spd[k], g->cpd[k], wi, wo);
 }
 
-brdffit_status brdffit_bin_directions(int i, int j, int k, double wi[3], double wo[3])
+brdffit_status brdffit_bin_directions(int i, int j, int k, double wi[3], double wo[3],
+                                      brdffit_error *err)
 {
-    if (!wi || !wo || !bin_ok(i, j, k))
-        return BRDFFIT_E_INVALID_ARGUMENT;
+    if (!wi || !wo)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_bin_directions: %s is NULL",
+                       !wi ? "wi" : "wo");
+    const int idx[3] = { i, j, k }, dim[3] = { BF_NTH, BF_NTD, BF_NPD };
+    static const char *const name[3] = { "i (theta_h)", "j (theta_d)", "k (phi_d)" };
+    for (int a = 0; a < 3; a++)
+        if (idx[a] < 0 || idx[a] >= dim[a])
+            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                           "brdffit_bin_directions: bin (%d, %d, %d): %s = %d outside 0..%d", i,
+                           j, k, name[a], idx[a], dim[a] - 1);
     bf_bin_dirs(i, j, k, wi, wo);
+    bf_ok(err);
     return BRDFFIT_OK;
 }
 

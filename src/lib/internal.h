@@ -21,6 +21,17 @@ brdffit_status bf_fail(brdffit_error *err, brdffit_status status, const char *fm
  * head, "...", and its tail (len - 1 bytes in all), so that what follows the
  * path in a message (the reason) still fits.  Returns buf. */
 const char *bf_path_brief(const char *path, char *buf, size_t len);
+/* The fault of a direction pair in err, prefixed by `what` ("brdffit_eval",
+ * "brdffit_eval_batch: pair 3 of 10", ...): which of wi, wo is not a finite,
+ * non-zero vector, with its value, else that wo = -wi (no half vector).
+ * BRDFFIT_E_INVALID_ARGUMENT. */
+brdffit_status bf_fail_pair(brdffit_error *err, const char *what, const double wi[3],
+                            const double wo[3]);
+/* The arguments every table lookup checks (fn names the caller in the message). */
+brdffit_status bf_lookup_check(const char *fn, const brdffit_table *table, brdffit_scale scale,
+                               brdffit_interp interp, brdffit_error *err);
+/* 1 when v is finite and not zero (a direction once normalised). */
+int bf_direction_ok(const double v[3]);
 /* Mark err as a success (status OK, empty message). */
 void bf_ok(brdffit_error *err);
 

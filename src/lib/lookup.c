@@ -32,16 +32,35 @@ static double snap(double u)
     return fabs(u - r) < GRID_EPS ? r : u;
 }
 
+brdffit_status bf_lookup_check(const char *fn, const brdffit_table *table, brdffit_scale scale,
+                               brdffit_interp interp, brdffit_error *err)
+{
+    if (!table)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "%s: table is NULL", fn);
+    if (!bf_scale_known(scale))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "%s: unknown scale %d (0 standard, 1 flat)",
+                       fn, (int)scale);
+    if (interp != BRDFFIT_INTERP_NEAREST && interp != BRDFFIT_INTERP_TRILINEAR)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "%s: unknown interp %d (0 nearest, 1 trilinear)", fn, (int)interp);
+    return BRDFFIT_OK;
+}
+
 brdffit_status brdffit_table_lookup(const brdffit_table *table, const double wi[3],
                                     const double wo[3], brdffit_scale scale,
-                                    brdffit_interp interp, double rgb[3])
+                                    brdffit_interp interp, double rgb[3], brdffit_error *err)
 {
-    if (!table || !wi || !wo || !rgb || !bf_scale_known(scale) ||
-        (interp != BRDFFIT_INTERP_NEAREST && interp != BRDFFIT_INTERP_TRILINEAR))
-        return BRDFFIT_E_INVALID_ARGUMENT;
+    static const char fn[] = "brdffit_table_lookup";
+    brdffit_status st = bf_lookup_check(fn, table, scale, interp, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    if (!wi || !wo || !rgb)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "%s: %s is NULL", fn,
+                       !wi ? "wi" : !wo ? "wo" : "rgb");
     double u[3];
     if (!bf_grid_coords(wi, wo, u))
-        return BRDFFIT_E_INVALID_ARGUMENT;
+        return bf_fail_pair(err, fn, wi, wo);
+    bf_ok(err);
     double f[3];
     bf_scale_factors(scale, f);
 

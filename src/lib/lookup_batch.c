@@ -1,26 +1,37 @@
 /* SPDX-License-Identifier: MIT */
 /* lookup_batch.c -- brdffit_table_lookup over n direction pairs in one call. */
-#include "brdffit.h"
+#include "internal.h"
+
+#include <stdio.h>
 
 brdffit_status brdffit_table_lookup_batch(const brdffit_table *table, size_t n,
                                           const double *wi, const double *wo,
                                           brdffit_scale scale, brdffit_interp interp,
-                                          double *rgb)
+                                          double *rgb, brdffit_error *err)
 {
-    if (!table || (n > 0 && (!wi || !wo || !rgb)))
-        return BRDFFIT_E_INVALID_ARGUMENT;
-    const double centre[3] = { 0, 0, 1 };
-    double probe[3];
-    /* the table, scale and interpolation are checked once, on a valid pair */
-    brdffit_status st = brdffit_table_lookup(table, centre, centre, scale, interp, probe);
+    static const char fn[] = "brdffit_table_lookup_batch";
+    brdffit_status st = bf_lookup_check(fn, table, scale, interp, err);
     if (st != BRDFFIT_OK)
         return st;
+    if (n > 0 && (!wi || !wo || !rgb))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "%s: %s is NULL", fn,
+                       !wi ? "wi" : !wo ? "wo" : "rgb");
+    size_t bad = 0, first = 0;
     for (size_t i = 0; i < n; i++) {
         double *out = rgb + 3 * i;
-        if (brdffit_table_lookup(table, wi + 3 * i, wo + 3 * i, scale, interp, out) != BRDFFIT_OK) {
+        if (brdffit_table_lookup(table, wi + 3 * i, wo + 3 * i, scale, interp, out, NULL) !=
+            BRDFFIT_OK) {
             out[0] = out[1] = out[2] = -1.0;
-            st = BRDFFIT_E_INVALID_ARGUMENT;
+            if (bad++ == 0)
+                first = i;
         }
     }
-    return st;
+    if (bad == 0) {
+        bf_ok(err);
+        return BRDFFIT_OK;
+    }
+    char what[160];
+    snprintf(what, sizeof what, "%s: pair %zu of %zu (%zu bad pair%s, rgb -1 there)", fn, first, n,
+             bad, bad == 1 ? "" : "s");
+    return bf_fail_pair(err, what, wi + 3 * first, wo + 3 * first);
 }

@@ -7,6 +7,7 @@
 #include "bf_lobe.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 void bf_lambdas(const brdffit_params *params, double lam[3])
@@ -60,10 +61,9 @@ brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *p
 /* Normalise a direction; 0 when it is not finite or has no length. */
 static int unit(const double v[3], double u[3])
 {
-    double l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (!isfinite(l2) || !(l2 > 0))
+    if (!bf_direction_ok(v))
         return 0;
-    double inv = 1.0 / sqrt(l2);
+    double inv = 1.0 / sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     for (int k = 0; k < 3; k++)
         u[k] = v[k] * inv;
     return 1;
@@ -89,29 +89,49 @@ static int eval_one(brdffit_model model, const brdffit_params *params, const dou
     return 1;
 }
 
-brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *params, size_t n,
-                                  const double *wi, const double *wo, double *rgb)
+/* n pairs for the function `fn` (its name in messages; `batch`: it takes n). */
+static brdffit_status eval_pairs(const char *fn, int batch, brdffit_model model,
+                                 const brdffit_params *params, size_t n, const double *wi,
+                                 const double *wo, double *rgb, brdffit_error *err)
 {
-    brdffit_status st = brdffit_params_check(model, params, NULL);
+    brdffit_status st = brdffit_params_check(model, params, err);
     if (st != BRDFFIT_OK)
         return st;
     if (n > 0 && (!wi || !wo || !rgb))
-        return BRDFFIT_E_INVALID_ARGUMENT;
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "%s: %s is NULL", fn,
+                       !wi ? "wi" : !wo ? "wo" : "rgb");
     double lam[3];
     bf_lambdas(params, lam);
+    size_t bad = 0, first = 0;
     for (size_t i = 0; i < n; i++) {
         if (!eval_one(model, params, lam, wi + 3 * i, wo + 3 * i, rgb + 3 * i)) {
             rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = 0;
-            st = BRDFFIT_E_INVALID_ARGUMENT;
+            if (bad++ == 0)
+                first = i;
         }
     }
-    return st;
+    if (bad == 0) {
+        bf_ok(err);
+        return BRDFFIT_OK;
+    }
+    char what[160];
+    if (batch)
+        snprintf(what, sizeof what, "%s: pair %zu of %zu (%zu bad pair%s, rgb 0 there)", fn,
+                 first, n, bad, bad == 1 ? "" : "s");
+    else
+        snprintf(what, sizeof what, "%s", fn);
+    return bf_fail_pair(err, what, wi + 3 * first, wo + 3 * first);
+}
+
+brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *params, size_t n,
+                                  const double *wi, const double *wo, double *rgb,
+                                  brdffit_error *err)
+{
+    return eval_pairs("brdffit_eval_batch", 1, model, params, n, wi, wo, rgb, err);
 }
 
 brdffit_status brdffit_eval(brdffit_model model, const brdffit_params *params, const double wi[3],
-                            const double wo[3], double rgb[3])
+                            const double wo[3], double rgb[3], brdffit_error *err)
 {
-    if (!wi || !wo || !rgb)
-        return BRDFFIT_E_INVALID_ARGUMENT;
-    return brdffit_eval_batch(model, params, 1, wi, wo, rgb);
+    return eval_pairs("brdffit_eval", 0, model, params, 1, wi, wo, rgb, err);
 }

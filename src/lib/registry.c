@@ -8,6 +8,7 @@
 
 #include "bf_lobe.h"
 
+#include <stdio.h>
 #include <string.h>
 
 #define NO_ROUNDS .round_param = -1, .round_factor = 1.0
@@ -133,20 +134,29 @@ const brdffit_param_info *brdffit_model_param(brdffit_model model, int index)
     return &mi->params[index];
 }
 
-brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out)
+brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brdffit_error *err)
 {
     if (!name || !out)
-        return BRDFFIT_E_INVALID_ARGUMENT;
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_model_from_name: %s is NULL",
+                       !name ? "name" : "out");
     for (int m = 0; m < NMODELS; m++) {
         const char *a = registry[m].info.name, *b = name;
         while (*a && (*a == *b || (*a == '-' && *b == '_')))
             a++, b++;
         if (*a == '\0' && *b == '\0') {
             *out = (brdffit_model)m;
+            bf_ok(err);
             return BRDFFIT_OK;
         }
     }
-    return BRDFFIT_E_UNKNOWN_MODEL;
+    char names[512] = "";
+    for (int m = 0; m < NMODELS; m++) {
+        size_t used = strlen(names);
+        snprintf(names + used, sizeof names - used, "%s%s", m ? ", " : "",
+                 registry[m].info.name);
+    }
+    return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "no model named '%.200s' (models: %s)", name,
+                   names);
 }
 
 int bf_model_coord_param(brdffit_model model, int j)

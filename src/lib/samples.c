@@ -262,10 +262,16 @@ size_t brdffit_samples_beyond_cutoff(const brdffit_samples *samples)
 }
 
 brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
-                                   brdffit_sample *out)
+                                   brdffit_sample *out, brdffit_error *err)
 {
-    if (!samples || !out || index >= samples->n)
-        return BRDFFIT_E_INVALID_ARGUMENT;
+    if (!samples || !out)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_samples_get: %s is NULL",
+                       !samples ? "samples" : "out");
+    if (index >= samples->n)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "brdffit_samples_get: index %zu, but the set has %zu samples", index,
+                       samples->n);
+    bf_ok(err);
     const double *d = samples->data;
     size_t np = samples->npad;
     for (int c = 0; c < 3; c++) {

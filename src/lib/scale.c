@@ -21,11 +21,15 @@ void bf_scale_factors(brdffit_scale scale, double factors[3])
     }
 }
 
-brdffit_status brdffit_scale_factors(brdffit_scale scale, double factors[3])
+brdffit_status brdffit_scale_factors(brdffit_scale scale, double factors[3], brdffit_error *err)
 {
-    if (!factors || !bf_scale_known(scale))
-        return BRDFFIT_E_INVALID_ARGUMENT;
+    if (!factors)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_scale_factors: factors is NULL");
+    if (!bf_scale_known(scale))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "brdffit_scale_factors: unknown scale %d (0 standard, 1 flat)", (int)scale);
     bf_scale_factors(scale, factors);
+    bf_ok(err);
     return BRDFFIT_OK;
 }
 
@@ -38,18 +42,18 @@ const char *brdffit_scale_name(brdffit_scale scale)
     return "unknown";
 }
 
-brdffit_status brdffit_scale_from_name(const char *name, brdffit_scale *out)
+brdffit_status brdffit_scale_from_name(const char *name, brdffit_scale *out, brdffit_error *err)
 {
     if (!name || !out)
-        return BRDFFIT_E_INVALID_ARGUMENT;
-    if (strcmp(name, "standard") == 0) {
-        *out = BRDFFIT_SCALE_STANDARD;
-        return BRDFFIT_OK;
-    }
-    if (strcmp(name, "flat") == 0) {
-        *out = BRDFFIT_SCALE_FLAT;
-        return BRDFFIT_OK;
-    }
-    return BRDFFIT_E_INVALID_ARGUMENT;
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_scale_from_name: %s is NULL",
+                       !name ? "name" : "out");
+    for (int s = BRDFFIT_SCALE_STANDARD; s <= BRDFFIT_SCALE_FLAT; s++)
+        if (strcmp(name, brdffit_scale_name((brdffit_scale)s)) == 0) {
+            *out = (brdffit_scale)s;
+            bf_ok(err);
+            return BRDFFIT_OK;
+        }
+    return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                   "no scale named '%.200s' (scales: standard, flat)", name);
 }
 

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "internal.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -62,6 +63,27 @@ brdffit_status bf_fail(brdffit_error *err, brdffit_status status, const char *fm
         va_end(ap);
     }
     return status;
+}
+
+int bf_direction_ok(const double v[3])
+{
+    double l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    return isfinite(l2) && l2 > 0;
+}
+
+brdffit_status bf_fail_pair(brdffit_error *err, const char *what, const double wi[3],
+                            const double wo[3])
+{
+    int i_ok = bf_direction_ok(wi);
+    if (!i_ok || !bf_direction_ok(wo)) {
+        const double *v = i_ok ? wo : wi;
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "%s: %s = (%.9g, %.9g, %.9g) is not a finite, non-zero direction", what,
+                       i_ok ? "wo" : "wi", v[0], v[1], v[2]);
+    }
+    return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                   "%s: wo = (%.9g, %.9g, %.9g) is opposite to wi: no half vector", what, wo[0],
+                   wo[1], wo[2]);
 }
 
 const char *bf_path_brief(const char *path, char *buf, size_t len)

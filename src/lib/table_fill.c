@@ -23,7 +23,7 @@ brdffit_status brdffit_table_fill_model(brdffit_table *table, brdffit_model mode
         for (int j = 0; j < BF_NTD; j++) {
             for (int k = 0; k < BF_NPD; k++)
                 bf_bin_dirs(i, j, k, wi + 3 * k, wo + 3 * k);
-            st = brdffit_eval_batch(model, params, BF_NPD, wi, wo, rgb);
+            st = brdffit_eval_batch(model, params, BF_NPD, wi, wo, rgb, NULL);
             if (st != BRDFFIT_OK)
                 return bf_fail(err, st, "brdffit_table_fill_model: evaluating bin row %d,%d: %s",
                                i, j, brdffit_strerror(st));

@@ -27,7 +27,7 @@ int main(void)
         for (int k = 0; k < mi->nparams; k++)
             p.p[k] = mi->params[k].start;
         double rgb[3], K[3];
-        if (brdffit_eval((brdffit_model)m, &p, wi, wo, rgb) != BRDFFIT_OK) {
+        if (brdffit_eval((brdffit_model)m, &p, wi, wo, rgb, NULL) != BRDFFIT_OK) {
             fprintf(stderr, "dropin: brdffit_eval %s failed\n", mi->name);
             return 1;
         }

@@ -12,6 +12,7 @@
 #   make bench       the benchmark (bench/), figures as in README.md
 #   make bench-python  only its Python part (eval from NumPy against C)
 #   make fidelity    every published material x model against the paper and a stored run
+#   make fidelity-quick  the same on ten materials
 #   make deps        install the Debian packages the build needs (.ci/install-deps)
 #   make install PREFIX=/usr/local [DESTDIR=...]   headers, libraries, brdffit.pc,
 #                    program, and the Python package (python/brdffit) beside the library
@@ -264,6 +265,10 @@ fidelity: $(BUILD)/bench_fidelity
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/bench_fidelity --baseline bench/baseline-errors.tsv $(FIDELITY_ARGS)
 
+# The same on ten of those materials (bench/fidelity.c: QUICK_MATERIALS), a few minutes.
+fidelity-quick:
+	$(MAKE) fidelity FIDELITY_ARGS='--materials quick $(FIDELITY_ARGS)'
+
 install: all
 	install -d $(DESTDIR)$(INCLUDEDIR)/brdffit $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(BINDIR)
 	install -m 644 include/brdffit.h $(DESTDIR)$(INCLUDEDIR)/
@@ -321,5 +326,5 @@ clean:
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize tsan fuzz bench bench-python fidelity deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan fuzz bench bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

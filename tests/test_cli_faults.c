@@ -224,7 +224,8 @@ START_TEST(no_specular_bound_in_json)
 END_TEST
 
 /* A file name with an escape sequence and a newline: on stderr as \xHH, one
- * line per message; the JSON record keeps the name exactly (escaped JSON). */
+ * line per message; the JSON record keeps the name exactly (escaped JSON).
+ * batch and report name their inputs the same way. */
 START_TEST(control_characters_escaped)
 {
     const char *args = "fit --json --model ward '/nonexistent-brdffit-dir/evil\033[31m\nFAKE.binary'";
@@ -241,6 +242,28 @@ START_TEST(control_characters_escaped)
     ck_assert_msg(!strchr(r.err, '\033') && !strchr(r.err, '\007'), "%s", r.err);
     ck_assert_msg(strstr(r.err, "ward\\x1b]0;title\\x07"), "%s", r.err);
     tu_run_free(&r);
+    /* batch and report name their inputs the same way */
+    char tmp[512], out[600], cmd[1200];
+    ck_assert_ptr_nonnull(tu_tmpfile(tmp, sizeof tmp));
+    snprintf(out, sizeof out, "%s.d", tmp);
+    snprintf(cmd, sizeof cmd, "batch '/nonexistent-brdffit-dir/evil\033[2J' --out '%s'", out);
+    r = tu_run_cli("", cmd);
+    ck_assert_msg(r.status == 1 && !strchr(r.err, '\033'), "exit %d:\n%s", r.status, r.err);
+    ck_assert_msg(strstr(r.err, "evil\\x1b[2J: cannot open"), "%s", r.err);
+    tu_run_free(&r);
+    /* a path ending in '/' names no material: refused, not a page directory
+     * made of the whole path */
+    snprintf(cmd, sizeof cmd, "batch '/nonexistent-brdffit-dir/evil\033[2J/' --out '%s'", out);
+    r = tu_run_cli("", cmd);
+    ck_assert_msg(r.status == 2 && !strchr(r.err, '\033'), "exit %d:\n%s", r.status, r.err);
+    ck_assert_msg(strstr(r.err, "evil\\x1b[2J/' cannot name a material"), "%s", r.err);
+    tu_run_free(&r);
+    r = tu_run_cli("", "report '/nonexistent-brdffit-dir/evil\033[2J' --out /nonexistent-brdffit-dir/r");
+    ck_assert_msg(r.status != 0 && !strchr(r.err, '\033'), "exit %d:\n%s", r.status, r.err);
+    ck_assert_msg(strstr(r.err, "evil\\x1b[2J"), "%s", r.err);
+    tu_run_free(&r);
+    tu_remove_tree(out);
+    unlink(tmp);
 }
 END_TEST
 

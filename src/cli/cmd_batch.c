@@ -164,7 +164,7 @@ static int add_directory(material_list *L, const char *dir)
 {
     DIR *d = opendir(dir);
     if (!d) {
-        fprintf(stderr, "brdffit: cannot read the directory %s: %s\n", dir, strerror(errno));
+        cli_error("cannot read the directory %s: %s", dir, strerror(errno));
         return -1;
     }
     struct dirent *e;
@@ -179,7 +179,7 @@ static int add_directory(material_list *L, const char *dir)
     }
     closedir(d);
     if (rc == 0 && found == 0)
-        fprintf(stderr, "brdffit: note: no *.binary file in %s\n", dir);
+        cli_error("note: no *.binary file in %s", dir);
     return rc;
 }
 
@@ -187,7 +187,7 @@ static int add_list_file(material_list *L, const char *list)
 {
     FILE *f = fopen(list, "r");
     if (!f) {
-        fprintf(stderr, "brdffit: cannot read the list %s: %s\n", list, strerror(errno));
+        cli_error("cannot read the list %s: %s", list, strerror(errno));
         return -1;
     }
     char *line = NULL;
@@ -239,7 +239,8 @@ static int collect(const batch_options *b, material_list *L)
                                    "page per name",
                                    L->m[i].name, L->m[w - 1].path, L->m[i].path);
         }
-        if (strcmp(L->m[i].name, ".") == 0 || strcmp(L->m[i].name, "..") == 0 || !L->m[i].name[0])
+        if (strcmp(L->m[i].name, ".") == 0 || strcmp(L->m[i].name, "..") == 0 || !L->m[i].name[0]
+            || strchr(L->m[i].name, '/'))
             return cli_usage_error("'%s' cannot name a material (its page directory)", L->m[i].path);
         L->m[w++] = L->m[i];
     }
@@ -562,10 +563,9 @@ static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples
         r.seconds = NAN;
         snprintf(r.message, sizeof r.message, "%.500s", err.message);
         R->failures++;
-        fprintf(stderr, "%sbrdffit: %s: fitting %s failed: ", R->P.live && !R->P.quiet ? "\r\033[K" : "",
-                m->name, mi->name);
-        plain_string(stderr, err.message[0] ? err.message : r.status);
-        fputc('\n', stderr);
+        fputs(R->P.live && !R->P.quiet ? "\r\033[K" : "", stderr);
+        cli_error("%s: fitting %s failed: %s", m->name, mi->name,
+                  err.message[0] ? err.message : r.status);
     }
     keep(R, &r);
 }
@@ -647,10 +647,8 @@ static void render_collect(batch_run *R, render_job *J)
             R->out_failed = 1;
         } else {
             R->failures++;
-            fprintf(stderr, "%sbrdffit: %s: renders and plots: ", R->P.live && !R->P.quiet ? "\r\033[K" : "",
-                    J->rec.material);
-            plain_string(stderr, J->err.message);
-            fputc('\n', stderr);
+            fputs(R->P.live && !R->P.quiet ? "\r\033[K" : "", stderr);
+            cli_error("%s: renders and plots: %s", J->rec.material, J->err.message);
         }
         return;
     }
@@ -706,9 +704,9 @@ static void note_changed(const batch_run *R, const batch_material *m)
             !bj_settings_equal(&r->settings, &R->settings))
             continue;
         if (!bj_identity_equal(&r->id, &m->id)) {
-            fprintf(stderr, "brdffit: %s: the table changed since it was journaled "
-                            "(%s, %lld bytes, hash %s; now %s, %lld bytes, hash %s): fitted again\n",
-                    m->name, r->id.path, r->id.size, r->id.hash, m->id.path, m->id.size, m->id.hash);
+            cli_error("%s: the table changed since it was journaled "
+                      "(%s, %lld bytes, hash %s; now %s, %lld bytes, hash %s): fitted again",
+                      m->name, r->id.path, r->id.size, r->id.hash, m->id.path, m->id.size, m->id.hash);
         }
         return;
     }
@@ -811,7 +809,7 @@ static int do_material(batch_run *R, batch_material *m, int i, int n)
         goto done;
     brdffit_error err;
     if (ensure_context(R, &err) != 0) {
-        fprintf(stderr, "brdffit: cannot set up the fitting backend: %s\n", err.message);
+        cli_error("cannot set up the fitting backend: %s", err.message);
         R->failures++;
         rc = -1;
         goto done;
@@ -845,10 +843,9 @@ static void note_other_settings(const batch_run *R)
                 bj_settings_diff(&R->all.r[i].settings, &R->settings, diff, sizeof diff);
         }
     if (other)
-        fprintf(stderr,
-                "brdffit: %s: %d journaled record%s made with other settings (%s): not reused; "
-                "those fits are done again\n",
-                R->journal.path, other, other == 1 ? " was" : "s were", diff);
+        cli_error("%s: %d journaled record%s made with other settings (%s): not reused; "
+                  "those fits are done again",
+                  R->journal.path, other, other == 1 ? " was" : "s were", diff);
 }
 
 static int open_out(batch_run *R)
@@ -863,14 +860,14 @@ static int open_out(batch_run *R)
         bj_journal_load(path, &R->all, &bad, &torn, err) != 0)
         return -1;
     if (bad)
-        fprintf(stderr, "brdffit: %s: %d line%s that are not journal records ignored\n", path, bad,
-                bad == 1 ? "" : "s");
+        cli_error("%s: %d line%s that are not journal records ignored", path, bad,
+                  bad == 1 ? "" : "s");
     int torn2 = 0;
     if (bj_journal_open(&R->journal, out, &torn2, err) != 0)
         return -1;
     if (torn || torn2)
-        fprintf(stderr, "brdffit: %s: its last line was cut short (a run killed while writing "
-                        "it): ignored, that fit is done again\n", path);
+        cli_error("%s: its last line was cut short (a run killed while writing "
+                  "it): ignored, that fit is done again", path);
     note_other_settings(R);
     return 0;
 }
@@ -917,13 +914,13 @@ static int run_batch(batch_run *R, material_list *L)
     memset(&err, 0, sizeof err);
     if (b->published) {
         if (pub_read(b->published, &R->pub, &err) != 0) {
-            fprintf(stderr, "brdffit: --published: %s\n", err.message);
+            cli_error("--published: %s", err.message);
             return CLI_USAGE;
         }
         R->have_pub = 1;
     }
     if (open_out(R) != 0) {
-        fprintf(stderr, "brdffit: %s\n", R->out_err.message);
+        cli_error("%s", R->out_err.message);
         return CLI_FAILED;
     }
     R->P.total_fits = L->n * b->common.nmodels;
@@ -938,14 +935,14 @@ static int run_batch(batch_run *R, material_list *L)
     if (R->P.live && !b->quiet)
         fputs("\r\033[K", stderr);
     if (R->out_failed) {
-        fprintf(stderr, "brdffit: %s; stopped (what is in %s is kept)\n", R->out_err.message,
-                R->journal.path);
+        cli_error("%s; stopped (what is in %s is kept)", R->out_err.message,
+                  R->journal.path);
         return CLI_FAILED;
     }
     double t_fits = now();
     if (write_report(R, L) != 0) {
-        fprintf(stderr, "brdffit: %s; stopped (what is in %s is kept)\n", R->out_err.message,
-                R->journal.path);
+        cli_error("%s; stopped (what is in %s is kept)", R->out_err.message,
+                  R->journal.path);
         return CLI_FAILED;
     }
     double total = now() - t0;
@@ -961,8 +958,8 @@ static int run_batch(batch_run *R, material_list *L)
     printf("%s\n", index);
     if (stop_signal) {
         int sig = stop_signal;
-        fprintf(stderr, "brdffit: interrupted (signal %d): the report holds what was done; run the "
-                        "same command again to go on\n", sig);
+        cli_error("interrupted (signal %d): the report holds what was done; run the "
+                  "same command again to go on", sig);
         return 128 + sig;
     }
     if (R->failures)

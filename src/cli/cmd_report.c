@@ -26,7 +26,7 @@ static int pick_settings(const bj_records *rs, char **dirs, int ndirs, bj_settin
             if (rs->r[i].origin == d)
                 last = &rs->r[i];
         if (!last) {
-            fprintf(stderr, "brdffit: %s: no journal records (not a batch directory?)\n", dirs[d]);
+            cli_error("%s: no journal records (not a batch directory?)", dirs[d]);
             return -1;
         }
         if (!have) {
@@ -36,9 +36,9 @@ static int pick_settings(const bj_records *rs, char **dirs, int ndirs, bj_settin
         } else if (!bj_settings_equal(out, &last->settings)) {
             char diff[512];
             bj_settings_diff(&last->settings, out, diff, sizeof diff);
-            fprintf(stderr, "brdffit: %s was made with other settings than %s: %s "
-                            "(\"this run\" = %s); not merged\n",
-                    dirs[d], dirs[from], diff, dirs[from]);
+            cli_error("%s was made with other settings than %s: %s "
+                      "(\"this run\" = %s); not merged",
+                      dirs[d], dirs[from], diff, dirs[from]);
             return -1;
         }
     }
@@ -122,15 +122,15 @@ int cmd_report(int argc, char **argv)
         int bad = 0, torn = 0, before = rs.n;
         if (out_join(path, sizeof path, dirs[d], "journal.jsonl") != 0 ||
             bj_journal_load(path, &rs, &bad, &torn, &err) != 0) {
-            fprintf(stderr, "brdffit: %s\n", err.message[0] ? err.message : path);
+            cli_error("%s", err.message[0] ? err.message : path);
             rc = CLI_FAILED;
             break;
         }
         for (int i = before; i < rs.n; i++)
             rs.r[i].origin = d;
         if (bad || torn)
-            fprintf(stderr, "brdffit: %s: %d damaged line%s ignored%s\n", path, bad,
-                    bad == 1 ? "" : "s", torn ? " and a torn last line" : "");
+            cli_error("%s: %d damaged line%s ignored%s", path, bad, bad == 1 ? "" : "s",
+                      torn ? " and a torn last line" : "");
     }
     rp_report rep;
     memset(&rep, 0, sizeof rep);
@@ -150,7 +150,7 @@ int cmd_report(int argc, char **argv)
         if (rep.have_published)
             snprintf(rep.published_path, sizeof rep.published_path, "(from the journals)");
         if (out_mkdir(out, &err) != 0 || rp_write(&rep, out, &err) != 0) {
-            fprintf(stderr, "brdffit: %s\n", err.message);
+            cli_error("%s", err.message);
             rc = CLI_FAILED;
         } else {
             printf("%s/index.html\n", out);

@@ -58,9 +58,7 @@ static void score_one(score_job *J, brdffit_model model, const brdffit_params *p
     if (st != BRDFFIT_OK) {
         J->failures++;
         printf("%-18s -  (%s)\n", mi->name, brdffit_strerror(st));
-        fprintf(stderr, "brdffit: %s: ", mi->name);
-        plain_string(stderr, err.message);
-        fputc('\n', stderr);
+        cli_error("%s: %s", mi->name, err.message);
         return;
     }
     printf("%-18s %.10g%s%s\n", mi->name, e, label ? "  " : "", label ? label : "");
@@ -118,7 +116,7 @@ static int score_fits(score_job *J, const score_args *a, const char *material)
     brdffit_error err;
     memset(&err, 0, sizeof err);
     if (pub_read(a->fits, &t, &err) != 0) {
-        fprintf(stderr, "brdffit: --fits: %s\n", err.message);
+        cli_error("--fits: %s", err.message);
         return CLI_USAGE;
     }
     int found = 0;
@@ -131,8 +129,8 @@ static int score_fits(score_job *J, const score_args *a, const char *material)
     }
     pub_free(&t);
     if (!found) {
-        fprintf(stderr, "brdffit: %s has no row for material '%s'%s\n", a->fits, material,
-                a->model_given ? " and the models asked" : "");
+        cli_error("%s has no row for material '%s'%s", a->fits, material,
+                  a->model_given ? " and the models asked" : "");
         return CLI_FAILED;
     }
     return J->failures ? CLI_FAILED : CLI_OK;

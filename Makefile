@@ -167,6 +167,9 @@ $(BUILD)/fuzz/fuzz_table: $(BUILD)/fuzz/fuzz_table.o $(BUILD)/libbrdffit.a
 $(BUILD)/fuzz/fuzz_options: $(BUILD)/fuzz/fuzz_options.o $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
+$(BUILD)/fuzz/fuzz_journal: $(BUILD)/fuzz/fuzz_journal.o $(CLI_SUPPORT_OBJ) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -fsanitize=fuzzer -o $@ $^ $(CLI_LIBS) $(LDLIBS)
+
 $(BUILD)/fuzz/make_seeds: tests/fuzz/make_seeds.c | $(BUILD)/fuzz
 	$(CC) -std=c11 -O1 -Wall -Wextra -o $@ $<
 
@@ -217,7 +220,7 @@ tsan:
 	TSAN_OPTIONS=halt_on_error=1:suppressions=$(CURDIR)/tests/tsan.supp \
 	./build-tsan/test_brdffit
 
-# Both fuzz targets built with clang (libFuzzer + ASan + UBSan) in their own
+# The fuzz targets built with clang (libFuzzer + ASan + UBSan) in their own
 # build directory, each run for FUZZ_SECONDS from the seed corpus
 # tests/fuzz/make_seeds.c writes (build-fuzz/corpus/, grown by the runs).  A
 # crash stops the run and leaves its input as build-fuzz/crash-*.
@@ -227,13 +230,16 @@ FUZZ_RUN = -max_total_time=$(FUZZ_SECONDS) -rss_limit_mb=4096 -close_fd_mask=3 -
 fuzz:
 	sh .ci/install-deps clang
 	$(MAKE) BUILD=build-fuzz CC=clang OPT=-O1 SAN="$(FUZZ_SAN) -fsanitize=fuzzer-no-link" \
-	    build-fuzz/fuzz/fuzz_table build-fuzz/fuzz/fuzz_options build-fuzz/fuzz/make_seeds
-	mkdir -p build-fuzz/corpus/table build-fuzz/corpus/options
+	    build-fuzz/fuzz/fuzz_table build-fuzz/fuzz/fuzz_options build-fuzz/fuzz/fuzz_journal \
+	    build-fuzz/fuzz/make_seeds
+	mkdir -p build-fuzz/corpus/table build-fuzz/corpus/options build-fuzz/corpus/journal
 	./build-fuzz/fuzz/make_seeds build-fuzz/corpus
 	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_table $(FUZZ_RUN) -max_len=4200 \
 	    -artifact_prefix=build-fuzz/crash-table- build-fuzz/corpus/table
 	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_options $(FUZZ_RUN) -max_len=2048 \
 	    -artifact_prefix=build-fuzz/crash-options- build-fuzz/corpus/options
+	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_journal $(FUZZ_RUN) -max_len=8192 \
+	    -artifact_prefix=build-fuzz/crash-journal- build-fuzz/corpus/journal
 
 bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache

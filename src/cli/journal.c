@@ -285,6 +285,17 @@ static int get_num(const jr_object *o, const jr_member *in, const char *key, dou
     return 0;
 }
 
+/* A required whole number in [lo, hi] (a count, a size, a status code). */
+static int get_whole(const jr_object *o, const jr_member *in, const char *key, double lo,
+                     double hi, long long *v)
+{
+    double x;
+    if (get_num(o, in, key, &x, 1) != 0 || !(x >= lo && x <= hi) || x != floor(x))
+        return -1;
+    *v = (long long)x;
+    return 0;
+}
+
 static int get_arr(const jr_object *o, const char *key, double *x, int max, int *n)
 {
     const jr_member *m = jr_get(o, key);
@@ -305,7 +316,7 @@ int bj_record_parse(const char *line, bj_record *r)
     memset(r, 0, sizeof *r);
     int rc = -1;
     char kind[32];
-    double x;
+    long long v;
     if (get_str(&o, NULL, "kind", kind, sizeof kind, 1) != 0)
         goto done;
     r->kind = (bj_kind)-1;
@@ -317,16 +328,15 @@ int bj_record_parse(const char *line, bj_record *r)
     const jr_member *file = jr_get(&o, "file"), *set = jr_get(&o, "settings");
     if (get_str(&o, NULL, "material", r->material, sizeof r->material, 1) != 0 ||
         get_str(&o, file, "path", r->id.path, sizeof r->id.path, 1) != 0 ||
-        get_num(&o, file, "size", &x, 1) != 0 ||
+        get_whole(&o, file, "size", 0, 9.0e15, &r->id.size) != 0 ||
         get_str(&o, file, "hash", r->id.hash, sizeof r->id.hash, 1) != 0)
         goto done;
-    r->id.size = (long long)x;
     if (get_str(&o, set, "version", r->settings.version, sizeof r->settings.version, 1) != 0 ||
         get_str(&o, set, "scale", r->settings.scale, sizeof r->settings.scale, 1) != 0 ||
         get_num(&o, set, "cutoff_deg", &r->settings.cutoff_deg, 1) != 0 ||
-        get_num(&o, set, "starts", &x, 1) != 0)
+        get_whole(&o, set, "starts", 0, INT_MAX, &v) != 0)
         goto done;
-    r->settings.starts = (int)x;
+    r->settings.starts = (int)v;
     const jr_member *ok = jr_get(&o, "ok");
     if (!ok || ok->type != JR_BOOL)
         goto done;
@@ -344,19 +354,18 @@ int bj_record_parse(const char *line, bj_record *r)
             goto done;
     }
     if (r->kind == BJ_FIT) {
-        double it, np, info, smp;
-        if (get_num(&o, NULL, "iterations", &it, 1) != 0 ||
-            get_num(&o, NULL, "passes", &np, 1) != 0 ||
-            get_num(&o, NULL, "cminpack_info", &info, 1) != 0 ||
+        long long it, np, info;
+        if (get_whole(&o, NULL, "iterations", 0, INT_MAX, &it) != 0 ||
+            get_whole(&o, NULL, "passes", 0, INT_MAX, &np) != 0 ||
+            get_whole(&o, NULL, "cminpack_info", INT_MIN, INT_MAX, &info) != 0 ||
             get_num(&o, NULL, "seconds", &r->seconds, 1) != 0 ||
-            get_num(&o, NULL, "samples", &smp, 1) != 0 ||
+            get_whole(&o, NULL, "samples", 0, 9.0e15, &r->samples) != 0 ||
             get_str(&o, NULL, "on_bound", r->on_bound, sizeof r->on_bound, 0) != 0 ||
             get_str(&o, NULL, "backend", r->backend, sizeof r->backend, 0) != 0)
             goto done;
         r->iterations = (int)it;
         r->passes = (int)np;
         r->cminpack_info = (int)info;
-        r->samples = (long long)smp;
     }
     if (r->kind == BJ_ASSETS &&
         (get_str(&o, NULL, "assets_key", r->assets_key, sizeof r->assets_key, 1) != 0 ||

@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* jsonread.c -- a small strict reader for the flat JSON objects of the journal:
- * members with null, booleans, numbers, strings, arrays of numbers (nulls and
- * strings in them read as NAN) and one level of nested flat objects. */
+ * members with null, booleans, numbers, strings (well-formed UTF-8 only, as
+ * json.c writes them), arrays of numbers (nulls and strings in them read as
+ * NAN) and one level of nested flat objects. */
 #include "batch.h"
+#include "utf8.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -84,6 +86,16 @@ static int string(jr_parser *j, char **out)
         j->p++;
         if (c == '"')
             break;
+        if (c >= 0x80) { /* raw UTF-8: well-formed, as the writer writes it */
+            unsigned cp;
+            int len = utf8_seq((const unsigned char *)j->p - 1, &cp);
+            if (len == 0)
+                goto bad;
+            memcpy(buf + n, j->p - 1, (size_t)len);
+            n += (size_t)len;
+            j->p += len - 1;
+            continue;
+        }
         if (c != '\\') {
             buf[n++] = (char)c;
             continue;

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* make_seeds.c -- the seed corpora of the fuzz targets, written by `make fuzz`:
- *   make_seeds DIR   writes the files of DIR/table (fuzz_table.c) and of DIR/options
- *                    (fuzz_options.c); existing files are overwritten.
+ *   make_seeds DIR   writes the files of DIR/table (fuzz_table.c), DIR/options
+ *                    (fuzz_options.c) and DIR/journal (fuzz_journal.c); existing
+ *                    files are overwritten.
  * Table seeds in the patch mode (first byte odd) start from a valid table;
  * the others are whole (short) files. */
 #include <math.h>
@@ -117,6 +118,31 @@ static void option_seeds(void)
     option_seed("eval-bad", 1, (const char *const[]){ "lafortune", "nan", "--wi", "0", NULL });
 }
 
+/* Journal lines as brdffit batch writes them (a fit, a failure, assets). */
+static void journal_seeds(void)
+{
+    static const char *const lines[][2] = {
+        { "fit", "{\"kind\":\"fit\",\"material\":\"alum-bronze\",\"file\":{\"path\":\"/d/alum-bronze.binary\","
+                 "\"size\":34992012,\"hash\":\"8143736677fba4d1\"},\"settings\":{\"version\":\"0.1.0\","
+                 "\"scale\":\"standard\",\"cutoff_deg\":80,\"starts\":0},\"model\":\"he\",\"ok\":true,"
+                 "\"status\":\"ok\",\"message\":\"\",\"d\":[0.08,0.05,0.02],\"s\":[0.04,0.02,0.01],"
+                 "\"p\":[12.5,0.3,1.6],\"lambda_um\":[0.645,0.526,0.444],\"error\":0.0568,"
+                 "\"iterations\":3,\"passes\":13,\"cminpack_info\":1,\"seconds\":0.204,"
+                 "\"samples\":923870,\"on_bound\":\"n=upper\",\"backend\":\"opencl\"}" },
+        { "failure", "{\"kind\":\"failure\",\"material\":\"x\\u001b\",\"file\":{\"path\":\"x.binary\","
+                     "\"size\":0,\"hash\":\"\"},\"settings\":{\"version\":\"0.1.0\",\"scale\":\"flat\","
+                     "\"cutoff_deg\":80,\"starts\":0},\"model\":\"\",\"ok\":false,"
+                     "\"status\":\"file is empty\",\"message\":\"x.binary: empty file\"}" },
+        { "assets", "{\"kind\":\"assets\",\"material\":\"m\",\"file\":{\"path\":\"(embedded)\","
+                    "\"size\":34992000,\"hash\":\"8143736677fba4d1\"},\"settings\":{\"version\":\"0.1.0\","
+                    "\"scale\":\"standard\",\"cutoff_deg\":80,\"starts\":0},\"model\":\"\",\"ok\":true,"
+                    "\"status\":\"ok\",\"message\":\"\",\"assets_key\":\"rf1:render=1,plot=1:ward\","
+                    "\"assets\":\"image\\tward.png\\tWard: 0.0569\\n\"}" },
+    };
+    for (size_t i = 0; i < sizeof lines / sizeof lines[0]; i++)
+        put("journal", lines[i][0], lines[i][1], strlen(lines[i][1]));
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 2) {
@@ -126,5 +152,6 @@ int main(int argc, char **argv)
     dir = argv[1];
     table_seeds();
     option_seeds();
+    journal_seeds();
     return 0;
 }

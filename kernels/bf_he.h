@@ -595,6 +595,8 @@ BF_FN BF_REAL bf_he_geometry(const bf_geom *g)
  * (within [1e-3, 1e3]-ish) and the effective roughness sigma; with deriv, also what
  * bf_he_rough_step needs to carry them to a nearby (tau, sigma0). */
 typedef struct bf_he_rough {
+    int flat;                       /* 1: u >= BF_HE_U_FLAT in every lane and
+                                     * both directions (see bf_he_rough_make) */
     BF_REAL Si, So;                 /* S(ti), S(to)                        */
     BF_REAL shi, sho, sigma;
     BF_REAL ui, uo, ei, eo, xi, xo; /* u, erfc(u), exp(-u^2) of ti and to  */
@@ -606,6 +608,25 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
                             bf_he_rough *r)
 {
     BF_REAL ui = bf_he_u(d->ci, d->si, tau, sigma0), uo = bf_he_u(d->co, d->so, tau, sigma0);
+    r->flat = !BF_ANY((ui < BF_HE_U_FLAT) || (uo < BF_HE_U_FLAT));
+    if (r->flat) {
+        /* erfc and e^(-u^2) are 0 (bf_he_erfc2): S = 1, r = 0, x = BF_TINY
+         * (bf_he_newton_x), sigma = sigma0, the partials in u 0: the values
+         * of the general path below, without its divisions */
+        r->Si = r->So = BF_R(1.0);
+        r->shi = 1.0 / d->ci;
+        r->sho = 1.0 / d->co;
+        r->sigma = BF_R(sigma0);
+        if (deriv) {
+            r->ui = ui;
+            r->uo = uo;
+            r->ei = r->eo = r->xi = r->xo = BF_R(0.0);
+            r->dshi = r->dsho = BF_R(0.0);
+            r->r = BF_R(0.0);
+            r->x = BF_R(BF_TINY);
+        }
+        return;
+    }
     BF_REAL ei, eo, xi, xo;
     bf_he_erfc2(ui, &ei, &xi);
     bf_he_erfc2(uo, &eo, &xo);
@@ -658,6 +679,13 @@ BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
 BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double tau, double sigma0,
                             bf_he_rough *r)
 {
+    r->flat = r0->flat;
+    if (r0->flat) { /* every partial is 0 and x = BF_TINY: the general path's values */
+        r->shi = r0->shi;
+        r->sho = r0->sho;
+        r->sigma = BF_R(sigma0);
+        return;
+    }
     BF_REAL dui = bf_he_u(d->ci, d->si, tau, sigma0) - r0->ui;
     BF_REAL duo = bf_he_u(d->co, d->so, tau, sigma0) - r0->uo;
     r->shi = r0->shi + r0->dshi * dui;

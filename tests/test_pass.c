@@ -6,6 +6,9 @@
 #include "context.h"
 #include "pass.h"
 #include "registry.h"
+#include "samples.h"
+
+#include "bf_pass.h"
 
 #include <check.h>
 #include <math.h>
@@ -84,6 +87,46 @@ START_TEST(weights_normalised)
     bf_host_loop(s, BRDFFIT_WARD, 1, 0, &pp, h);
     /* a2 = w cos^2 / (3 sum w) so 3 A = sum w cos^2 / sum w, in (0, 1] */
     ck_assert(3 * h[BF_MOM_A] > 0.1 && 3 * h[BF_MOM_A] <= 1.0);
+    brdffit_samples_free(s);
+}
+END_TEST
+
+/* The screening subset (bf_samples_every): every 8th sample of the set with
+ * its fields and metric weights, harmless padding, and He's value moments
+ * over it (host loop, with the memo) equal to the sums of bf_accumulate over
+ * those samples of the full set one at a time (no memo) to 1e-12. */
+START_TEST(subset_every_8th)
+{
+    brdffit_samples *s = load_samples("blue-rubber"), *sub = NULL;
+    brdffit_error err;
+    ck_assert_msg(bf_samples_every(s, 8, &sub, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_uint_eq(sub->n, (s->n + 7) / 8);
+    ck_assert(sub->npad >= sub->n && sub->npad % BF_PAD == 0);
+    for (size_t m = 0; m < sub->n; m++) {
+        for (int f = 0; f < BF_NFIELDS; f++)
+            ck_assert(sub->data[f * sub->npad + m] == s->data[f * s->npad + 8 * m]);
+        ck_assert_int_eq(sub->bin[m], s->bin[8 * m]);
+    }
+    for (size_t m = sub->n; m < sub->npad; m++)
+        ck_assert(sub->data[BF_F_A2 * sub->npad + m] == 0.0 && sub->data[BF_F_IZ * sub->npad + m] == 1.0);
+    bf_pass_par pp;
+    some_point(BRDFFIT_HE, &pp);
+    double h[BF_NMOM_MAX], ref[BF_NMOM_MAX] = { 0 };
+    int nmom = bf_nmom(3, 0);
+    bf_host_loop(sub, BRDFFIT_HE, 3, 0, &pp, h);
+    for (size_t i = 0; i < s->n; i += 8) {
+        const double *f = s->data;
+        size_t np = s->npad;
+        bf_geom g = { f[BF_F_IX * np + i], f[BF_F_IY * np + i], f[BF_F_IZ * np + i],
+                      f[BF_F_OX * np + i], f[BF_F_OY * np + i], f[BF_F_OZ * np + i],
+                      f[BF_F_NH * np + i], f[BF_F_VH * np + i] };
+        double rho[3] = { f[BF_F_R * np + i], f[BF_F_G * np + i], f[BF_F_B * np + i] };
+        bf_accumulate(BRDFFIT_HE, 3, 0, &pp, &g, rho, f[BF_F_A2 * np + i], ref, NULL);
+    }
+    for (int i = 0; i < nmom; i++)
+        ck_assert_msg(tu_reldiff(h[i], ref[i]) <= 1e-12, "moment %d: subset %.17g samples %.17g", i,
+                      h[i], ref[i]);
+    brdffit_samples_free(sub);
     brdffit_samples_free(s);
 }
 END_TEST
@@ -366,6 +409,7 @@ Suite *pass_suite(void)
     tcase_set_tags(tc, TU_NEEDS_SHARED);
     tcase_add_loop_test(tc, kernel_equals_host, 0, brdffit_model_count());
     tcase_add_test(tc, weights_normalised);
+    tcase_add_test(tc, subset_every_8th);
     suite_add_tcase(s, tc);
     TCase *tl = tcase_create("layout");
     tcase_add_test(tl, moment_layout);

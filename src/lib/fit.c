@@ -332,6 +332,7 @@ static int lm_callback(void *user, int m, int n, const double *x, double *fvec, 
 /* ---------------------------------------------------------------- starts */
 
 typedef struct start {
+    double p[3];        /* lobe parameters */
     double x[NX_MAX];   /* lobe coordinates */
     bf_linear lin;      /* the best d, s there */
     double cost;        /* r^T r there */
@@ -378,6 +379,7 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *sp)
         return st;
     const bf_linear zero = { { 0, 0, 0 }, { 0, 0, 0 } };
     sp->cost = bf_linear_best(mom, S->ps->nk, 0, &zero, &sp->lin);
+    memcpy(sp->p, p, sizeof sp->p);
     params_to_coords(&S->fm, p, sp->x);
     return BRDFFIT_OK;
 }
@@ -473,6 +475,41 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
             keep[(*nkeep)++] = round_best[r];
     }
     return BRDFFIT_OK;
+}
+
+/* Below this many samples in the subset, a model's screen_stride is not used. */
+#define SCREEN_MIN_SAMPLES 4096
+
+/* screen_starts on every screen_stride-th sample (registry) when the model
+ * has one, then the kept starts' cost and d, s on all samples: a kept start
+ * is refined from exactly where a screening on all samples would have left
+ * it.  The subset's passes are added to *passes and *seconds. */
+static brdffit_status screen_kept(lmstate *S, brdffit_context *ctx, const brdffit_samples *samples,
+                                  int nstarts, int refine, start *keep, int *nkeep, int *passes,
+                                  double *seconds)
+{
+    size_t stride = (size_t)bf_model_def_get(S->fm.model)->screen_stride;
+    if (stride <= 1 || samples->n / stride < SCREEN_MIN_SAMPLES)
+        return screen_starts(S, nstarts, refine, keep, nkeep);
+    brdffit_samples *sub = NULL;
+    bf_pass_driver sd, *all = S->ps;
+    memset(&sd, 0, sizeof sd);
+    brdffit_status st = bf_samples_every(samples, stride, &sub, S->err);
+    if (st == BRDFFIT_OK)
+        st = bf_driver_open(&sd, ctx, sub, S->fm.model, S->err);
+    if (st != BRDFFIT_OK)
+        goto done;
+    S->ps = &sd;
+    st = screen_starts(S, nstarts, refine, keep, nkeep);
+    S->ps = all;
+    for (int k = 0; k < *nkeep && st == BRDFFIT_OK; k++)
+        st = screen_start(S, keep[k].p, &keep[k]);
+done:
+    *passes += sd.passes;
+    *seconds += sd.seconds;
+    bf_driver_close(&sd);
+    brdffit_samples_free(sub);
+    return st;
 }
 
 /* The outcome of refining one start. */
@@ -688,7 +725,9 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
     int nstarts = o.starts ? o.starts : brdffit_model_get(model)->default_starts;
-    st = screen_starts(&S, nstarts, refine, keep, &nkeep);
+    int sub_passes = 0;
+    double sub_seconds = 0.0;
+    st = screen_kept(&S, ctx, samples, nstarts, refine, keep, &nkeep, &sub_passes, &sub_seconds);
     if (st != BRDFFIT_OK)
         goto done;
     lmrun best = { .rr = INFINITY };
@@ -709,11 +748,11 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (st != BRDFFIT_OK)
         goto done;
     fill_result(&S, &best, result);
-    result->passes = ps.passes;
+    result->passes = ps.passes + sub_passes;
     result->seconds_build = ps.seconds_build;
     result->samples = samples->n;
     result->backend = brdffit_context_backend(ctx);
-    result->seconds_passes = ps.seconds;
+    result->seconds_passes = ps.seconds + sub_seconds;
     result->seconds_solver = solver_seconds;
     result->seconds = bf_now() - t_start;
     bf_ok(err);

@@ -28,6 +28,9 @@ typedef struct bf_start_grid {
 typedef struct bf_model_def {
     brdffit_model_info info;     /* the public descriptor                       */
     bf_start_grid grid;          /* the starts the fit screens                  */
+    int screen_stride;           /* > 1: the starts are screened on every
+                                  * screen_stride-th sample, and the kept ones
+                                  * then on all (0: on all samples)            */
 } bf_model_def;
 
 /* The registry entry of a model, or NULL for an id out of range. */

@@ -170,16 +170,11 @@ static void take_bins(brdffit_samples *samples, const double *v, double cosc, co
     samples->sum_w = sum_w;
 }
 
-/* The metric weight of each sample, and the padding: harmless samples that
- * add exactly 0 to every sum. */
-static void finish_fields(brdffit_samples *samples)
+/* The padding: harmless samples (n .. npad-1) that add exactly 0 to every sum. */
+static void pad_fields(brdffit_samples *samples)
 {
     const size_t stride = samples->npad;
     double *F = samples->data;
-    for (size_t m = 0; m < samples->n; m++) {
-        double iz = F[BF_F_IZ * stride + m];
-        F[BF_F_A2 * stride + m] = samples->w[m] * iz * iz / (3.0 * samples->sum_w);
-    }
     bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
     bf_geom_derive(&pg);
     const double pad[BF_NFIELDS] = {
@@ -188,6 +183,18 @@ static void finish_fields(brdffit_samples *samples)
     for (int q = 0; q < BF_NFIELDS; q++)
         for (size_t m = samples->n; m < stride; m++)
             F[q * stride + m] = pad[q];
+}
+
+/* The metric weight of each sample, and the padding. */
+static void finish_fields(brdffit_samples *samples)
+{
+    const size_t stride = samples->npad;
+    double *F = samples->data;
+    for (size_t m = 0; m < samples->n; m++) {
+        double iz = F[BF_F_IZ * stride + m];
+        F[BF_F_A2 * stride + m] = samples->w[m] * iz * iz / (3.0 * samples->sum_w);
+    }
+    pad_fields(samples);
 }
 
 brdffit_status brdffit_samples_create(const brdffit_table *table,
@@ -325,4 +332,34 @@ size_t bf_samples_geometries(const brdffit_samples *samples, size_t need)
             memcpy(seen[found++], key, sizeof key);
     }
     return found;
+}
+
+brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdffit_samples **out,
+                                brdffit_error *err)
+{
+    *out = NULL;
+    brdffit_samples *sub = calloc(1, sizeof *sub);
+    if (!sub)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
+    size_t n = (src->n + stride - 1) / stride;
+    brdffit_status st = alloc_samples(sub, n, err);
+    if (st != BRDFFIT_OK)
+        goto done;
+    sub->opt = src->opt;
+    sub->n = n;
+    for (size_t m = 0; m < n; m++) {
+        for (int q = 0; q < BF_NFIELDS; q++)
+            sub->data[q * sub->npad + m] = src->data[q * src->npad + m * stride];
+        sub->w[m] = src->w[m * stride];
+        sub->bin[m] = src->bin[m * stride];
+        sub->sum_w += sub->w[m];
+    }
+    pad_fields(sub); /* a2 stays the full set's */
+done:
+    if (st != BRDFFIT_OK) {
+        brdffit_samples_free(sub);
+        return st;
+    }
+    *out = sub;
+    return BRDFFIT_OK;
 }

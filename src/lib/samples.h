@@ -37,4 +37,11 @@ struct brdffit_samples {
 #define BF_GEOM_NEED_MAX 8
 size_t bf_samples_geometries(const brdffit_samples *samples, size_t need);
 
+/* Every stride-th sample of src (0, stride, 2 stride, ...: table order, so
+ * runs of one (theta_h, theta_d) bin stay together) as a sample set of its
+ * own, with src's metric weights a2 (its sums are about 1/stride of src's):
+ * what a fit screens its starts on (bf_model_def.screen_stride). */
+brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdffit_samples **out,
+                                brdffit_error *err);
+
 #endif /* BRDFFIT_SAMPLES_H */

@@ -51,16 +51,31 @@ BF_FN void bf_lobe_fd_he(const bf_geom *g, const double (*p)[3], int np, const d
     bf_he_fd(g, p, np, lam, K0, Kj, st ? &st->he : (bf_he_memo *)0);
 }
 
-/* The two kinds of forward differences a BF_MODEL_LOBES entry names. */
+/* The kinds of forward differences a BF_MODEL_LOBES entry names. */
 #define BF_FD_POINTWISE(name)                                   \
     bf_lobe_##name(g, p[0], lam, K0);                           \
     for (int j = 0; j < np; j++)                                \
         bf_lobe_##name(g, p[1 + j], lam, Kj[j]);
+#define BF_FD_SCHLICK(name)                                     \
+    {                                                           \
+        BF_REAL r0 = bf_##name##_rest(g, p[0][1]);              \
+        BF_REAL k0 = bf_schlick(p[0][0], g->vh) * r0;           \
+        K0[0] = K0[1] = K0[2] = k0;                             \
+        for (int j = 0; j < np; j++) {                          \
+            BF_REAL rj = r0;                                    \
+            if (p[1 + j][1] != p[0][1])                         \
+                rj = bf_##name##_rest(g, p[1 + j][1]);          \
+            BF_REAL kj = bf_schlick(p[1 + j][0], g->vh) * rj;   \
+            Kj[j][0] = Kj[j][1] = Kj[j][2] = kj;                \
+        }                                                       \
+    }
 #define BF_FD_OWN(name) bf_lobe_fd_##name(g, p, np, lam, K0, Kj, st);
 
 /* K at p[0] and at the np forward-difference neighbours p[1..np] of a data
  * pass (see bf_pass.h): K0[c] = K(p[0]) as bf_lobe gives it, Kj[j][c] ~
- * K(p[1 + j]).  A BF_FD_POINTWISE lobe is evaluated at each point; He
+ * K(p[1 + j]).  A BF_FD_POINTWISE lobe is evaluated at each point, a
+ * BF_FD_SCHLICK one gives the same values with its rest evaluated once for
+ * the points that differ only in F0; He
  * (BF_FD_OWN) sums its series once and carries it to the neighbours to first
  * order in its log, and with a state (NULL: none) reuses the previous
  * vector's series where g and a are unchanged (bf_he_fd; K0 is then bf_he's
@@ -81,10 +96,13 @@ BF_FN void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
         Kj[j][0] = Kj[j][1] = Kj[j][2] = BF_R(0.0);
 }
 
-/* 1 when a model's lobe has forward differences of its own (BF_FD_OWN). */
+/* 1 when a model's lobe has forward differences of its own (BF_FD_OWN);
+ * 0 when they are the lobe's values at each point, bit for bit
+ * (BF_FD_POINTWISE, BF_FD_SCHLICK). */
 BF_FN int bf_lobe_has_own_fd(int model)
 {
 #define BF_FD_KIND_BF_FD_POINTWISE 0
+#define BF_FD_KIND_BF_FD_SCHLICK 0
 #define BF_FD_KIND_BF_FD_OWN 1
 #define BF_LOBE_KIND_CASE(id, name, fd) \
     if (model == id) return BF_FD_KIND_##fd;

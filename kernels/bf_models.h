@@ -89,22 +89,35 @@ BF_FN BF_REAL bf_lafortune(const bf_geom *g, double cxy, double cz, double n)
     return ((n + 2.0) / (2.0 * BF_PI)) * bf_powu(x, n);
 }
 
+/* The lobes whose F0 enters only through Schlick's factor at V.H are
+ * written K = F(F0, V.H) R(g, p1), R their _rest: a data pass reuses R for
+ * F0's forward difference (BF_FD_SCHLICK in bf_lobe.h), bit for bit. */
+
 /* Cook-Torrance [F0, m], with the constant 1/(4 pi m^2) of the published fits */
-BF_FN BF_REAL bf_cook_torrance(const bf_geom *g, double f0, double m)
+BF_FN BF_REAL bf_cook_torrance_rest(const bf_geom *g, double m)
 {
     double m2 = m * m;
     BF_REAL nh = g->nh, vh = g->vh;
     BF_REAL gg = fmin(fmin(2.0 * nh * g->oz / vh, 2.0 * nh * g->iz / vh), 1.0);
     BF_REAL nh2 = nh * nh;
     BF_REAL d = exp(-bf_tan2(nh) / m2) / ((4.0 * BF_PI * m2) * (nh2 * nh2));
-    return bf_schlick(f0, vh) * gg * d / (g->iz * g->oz);
+    return gg * d / (g->iz * g->oz);
+}
+
+BF_FN BF_REAL bf_cook_torrance(const bf_geom *g, double f0, double m)
+{
+    return bf_schlick(f0, g->vh) * bf_cook_torrance_rest(g, m);
 }
 
 /* Ashikhmin-Shirley [F0, n] */
+BF_FN BF_REAL bf_ashikhmin_shirley_rest(const bf_geom *g, double n)
+{
+    return ((n + 1.0) / (8.0 * BF_PI)) * bf_powu(g->nh, n) / (g->vh * fmax(g->iz, g->oz));
+}
+
 BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
 {
-    return ((n + 1.0) / (8.0 * BF_PI)) * bf_powu(g->nh, n)
-         / (g->vh * fmax(g->iz, g->oz)) * bf_schlick(f0, g->vh);
+    return bf_schlick(f0, g->vh) * bf_ashikhmin_shirley_rest(g, n);
 }
 
 /* GGX [F0, alpha], as pbrt-v4 evaluates it: K = D G2 F / (4 cos ti cos to),
@@ -115,7 +128,7 @@ BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
  * (not normalised) D = a^2 |H|^4 / (pi (a^2 Hz^2 + Hx^2 + Hy^2)^2), and with
  * q(w) = sqrt(z^2 + a^2 (x^2 + y^2)) = z (1 + 2 L(w)),
  * G2 / (4 cos ti cos to) = 1 / (2 (q(wi) oz + q(wo) iz)). */
-BF_FN BF_REAL bf_ggx(const bf_geom *g, double f0, double alpha)
+BF_FN BF_REAL bf_ggx_rest(const bf_geom *g, double alpha)
 {
     double a2 = alpha * alpha;
     BF_REAL hx = g->ix + g->ox, hy = g->iy + g->oy, hz = g->iz + g->oz;
@@ -124,7 +137,12 @@ BF_FN BF_REAL bf_ggx(const bf_geom *g, double f0, double alpha)
     BF_REAL d = (a2 * (h2 * h2)) / (BF_PI * (den * den));
     BF_REAL qi = sqrt(g->iz * g->iz + a2 * (g->ix * g->ix + g->iy * g->iy));
     BF_REAL qo = sqrt(g->oz * g->oz + a2 * (g->ox * g->ox + g->oy * g->oy));
-    return bf_schlick(f0, g->vh) * d / (2.0 * (qi * g->oz + qo * g->iz));
+    return d / (2.0 * (qi * g->oz + qo * g->iz));
+}
+
+BF_FN BF_REAL bf_ggx(const bf_geom *g, double f0, double alpha)
+{
+    return bf_schlick(f0, g->vh) * bf_ggx_rest(g, alpha);
 }
 
 /* A lobe that is the same for the three channels, as a model entry point. */
@@ -150,17 +168,18 @@ BF_GREY_LOBE(ggx, bf_ggx(g, p[0], p[1]))
 /* The lobe of each model, by id (the values of brdffit_model in brdffit.h;
  * src/lib/registry.c checks that it has an entry for each): X(id, model, fd)
  * with bf_lobe_<model> its entry point and fd how a data pass takes its
- * forward differences, BF_FD_POINTWISE (the lobe at each point) or BF_FD_OWN
- * (its own bf_lobe_fd_<model>).  bf_lobe and bf_lobe_fd (bf_lobe.h) switch
+ * forward differences, BF_FD_POINTWISE (the lobe at each point), BF_FD_SCHLICK
+ * (K = F(p[0], V.H) bf_<model>_rest(g, p[1]): the rest once per distinct p[1])
+ * or BF_FD_OWN (its own bf_lobe_fd_<model>).  bf_lobe and bf_lobe_fd (bf_lobe.h) switch
  * over this list; the rest of a model's facts are its registry entry. */
 #define BF_MODEL_LOBES(X)                                                                 \
     X(0, ward, BF_FD_POINTWISE)                                                           \
     X(1, ward_duer, BF_FD_POINTWISE)                                                      \
     X(2, blinn_phong, BF_FD_POINTWISE)                                                    \
     X(3, lafortune, BF_FD_POINTWISE)                                                      \
-    X(4, cook_torrance, BF_FD_POINTWISE)                                                  \
-    X(5, ashikhmin_shirley, BF_FD_POINTWISE)                                              \
+    X(4, cook_torrance, BF_FD_SCHLICK)                                                    \
+    X(5, ashikhmin_shirley, BF_FD_SCHLICK)                                                \
     X(6, he, BF_FD_OWN)                                                                   \
-    X(7, ggx, BF_FD_POINTWISE)
+    X(7, ggx, BF_FD_SCHLICK)
 
 #endif /* BF_MODELS_H */

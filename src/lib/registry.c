@@ -54,36 +54,44 @@ static const brdffit_param_info ggx_params[] = {
 
 #define PARAMS(a) .nparams = (int)(sizeof a / sizeof a[0]), .params = a
 
+/* Every model screens its starts on every 8th sample (bf_model_def): on all
+ * 100 MERL tables that keeps the starts a screening on all samples keeps. */
 static const bf_model_def registry[] = {
     [BRDFFIT_WARD] = {
         .info = { BRDFFIT_WARD, "ward", "Ward", PARAMS(ward_params), .chromatic = 0,
                   .default_starts = 8 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
+        .screen_stride = 8,
     },
     [BRDFFIT_WARD_DUER] = {
         .info = { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", PARAMS(ward_params),
                   .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
+        .screen_stride = 8,
     },
     [BRDFFIT_BLINN_PHONG] = {
         .info = { BRDFFIT_BLINN_PHONG, "blinn-phong", "Blinn-Phong", PARAMS(blinn_phong_params),
                   .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
+        .screen_stride = 8,
     },
     [BRDFFIT_LAFORTUNE] = {
         .info = { BRDFFIT_LAFORTUNE, "lafortune", "Lafortune", PARAMS(lafortune_params),
                   .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 2, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
+        .screen_stride = 8,
     },
     [BRDFFIT_COOK_TORRANCE] = {
         .info = { BRDFFIT_COOK_TORRANCE, "cook-torrance", "Cook-Torrance",
                   PARAMS(cook_torrance_params), .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
+        .screen_stride = 8,
     },
     [BRDFFIT_ASHIKHMIN_SHIRLEY] = {
         .info = { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley", "Ashikhmin-Shirley",
                   PARAMS(ashikhmin_shirley_params), .chromatic = 0, .default_starts = 8 },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
+        .screen_stride = 8,
     },
     /* tau over 4, 8, ..., 28 as Ngan et al. at sigma0 = 0.5, then again at
      * sigma0 = 2 (each further round of 7 raises sigma0 4x); screened on
@@ -99,6 +107,7 @@ static const bf_model_def registry[] = {
         .info = { BRDFFIT_GGX, "ggx", "GGX", PARAMS(ggx_params), .chromatic = 0,
                   .default_starts = 8 },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.8, NO_ROUNDS },
+        .screen_stride = 8,
     },
 };
 

@@ -222,8 +222,8 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const be
            "   reading the same buffer as the pass does, and only adding it up (the memory bound)\n",
            (int)BF_NFIELDS, bytes / (double)s->n, bytes * 1e-6, copy_s * 1e3, bytes / copy_s * 1e-9,
            sum_s * 1e3, bytes / sum_s * 1e-9);
-    printf("%-18s %7s %9s %9s %9s %9s %8s %8s %7s %9s\n", "model", "build s", "C loop ms", "value ms",
-           "full ms", "stream ms", "value/st", "full/st", "C/full", "stream GB/s");
+    printf("%-18s %7s %7s %9s %9s %9s %9s %8s %8s %7s %9s\n", "model", "build s", "B/smp", "C loop ms",
+           "value ms", "full ms", "stream ms", "value/st", "full/st", "C/full", "stream GB/s");
     bench_stream bs;
     memset(&bs, 0, sizeof bs);
     int rc = 0;
@@ -243,9 +243,9 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const be
         }
         bf_driver_close(&dr);
         if (rc == 0)
-            printf("%-18s %7.2f %9.1f %9.1f %9.1f %9.1f %7.2fx %7.2fx %6.1fx %9.1f\n",
+            printf("%-18s %7.2f %7.1f %9.1f %9.1f %9.1f %9.1f %7.2fx %7.2fx %6.1fx %9.1f\n",
                    brdffit_model_get((brdffit_model)m)->name, brdffit_context_build_seconds(ctx, (brdffit_model)m),
-                   t.c_loop * 1e3, t.value * 1e3, t.full * 1e3, t.stream * 1e3, t.value / t.stream,
+                   bytes / (double)s->n, t.c_loop * 1e3, t.value * 1e3, t.full * 1e3, t.stream * 1e3, t.value / t.stream,
                    t.full / t.stream, t.c_loop / t.full, bytes / t.stream * 1e-9);
     }
     bench_stream_close(&bs);

@@ -52,8 +52,11 @@ int bench_batch(const char *const *materials, int nmat, const char *models)
     double total = -1, fitting = -1;
     int fits = 0;
     while (e && fgets(line, sizeof line, e)) {
-        const char *p = strstr(line, " fits this run; ");
-        if (p && sscanf(p, " fits this run; %lf s, of which %lf s fitting", &total, &fitting) == 2) {
+        const char *p = strstr(line, " fits this run; "), *q1 = strstr(line, " fit this run; ");
+        if (!p)
+            p = q1; /* "1 fit this run" */
+        if (p && sscanf(strstr(p, " this run; "), " this run; %lf s, of which %lf s fitting", &total,
+                        &fitting) == 2) {
             const char *q = p;
             while (q > line && q[-1] >= '0' && q[-1] <= '9')
                 q--;

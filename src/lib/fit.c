@@ -604,9 +604,10 @@ static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, con
     return BRDFFIT_OK;
 }
 
-/* He refines its starts without the secant correction (with it from the
- * start, measured on the MERL tables, blue-metallic-paint slid into another
- * minimum, 0.37% worse), then polishes the best run: LM with the correction
+/* A model whose registry entry says BF_SECANT_POLISH (He) refines its starts
+ * without the secant correction (He with it from the start, measured on the
+ * MERL tables: blue-metallic-paint slid into another minimum, 0.37% worse),
+ * then polishes the best run: LM with the correction
  * from where that run stopped, kept when lower.  It cannot end higher (LM
  * only takes steps that lower the cost) and reaches lower where the plain
  * run stopped in Gauss-Newton's slow tail (~1e-9 relative; measured: ss440,
@@ -742,7 +743,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     S.err = err;
     fitmap_init(&S.fm, model);
     S.nx = S.fm.nl;
-    S.secant = model != BRDFFIT_HE; /* He: after its LM runs (polish) */
+    S.secant = bf_model_def_get(model)->secant == BF_SECANT_ALWAYS; /* else: polish */
     brdffit_params lp;
     memset(&lp, 0, sizeof lp);
     memcpy(lp.lambda_um, o.lambda_um, sizeof lp.lambda_um);

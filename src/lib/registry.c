@@ -95,13 +95,15 @@ static const bf_model_def registry[] = {
     },
     /* tau over 4, 8, ..., 28 as Ngan et al. at sigma0 = 0.5, then again at
      * sigma0 = 2 (each further round of 7 raises sigma0 4x); screened on
-     * every 8th sample (the rough starts sum the series at every sample) */
+     * every 8th sample (the rough starts sum the series at every sample);
+     * the secant correction only in a final polish (fit.c) */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
                   .default_starts = 14 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LINEAR, .lo = 4, .hi = 28, .period = 7,
                   .round_param = 1, .round_factor = 4.0 },
         .screen_stride = 8,
+        .secant = BF_SECANT_POLISH,
     },
     [BRDFFIT_GGX] = {
         .info = { BRDFFIT_GGX, "ggx", "GGX", PARAMS(ggx_params), .chromatic = 0,

@@ -25,12 +25,21 @@ typedef struct bf_start_grid {
     double round_factor;
 } bf_start_grid;
 
+/* When the fit corrects Gauss-Newton's H by a secant estimate of the
+ * residuals' curvature (fit.c, secant_correct). */
+typedef enum bf_secant_use {
+    BF_SECANT_ALWAYS = 0, /* in every LM run                                   */
+    BF_SECANT_POLISH = 1  /* only in one more LM run from the best run's end,
+                           * kept when lower (fit.c, polish)                  */
+} bf_secant_use;
+
 typedef struct bf_model_def {
     brdffit_model_info info;     /* the public descriptor                       */
     bf_start_grid grid;          /* the starts the fit screens                  */
     int screen_stride;           /* > 1: the starts are screened on every
                                   * screen_stride-th sample, and the kept ones
                                   * then on all (0: on all samples)            */
+    bf_secant_use secant;        /* when LM's H gets the secant correction (fit.c) */
 } bf_model_def;
 
 /* The registry entry of a model, or NULL for an id out of range. */

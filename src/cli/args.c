@@ -48,9 +48,8 @@ int cli_usage_error(const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    fputs("brdffit: ", stderr);
-    plain_string(stderr, msg);
-    fputs("\nTry 'brdffit --help' for more information.\n", stderr);
+    cli_error("%s", msg);
+    fputs("Try 'brdffit --help' for more information.\n", stderr);
     return CLI_USAGE;
 }
 

@@ -27,6 +27,10 @@ const char *bf_path_brief(const char *path, char *buf, size_t len);
  * BRDFFIT_E_INVALID_ARGUMENT. */
 brdffit_status bf_fail_pair(brdffit_error *err, const char *what, const double wi[3],
                             const double wo[3]);
+/* bf_fail_pair for pair `first` of a batch of n, `bad` of them refused, whose
+ * results were set to `fill` ("0", "-1"): the message says so. */
+brdffit_status bf_fail_pairs(brdffit_error *err, const char *fn, size_t first, size_t n,
+                             size_t bad, const char *fill, const double *wi, const double *wo);
 /* The arguments every table lookup checks (fn names the caller in the message). */
 brdffit_status bf_lookup_check(const char *fn, const brdffit_table *table, brdffit_scale scale,
                                brdffit_interp interp, brdffit_error *err);

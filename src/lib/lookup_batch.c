@@ -2,8 +2,6 @@
 /* lookup_batch.c -- brdffit_table_lookup over n direction pairs in one call. */
 #include "internal.h"
 
-#include <stdio.h>
-
 brdffit_status brdffit_table_lookup_batch(const brdffit_table *table, size_t n,
                                           const double *wi, const double *wo,
                                           brdffit_scale scale, brdffit_interp interp,
@@ -30,8 +28,5 @@ brdffit_status brdffit_table_lookup_batch(const brdffit_table *table, size_t n,
         bf_ok(err);
         return BRDFFIT_OK;
     }
-    char what[160];
-    snprintf(what, sizeof what, "%s: pair %zu of %zu (%zu bad pair%s, rgb -1 there)", fn, first, n,
-             bad, bad == 1 ? "" : "s");
-    return bf_fail_pair(err, what, wi + 3 * first, wo + 3 * first);
+    return bf_fail_pairs(err, fn, first, n, bad, "-1", wi, wo);
 }

@@ -7,7 +7,6 @@
 #include "bf_lobe.h"
 
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
 
 void bf_lambdas(const brdffit_params *params, double lam[3])
@@ -114,13 +113,9 @@ static brdffit_status eval_pairs(const char *fn, int batch, brdffit_model model,
         bf_ok(err);
         return BRDFFIT_OK;
     }
-    char what[160];
     if (batch)
-        snprintf(what, sizeof what, "%s: pair %zu of %zu (%zu bad pair%s, rgb 0 there)", fn,
-                 first, n, bad, bad == 1 ? "" : "s");
-    else
-        snprintf(what, sizeof what, "%s", fn);
-    return bf_fail_pair(err, what, wi + 3 * first, wo + 3 * first);
+        return bf_fail_pairs(err, fn, first, n, bad, "0", wi, wo);
+    return bf_fail_pair(err, fn, wi + 3 * first, wo + 3 * first);
 }
 
 brdffit_status brdffit_eval_batch(brdffit_model model, const brdffit_params *params, size_t n,

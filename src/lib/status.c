@@ -86,6 +86,15 @@ brdffit_status bf_fail_pair(brdffit_error *err, const char *what, const double w
                    wo[1], wo[2]);
 }
 
+brdffit_status bf_fail_pairs(brdffit_error *err, const char *fn, size_t first, size_t n,
+                             size_t bad, const char *fill, const double *wi, const double *wo)
+{
+    char what[160];
+    snprintf(what, sizeof what, "%s: pair %zu of %zu (%zu bad pair%s, rgb %s there)", fn, first, n,
+             bad, bad == 1 ? "" : "s", fill);
+    return bf_fail_pair(err, what, wi + 3 * first, wo + 3 * first);
+}
+
 const char *bf_path_brief(const char *path, char *buf, size_t len)
 {
     size_t n = strlen(path);

@@ -116,6 +116,7 @@ typedef struct point {
 
 typedef struct lmstate {
     bf_pass_driver *ps;
+    bf_pass_driver *sub;           /* the screening's subset, or NULL */
     fitmap fm;
     int nx;
     double lam[3];
@@ -144,7 +145,10 @@ static void make_pass_par(const lmstate *S, const double *u0, int with_fd, bf_pa
     for (int j = 0; j < S->fm.nl; j++) {
         double u[BF_MAX_NP];
         memcpy(u, u0, sizeof u);
-        double h = (S->fm.kind[j] == BRDFFIT_MAP_DIRECTION ? FD_STEP_DIRECTION : FD_STEP) * fmax(1.0, fabs(u[j]));
+        /* relative to u's place in its period: lmder may carry u far out
+         * (u = 1e8 seen), where a step relative to |u| is no longer small */
+        double h = (S->fm.kind[j] == BRDFFIT_MAP_DIRECTION ? FD_STEP_DIRECTION : FD_STEP)
+                 * fmax(1.0, fabs(remainder(u[j], 2.0 * M_PI)));
         u[j] += h;
         h = u[j] - u0[j]; /* the step actually representable */
         coords_to_params(&S->fm, u, pp->p[1 + j]);
@@ -283,17 +287,41 @@ static void assemble(lmstate *S, const double *x, const double *mom, point *pt)
     pt->rr = rr;
 }
 
+/* The pass's r^T r at a point is the residual energy at the reference minus
+ * what the offsets to the best d, s explain: a reference far from the best
+ * (s ~ 1e10 where a start's lobe was nearly zero) leaves that difference to
+ * cancellation, down to a spurious 0.  When the energy at the reference
+ * exceeds REF_FAR times r^T r the pass is taken again at the best d, s (up
+ * to REF_RETAKES times). */
+#define REF_FAR 1e4
+#define REF_RETAKES 2
+
+static double residual_energy(const double *mom, int nk, int np)
+{
+    double see = 0.0;
+    for (int c = 0; c < 3; c++)
+        see += mom[bf_mom_chan(c, nk, np) + BF_MC_SEE];
+    return see;
+}
+
 static const point *evaluate(lmstate *S, const double *x)
 {
     for (int i = 0; i < 2; i++)
         if (S->cache[i].valid && memcmp(S->cache[i].x, x, S->nx * sizeof *x) == 0)
             return &S->cache[i];
-    bf_pass_par pp;
-    make_pass_par(S, x, 1, &pp);
     double mom[BF_NMOM_MAX];
-    S->st = bf_driver_run(S->ps, 1, &pp, mom, S->err);
-    if (S->st != BRDFFIT_OK)
-        return NULL;
+    for (int take = 0;; take++) {
+        bf_pass_par pp;
+        make_pass_par(S, x, 1, &pp);
+        S->st = bf_driver_run(S->ps, 1, &pp, mom, S->err);
+        if (S->st != BRDFFIT_OK)
+            return NULL;
+        bf_linear lin;
+        double rr = bf_linear_best(mom, S->ps->nk, S->nx, &S->ref, &lin);
+        if (take >= REF_RETAKES || !(residual_energy(mom, S->ps->nk, S->nx) > REF_FAR * rr))
+            break;
+        S->ref = lin;
+    }
     point *pt = &S->cache[S->next];
     S->next ^= 1;
     assemble(S, x, mom, pt);
@@ -481,34 +509,34 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
 #define SCREEN_MIN_SAMPLES 4096
 
 /* screen_starts on every screen_stride-th sample (registry) when the model
- * has one, then the kept starts' cost and d, s on all samples: a kept start
- * is refined from exactly where a screening on all samples would have left
- * it.  The subset's passes are added to *passes and *seconds. */
+ * has one, into *sub (opened here, closed by the caller).  A model that
+ * refines on the subset (registry: refine_on_subset) keeps S->sub = sd and
+ * its kept starts as the subset left them; otherwise the kept starts' cost
+ * and d, s are taken again on all samples, so that each is refined from
+ * exactly where a screening on all samples would have left it. */
 static brdffit_status screen_kept(lmstate *S, brdffit_context *ctx, const brdffit_samples *samples,
-                                  int nstarts, int refine, start *keep, int *nkeep, int *passes,
-                                  double *seconds)
+                                  int nstarts, int refine, start *keep, int *nkeep,
+                                  bf_pass_driver *sd, brdffit_samples **sub)
 {
-    size_t stride = (size_t)bf_model_def_get(S->fm.model)->screen_stride;
+    const bf_model_def *def = bf_model_def_get(S->fm.model);
+    size_t stride = (size_t)def->screen_stride;
     if (stride <= 1 || samples->n / stride < SCREEN_MIN_SAMPLES)
         return screen_starts(S, nstarts, refine, keep, nkeep);
-    brdffit_samples *sub = NULL;
-    bf_pass_driver sd, *all = S->ps;
-    memset(&sd, 0, sizeof sd);
-    brdffit_status st = bf_samples_every(samples, stride, &sub, S->err);
+    bf_pass_driver *all = S->ps;
+    brdffit_status st = bf_samples_every(samples, stride, sub, S->err);
     if (st == BRDFFIT_OK)
-        st = bf_driver_open(&sd, ctx, sub, S->fm.model, S->err);
+        st = bf_driver_open(sd, ctx, *sub, S->fm.model, S->err);
     if (st != BRDFFIT_OK)
-        goto done;
-    S->ps = &sd;
+        return st;
+    S->ps = sd;
     st = screen_starts(S, nstarts, refine, keep, nkeep);
     S->ps = all;
+    if (def->refine_on_subset) {
+        S->sub = sd;
+        return st;
+    }
     for (int k = 0; k < *nkeep && st == BRDFFIT_OK; k++)
         st = screen_start(S, keep[k].p, &keep[k]);
-done:
-    *passes += sd.passes;
-    *seconds += sd.seconds;
-    bf_driver_close(&sd);
-    brdffit_samples_free(sub);
     return st;
 }
 
@@ -570,17 +598,40 @@ static brdffit_status lm_converge(lmstate *S, const brdffit_fit_options *o, lmru
     return BRDFFIT_OK;
 }
 
-/* Refine a start.  A lobe coordinate that ends on its bound is stuck there
- * whether or not the data's optimum is inside (v = lo + (hi-lo)(1+sin u)/2
- * has no gradient at the bounds), so such a run is repeated from a point a
- * quarter of the range inside on those coordinates, and the better kept. */
+/* lm_converge on the passes of dr (the points cached for the other driver's
+ * samples are not this one's). */
+static brdffit_status lm_on(lmstate *S, bf_pass_driver *dr, const brdffit_fit_options *o,
+                            lmrun *run, double *solver_s)
+{
+    bf_pass_driver *was = S->ps;
+    S->ps = dr;
+    S->cache[0].valid = S->cache[1].valid = 0;
+    brdffit_status st = lm_converge(S, o, run, solver_s);
+    S->ps = was;
+    S->cache[0].valid = S->cache[1].valid = 0;
+    return st;
+}
+
+/* Refine a start: LM on the screening's subset first when the model's
+ * registry entry says so (S->sub), then on all samples from where that
+ * stopped.  A lobe coordinate that ends on its bound is stuck there whether
+ * or not the data's optimum is inside (v = lo + (hi-lo)(1+sin u)/2 has no
+ * gradient at the bounds), so such a run is repeated on all samples from a
+ * point a quarter of the range inside on those coordinates, and the better
+ * kept. */
 static brdffit_status refine_start(lmstate *S, const brdffit_fit_options *o, const start *sp,
                                    lmrun *run, double *solver_s)
 {
     memset(run, 0, sizeof *run);
     memcpy(run->x, sp->x, sizeof run->x);
     S->ref = sp->lin;
-    brdffit_status st = lm_converge(S, o, run, solver_s);
+    brdffit_status st = BRDFFIT_OK;
+    if (S->sub) {
+        st = lm_on(S, S->sub, o, run, solver_s);
+        S->ref = run->lin;
+    }
+    if (st == BRDFFIT_OK)
+        st = lm_converge(S, o, run, solver_s);
     if (st != BRDFFIT_OK)
         return st;
     lmrun again = *run;
@@ -733,7 +784,9 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (st != BRDFFIT_OK)
         return st;
 
-    bf_pass_driver ps;
+    bf_pass_driver ps, sd; /* all samples; the screening's subset */
+    memset(&sd, 0, sizeof sd);
+    brdffit_samples *sub = NULL;
     st = bf_driver_open(&ps, ctx, samples, model, err);
     if (st != BRDFFIT_OK)
         goto done;
@@ -752,9 +805,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
     int nstarts = o.starts ? o.starts : brdffit_model_get(model)->default_starts;
-    int sub_passes = 0;
-    double sub_seconds = 0.0;
-    st = screen_kept(&S, ctx, samples, nstarts, refine, keep, &nkeep, &sub_passes, &sub_seconds);
+    st = screen_kept(&S, ctx, samples, nstarts, refine, keep, &nkeep, &sd, &sub);
     if (st != BRDFFIT_OK)
         goto done;
     lmrun best = { .rr = INFINITY };
@@ -777,15 +828,17 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (st != BRDFFIT_OK)
         goto done;
     fill_result(&S, &best, result);
-    result->passes = ps.passes + sub_passes;
+    result->passes = ps.passes + sd.passes;
     result->seconds_build = ps.seconds_build;
     result->samples = samples->n;
     result->backend = brdffit_context_backend(ctx);
-    result->seconds_passes = ps.seconds + sub_seconds;
+    result->seconds_passes = ps.seconds + sd.seconds;
     result->seconds_solver = solver_seconds;
     result->seconds = bf_now() - t_start;
     bf_ok(err);
 done:
+    bf_driver_close(&sd);
+    brdffit_samples_free(sub);
     bf_driver_close(&ps);
     return st;
 }

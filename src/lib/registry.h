@@ -29,8 +29,8 @@ typedef struct bf_start_grid {
  * residuals' curvature (fit.c, secant_correct). */
 typedef enum bf_secant_use {
     BF_SECANT_ALWAYS = 0, /* in every LM run                                   */
-    BF_SECANT_POLISH = 1  /* only in one more LM run from the best run's end,
-                           * kept when lower (fit.c, polish)                  */
+    BF_SECANT_ON_ALL = 1  /* in the LM runs on all samples, not in those on the
+                           * screening's subset (refine_on_subset)             */
 } bf_secant_use;
 
 typedef struct bf_model_def {

@@ -457,8 +457,11 @@ typedef struct brdffit_fit_result {
     brdffit_params params;   /* in the paper's units                        */
     double error;            /* the "ngan-l2" Error of params               */
     int cminpack_info;       /* lmder's info of the run kept (1..4 converged) */
-    int iterations;          /* Jacobian evaluations of that run (njev)     */
-    int passes;              /* all data passes of the fit (starts + LM)    */
+    int iterations;          /* Jacobian evaluations (njev) of the LM runs that
+                                led to params, those on the screening's subset
+                                (He) included                               */
+    int passes;              /* all data passes of the fit (starts + LM), those
+                                on the screening's subset included           */
     double seconds;          /* wall time of brdffit_fit: checks, the kernel
                                 build if the fit made it (seconds_build),
                                 screening the starts, the LM runs           */
@@ -497,7 +500,10 @@ typedef enum brdffit_fit_flag {
                                        info 5) after its restarts: not converged */
 } brdffit_fit_flag;
 
-/* Fit a model to a sample set.  opt may be NULL for the defaults.  A sample
+/* Fit a model to a sample set.  opt may be NULL for the defaults.  The
+ * starts are screened on every 8th sample of a large set, and He's kept
+ * starts are refined there first; the result (params, error) is always that
+ * of all samples (README: How a fit works).  A sample
  * set with fewer distinct geometries than the model's unknowns per channel
  * (d, s and the lobe parameters; directions differing only by a turn about
  * the normal or by exchanging wi and wo count once) is refused with

@@ -94,7 +94,10 @@ static const bf_model_def registry[] = {
         .screen_stride = 8,
     },
     /* tau over 4, 8, ..., 28 as Ngan et al. at sigma0 = 0.5, then again at
-     * sigma0 = 2 (each further round of 7 raises sigma0 4x); screened on
+     * sigma0 = 2 and at 0.125 (further rounds of 7: 8, 1/32, 30, ...; the
+     * third round finds the minima at small tau and sigma0 of
+     * pickled-oak-260, silver-metallic-paint, gold-metallic-paint and
+     * grease-covered-steel, 8-32% lower: README, Fidelity); screened on
      * every 8th sample (the rough starts sum the series at every sample)
      * and refined there by plain Gauss-Newton LM (the secant correction
      * from the first step moved blue-metallic-paint into a minimum 0.37%
@@ -102,7 +105,7 @@ static const bf_model_def registry[] = {
      * the 100 MERL tables measured) */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
-                  .default_starts = 14 },
+                  .default_starts = 21 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LINEAR, .lo = 4, .hi = 28, .period = 7,
                   .round_param = 1, .round_factor = 4.0 },
         .screen_stride = 8,

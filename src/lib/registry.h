@@ -14,8 +14,9 @@
  *   param        set to the i-th point of lo..hi, evenly spaced (LINEAR) or
  *                geometrically (LOG): over all n starts when period is 0,
  *                else over `period` points repeated (i % period);
- *   round_param  (unless -1) multiplied by round_factor once per completed
- *                round of `period` starts (i / period), capped at its upper bound. */
+ *   round_param  (unless -1) in round k = i / period (of `period` starts)
+ *                multiplied by round_factor^e, e = 0, 1, -1, 2, -2, ... for
+ *                k = 0, 1, 2, 3, 4, ..., kept within its bounds. */
 typedef struct bf_start_grid {
     int param;
     brdffit_param_map spacing;

@@ -365,13 +365,17 @@ START_TEST(he_published_rows_finite)
 }
 END_TEST
 
-/* More starts never give a worse fit: the starts of a smaller count are among
- * those of a larger one.  On ipswich-pine-221 the 28 starts' last (tau = 4,
- * sigma0 = 30) once led LM to a point whose r^T r the pass's moments put at
- * 0 by cancellation (the reference's s was ~1e5 times the data's), and that
- * point won: an Error 5.8 times the 14 starts'.  On green-fabric lmder once
- * carried a coordinate to u ~ 1e8, where a difference step relative to |u|
- * overflowed He's carried neighbour: the fit failed. */
+/* The starts of a smaller count are among those of a larger one, so more
+ * starts should not give a worse fit (though only the kept starts within
+ * SUBSET_MARGIN of the lowest subset Error go on to all samples, so this is
+ * measured, not guaranteed); on these two tables they do not.  42 starts
+ * reach the sixth sigma0 round, 30 (the upper bound), where two faults were
+ * found.  On ipswich-pine-221 the start tau = 4, sigma0 = 30 once led LM to a
+ * point whose r^T r the pass's moments put at 0 by cancellation (the
+ * reference's s was ~1e5 times the data's), and that point won: an Error 5.8
+ * times the 14 starts'.  On green-fabric lmder once carried a coordinate to
+ * u ~ 1e8, where a difference step relative to |u| overflowed He's carried
+ * neighbour: the fit failed. */
 START_TEST(he_more_starts_no_worse)
 {
     const char *material = _i == 0 ? "ipswich-pine-221" : "green-fabric";
@@ -380,17 +384,17 @@ START_TEST(he_more_starts_no_worse)
     brdffit_context *ctx = make_context();
     brdffit_fit_options o;
     brdffit_fit_options_default(&o);
-    brdffit_fit_result r14, r28;
-    o.starts = 14;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &r14, &err) == BRDFFIT_OK, "%s", err.message);
-    o.starts = 28;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &r28, &err) == BRDFFIT_OK, "%s", err.message);
-    assert_finite_result(&r28);
-    ck_assert_msg(r28.error <= r14.error * (1 + 1e-12), "he/%s: 28 starts Error %.12g > 14 starts %.12g",
-                  material, r28.error, r14.error);
-    double e28;
-    ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_HE, &r28.params, &e28, &err), BRDFFIT_OK);
-    ck_assert_msg(e28 == r28.error, "reported %.17g, scored %.17g", r28.error, e28);
+    brdffit_fit_result rd, r42;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &rd, &err) == BRDFFIT_OK, "%s", err.message);
+    o.starts = 42;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &r42, &err) == BRDFFIT_OK, "%s", err.message);
+    assert_finite_result(&r42);
+    ck_assert_msg(r42.error <= rd.error * (1 + 1e-12),
+                  "he/%s: 42 starts Error %.12g > the default starts' %.12g", material, r42.error,
+                  rd.error);
+    double e42;
+    ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_HE, &r42.params, &e42, &err), BRDFFIT_OK);
+    ck_assert_msg(e42 == r42.error, "reported %.17g, scored %.17g", r42.error, e42);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
 }
@@ -413,11 +417,16 @@ static double stored_error(const char *material, const char *model)
 }
 
 /* Two He fits the stored run had lower until the start grid's third sigma0
- * round (pickled-oak-260: its minimum at tau ~ 1, sigma0 ~ 0.012) and the
- * polish's tighter tolerances (blue-metallic-paint) reach it or go below. */
+ * round (pickled-oak-260: its minimum at tau ~ 1, sigma0 ~ 0.012, 8% below
+ * the stored run) and the polish's tighter tolerances (blue-metallic-paint:
+ * the stored run's minimum, 1.3e-10 below it here; with the caller's
+ * tolerances 2.6e-8 above) reach it or go below.  blue-metallic-paint gets
+ * 1e-8 of room: nearby minima along He's valley differ by ~1e-9, and another
+ * CPU's vector code may settle in a neighbour. */
 START_TEST(he_at_or_below_stored_run)
 {
     const char *material = _i == 0 ? "pickled-oak-260" : "blue-metallic-paint";
+    const double room = _i == 0 ? 1e-9 : 1e-8;
     double stored = stored_error(material, "he");
     ck_assert_msg(stored > 0, "%s/he: not in bench/baseline-errors.tsv", material);
     brdffit_error err;
@@ -426,7 +435,7 @@ START_TEST(he_at_or_below_stored_run)
     brdffit_fit_result r;
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     assert_finite_result(&r);
-    ck_assert_msg(r.error <= stored * (1 + 1e-9), "he/%s: Error %.12g above the stored run's %.12g",
+    ck_assert_msg(r.error <= stored * (1 + room), "he/%s: Error %.12g above the stored run's %.12g",
                   material, r.error, stored);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);

@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
 #include "context.h"
+#include "linear.h"
 #include "pass.h"
 #include "registry.h"
 #include "samples.h"
@@ -401,6 +402,55 @@ START_TEST(build_failure_carries_log)
 }
 END_TEST
 
+/* Ward's moments (alpha = 0.3) over 200 directions of data rho, taken at
+ * the reference d, s of pp, into mom (nk = 1, np = 0). */
+static void ward_moments(const bf_pass_par *pp, double *mom)
+{
+    memset(mom, 0, BF_NMOM_MAX * sizeof *mom);
+    for (int i = 0; i < 200; i++) {
+        double ti = 0.007 * i, to = 0.007 * (200 - i), ph = 0.031 * i;
+        double wi[3] = { sin(ti), 0.0, cos(ti) };
+        double wo[3] = { sin(to) * cos(ph), sin(to) * sin(ph), cos(to) };
+        double h[3] = { wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2] };
+        double hn = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], h[2] / hn,
+                      (wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2]) / hn };
+        double rho[3] = { 0.1 + 0.05 * sin(i), 0.2 + 0.03 * cos(i), 0.05 + 0.01 * sin(3.0 * i) };
+        bf_accumulate((int)BRDFFIT_WARD, 1, 0, pp, &g, rho, 1.0 / 200, mom, NULL);
+    }
+}
+
+/* r^T r from moments taken at a reference far from the best d, s is lost to
+ * cancellation (the fit once got a spurious 0 there): bf_linear_ref_far says
+ * so, and says nothing at the best, where r^T r is that of a pass taken at
+ * the best itself. */
+START_TEST(ref_far_detected)
+{
+    bf_pass_par pp;
+    memset(&pp, 0, sizeof pp);
+    pp.p[0][0] = 0.3;
+    double mom[BF_NMOM_MAX];
+    bf_linear ref = { { 0, 0, 0 }, { 1e12, 1e12, 1e12 } }, best, best2;
+    memcpy(pp.s, ref.s, sizeof pp.s);
+    ward_moments(&pp, mom);
+    double rr = bf_linear_best(mom, 1, 0, &ref, &best);
+    ck_assert_msg(bf_linear_ref_far(mom, 1, 0, rr), "s_ref = 1e12: rr %g not flagged", rr);
+    memcpy(pp.d, best.d, sizeof pp.d);
+    memcpy(pp.s, best.s, sizeof pp.s);
+    ward_moments(&pp, mom);
+    double rr2 = bf_linear_best(mom, 1, 0, &best, &best2);
+    ck_assert(rr2 > 0);
+    ck_assert_msg(!bf_linear_ref_far(mom, 1, 0, rr2), "at the best: rr %g flagged", rr2);
+    memcpy(pp.d, best2.d, sizeof pp.d);
+    memcpy(pp.s, best2.s, sizeof pp.s);
+    ward_moments(&pp, mom);
+    double see = 0.0;
+    for (int c = 0; c < 3; c++)
+        see += mom[bf_mom_chan(c, 1, 0) + BF_MC_SEE];
+    ck_assert_msg(fabs(rr2 - see) <= 1e-9 * see, "rr %.17g, at the best itself %.17g", rr2, see);
+}
+END_TEST
+
 Suite *pass_suite(void)
 {
     Suite *s = suite_create("pass");
@@ -413,6 +463,7 @@ Suite *pass_suite(void)
     suite_add_tcase(s, tc);
     TCase *tl = tcase_create("layout");
     tcase_add_test(tl, moment_layout);
+    tcase_add_test(tl, ref_far_detected);
     suite_add_tcase(s, tl);
     TCase *tp = tcase_create("prepare"); /* a synthetic table: no ../shared */
     tcase_set_timeout(tp, 300);

@@ -288,22 +288,9 @@ static void assemble(lmstate *S, const double *x, const double *mom, point *pt)
     pt->rr = rr;
 }
 
-/* The pass's r^T r at a point is the residual energy at the reference minus
- * what the offsets to the best d, s explain: a reference far from the best
- * (s ~ 1e10 where a start's lobe was nearly zero) leaves that difference to
- * cancellation, down to a spurious 0.  When the energy at the reference
- * exceeds REF_FAR times r^T r the pass is taken again at the best d, s (up
- * to REF_RETAKES times). */
-#define REF_FAR 1e4
+/* A pass whose reference is far from its best d, s (bf_linear_ref_far) is
+ * taken again at the best, up to REF_RETAKES times. */
 #define REF_RETAKES 2
-
-static double residual_energy(const double *mom, int nk, int np)
-{
-    double see = 0.0;
-    for (int c = 0; c < 3; c++)
-        see += mom[bf_mom_chan(c, nk, np) + BF_MC_SEE];
-    return see;
-}
 
 static const point *evaluate(lmstate *S, const double *x)
 {
@@ -319,7 +306,7 @@ static const point *evaluate(lmstate *S, const double *x)
             return NULL;
         bf_linear lin;
         double rr = bf_linear_best(mom, S->ps->nk, S->nx, &S->ref, &lin);
-        if (take >= REF_RETAKES || !(residual_energy(mom, S->ps->nk, S->nx) > REF_FAR * rr))
+        if (take >= REF_RETAKES || !bf_linear_ref_far(mom, S->ps->nk, S->nx, rr))
             break;
         S->ref = lin;
     }

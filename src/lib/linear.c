@@ -132,3 +132,11 @@ void bf_linear_reduce(const double *mom, int nk, int np, const bf_linear *ref, c
         }
     }
 }
+
+int bf_linear_ref_far(const double *mom, int nk, int np, double rr)
+{
+    double see = 0.0;
+    for (int c = 0; c < 3; c++)
+        see += mom[bf_mom_chan(c, nk, np) + BF_MC_SEE];
+    return see > BF_LINEAR_REF_FAR * rr;
+}

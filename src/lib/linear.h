@@ -30,6 +30,15 @@ typedef struct bf_linear {
  * there.  np may be 0 (a value pass). */
 double bf_linear_best(const double *mom, int nk, int np, const bf_linear *ref, bf_linear *best);
 
+/* 1 when r^T r = rr (bf_linear_best's, from the same moments) has lost
+ * digits to cancellation: it is the residual energy at the reference minus
+ * what the offsets to the best d, s explain, and that energy exceeds
+ * BF_LINEAR_REF_FAR times rr (a reference s ~ 1e5 times the best, after a
+ * start whose lobe was nearly zero, once left a spurious rr = 0).  Then take
+ * the pass again at the best d, s. */
+#define BF_LINEAR_REF_FAR 1e4
+int bf_linear_ref_far(const double *mom, int nk, int np, double rr);
+
 /* The reduced normal equations in the np lobe coordinates at best (from
  * bf_linear_best on the same moments): H = J_red^T J_red (np x np, rows of
  * BF_MAX_NP), g = J_red^T r, and hdiag = the diagonal of J_u^T J_u before the

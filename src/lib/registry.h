@@ -39,12 +39,13 @@ typedef struct bf_model_def {
     bf_start_grid grid;          /* the starts the fit screens                  */
     int screen_stride;           /* > 1: the starts are screened on every
                                   * screen_stride-th sample, and the kept ones
-                                  * then on all (0: on all samples)            */
+                                  * then taken on all, or refined on the subset
+                                  * first (refine_on_subset); 0: all samples  */
     bf_secant_use secant;        /* when LM's H gets the secant correction (fit.c) */
     int refine_on_subset;        /* 1: each kept start is refined by LM on the
                                   * screening's subset first, then on all
                                   * samples from where that stopped (fit.c,
-                                  * refine_start); 0: on all samples only     */
+                                  * refine_kept); 0: on all samples only      */
 } bf_model_def;
 
 /* The registry entry of a model, or NULL for an id out of range. */

@@ -253,13 +253,14 @@ static void secant_correct(lmstate *S, const double *x, double H[][BF_MAX_NP], c
             H[j][l] += S->Sc[j][l];
 }
 
-/* From the moments at u (taken at S->ref): the best d, s, r^T r, then [z; t]
- * and [R; 0] of the reduced problem. */
-static void assemble(lmstate *S, const double *x, const double *mom, point *pt)
+/* From the moments at u (taken at S->ref) and their best d, s (lin) and
+ * r^T r (rr, bf_linear_best's): [z; t] and [R; 0] of the reduced problem. */
+static void assemble(lmstate *S, const double *x, const double *mom, double rr,
+                     const bf_linear *lin, point *pt)
 {
     const int nx = S->nx, m = nx + 1, nk = S->ps->nk;
     double H[BF_MAX_NP][BF_MAX_NP], g[BF_MAX_NP], hdiag[BF_MAX_NP];
-    double rr = bf_linear_best(mom, nk, nx, &S->ref, &pt->lin);
+    pt->lin = *lin;
     bf_linear_reduce(mom, nk, nx, &S->ref, &pt->lin, H, g, hdiag);
     if (S->secant)
         secant_correct(S, x, H, g);
@@ -297,22 +298,22 @@ static const point *evaluate(lmstate *S, const double *x)
     for (int i = 0; i < 2; i++)
         if (S->cache[i].valid && memcmp(S->cache[i].x, x, S->nx * sizeof *x) == 0)
             return &S->cache[i];
-    double mom[BF_NMOM_MAX];
+    double mom[BF_NMOM_MAX], rr;
+    bf_linear lin;
     for (int take = 0;; take++) {
         bf_pass_par pp;
         make_pass_par(S, x, 1, &pp);
         S->st = bf_driver_run(S->ps, 1, &pp, mom, S->err);
         if (S->st != BRDFFIT_OK)
             return NULL;
-        bf_linear lin;
-        double rr = bf_linear_best(mom, S->ps->nk, S->nx, &S->ref, &lin);
+        rr = bf_linear_best(mom, S->ps->nk, S->nx, &S->ref, &lin);
         if (take >= REF_RETAKES || !bf_linear_ref_far(mom, S->ps->nk, S->nx, rr))
             break;
         S->ref = lin;
     }
     point *pt = &S->cache[S->next];
     S->next ^= 1;
-    assemble(S, x, mom, pt);
+    assemble(S, x, mom, rr, &lin, pt);
     S->ref = pt->lin; /* the next pass is taken near the answer */
     return pt;
 }

@@ -322,6 +322,22 @@ START_TEST(he_recovery)
 }
 END_TEST
 
+/* A He fit of s (material names it in messages) with `starts` starts (0: the
+ * model's default): it succeeds and its result is finite and in bounds. */
+static brdffit_fit_result fit_he(brdffit_context *ctx, const brdffit_samples *s,
+                                 const char *material, int starts)
+{
+    brdffit_error err;
+    brdffit_fit_options o;
+    brdffit_fit_options_default(&o);
+    o.starts = starts;
+    brdffit_fit_result r;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &r, &err) == BRDFFIT_OK, "he/%s: %s", material,
+                  err.message);
+    assert_finite_result(&r);
+    return r;
+}
+
 /* On the alum-bronze and blue-rubber tables (flat scale) the fitted He Error
  * is no worse than that of the published He parameters. */
 START_TEST(he_beats_published)
@@ -334,9 +350,7 @@ START_TEST(he_beats_published)
     ck_assert(tu_published(material, BRDFFIT_HE, &pub));
     double e_pub;
     ck_assert_msg(brdffit_error_of(ctx, s, BRDFFIT_HE, &pub, &e_pub, &err) == BRDFFIT_OK, "%s", err.message);
-    brdffit_fit_result r;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
-    assert_finite_result(&r);
+    brdffit_fit_result r = fit_he(ctx, s, material, 0);
     ck_assert_msg(r.error <= e_pub, "he/%s: fitted Error %.6g > published %.6g", material, r.error, e_pub);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
@@ -382,13 +396,7 @@ START_TEST(he_more_starts_no_worse)
     brdffit_error err;
     brdffit_samples *s = merl_samples(material);
     brdffit_context *ctx = make_context();
-    brdffit_fit_options o;
-    brdffit_fit_options_default(&o);
-    brdffit_fit_result rd, r42;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &rd, &err) == BRDFFIT_OK, "%s", err.message);
-    o.starts = 42;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &r42, &err) == BRDFFIT_OK, "%s", err.message);
-    assert_finite_result(&r42);
+    brdffit_fit_result rd = fit_he(ctx, s, material, 0), r42 = fit_he(ctx, s, material, 42);
     ck_assert_msg(r42.error <= rd.error * (1 + 1e-12),
                   "he/%s: 42 starts Error %.12g > the default starts' %.12g", material, r42.error,
                   rd.error);
@@ -429,12 +437,9 @@ START_TEST(he_at_or_below_stored_run)
     const double room = _i == 0 ? 1e-9 : 1e-8;
     double stored = stored_error(material, "he");
     ck_assert_msg(stored > 0, "%s/he: not in bench/baseline-errors.tsv", material);
-    brdffit_error err;
     brdffit_samples *s = merl_samples(material);
     brdffit_context *ctx = make_context();
-    brdffit_fit_result r;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
-    assert_finite_result(&r);
+    brdffit_fit_result r = fit_he(ctx, s, material, 0);
     ck_assert_msg(r.error <= stored * (1 + room), "he/%s: Error %.12g above the stored run's %.12g",
                   material, r.error, stored);
     brdffit_context_free(ctx);

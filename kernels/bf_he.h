@@ -432,6 +432,15 @@ BF_FN int bf_he_pconst_for(const bf_he_pconst *pc, double tau, const double *lam
     return pc->key[0] == tau && pc->key[1] == lam[0] && pc->key[2] == lam[1] && pc->key[3] == lam[2];
 }
 
+/* He's lobe parameters: the forward-difference neighbours of a pass, at most. */
+#define BF_HE_NP 3
+
+/* Two lanes whose N.H and V.H agree within this are in one (theta_h,
+ * theta_d) bin (bf_he_bin_serves): in a MERL table the lanes of one bin
+ * differ by rounding, at most 4e-15 (alum-bronze, every bin), and distinct
+ * bins by 1.9e-8 or more. */
+#define BF_HE_BIN_TOL 1e-14
+
 typedef struct bf_he_memo {
     bf_he_pconst pc;            /* the point's constants (see above)        */
     double g[3], a[3];          /* the (clamped) g and a of the stored lane */
@@ -439,6 +448,12 @@ typedef struct bf_he_memo {
     double lpk[3], sum[3];      /* its series e^lpk sum (sum 0: dead)       */
     double vg[3], va[3];        /* the partials of ln V there               */
     double hits;                /* channel-vectors served wholly by the memo */
+    /* the bin memo (bf_he_bin_serves): a flat lane's K cos ti cos to */
+    double bnh, bvh;            /* its N.H and V.H (bnp < 0: none stored)   */
+    double bnp;                 /* the number of neighbours it was made with */
+    double bpt[1 + BF_HE_NP][3]; /* the points p[0..np] it was made at      */
+    double bk[1 + BF_HE_NP][3]; /* K cos ti cos to at each point, per channel */
+    double bhits;               /* vectors served wholly by the bin memo    */
 } bf_he_memo;
 
 BF_FN void bf_he_memo_clear(bf_he_memo *m)
@@ -452,6 +467,12 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
         m->lpk[c] = m->sum[c] = m->vg[c] = m->va[c] = 0.0;
     }
     m->hits = 0.0;
+    m->bnh = m->bvh = 0.0;
+    m->bnp = -1.0;
+    for (int j = 0; j <= BF_HE_NP; j++)
+        for (int c = 0; c < 3; c++)
+            m->bpt[j][c] = m->bk[j][c] = 0.0;
+    m->bhits = 0.0;
 }
 
 /* The series of one channel ch for the lanes where act > 0, at gs = min(g, 19)
@@ -830,6 +851,77 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
     }
 }
 
+/* The bin memo of a data pass (in bf_he_memo).  Where the shadowing is flat
+ * (u >= BF_HE_U_FLAT for both directions: S = 1, sigma = sigma0), K depends on
+ * the sample through the bin's (theta_h, theta_d) alone (F at cos theta_d, G,
+ * g and a, the rough limit) and through the factor 1 / (cos ti cos to) of
+ * S(ti) S(to) / (cos ti cos to); so do the neighbours (bf_he_rough_step keeps
+ * S and sigma0's place there).  A vector whose every lane is flat and in the
+ * bin of the stored lane (N.H and V.H within BF_HE_BIN_TOL) at the same points
+ * p[0..np] takes K = bk / (cos ti cos to): no logarithm, exponential or
+ * series.  The stored lane is the last lane of the last vector computed in
+ * full, when it is flat.  The lanes of a bin differ from the stored one by
+ * the rounding of their directions, so a served K differs from its own
+ * evaluation by that rounding's effect (tests/test_he.c, pass_memo: at most
+ * 1.24e-12 relative, at K ~ 1e-148 where a large a amplifies it). */
+typedef struct bf_he_flat {
+    BF_REAL ci, co;   /* cos ti, cos to, floored as bf_he_dir_make floors them */
+    BF_REAL lanes;    /* 1 in a lane whose shadowing is flat at p[0]            */
+} bf_he_flat;
+
+BF_FN void bf_he_flat_make(const bf_geom *g, double tau, double sigma0, bf_he_flat *f)
+{
+    f->ci = fmax(g->iz, BF_HE_COS_MIN);
+    f->co = fmax(g->oz, BF_HE_COS_MIN);
+    BF_REAL ui = bf_he_u(f->ci, sqrt(g->ix * g->ix + g->iy * g->iy), tau, sigma0);
+    BF_REAL uo = bf_he_u(f->co, sqrt(g->ox * g->ox + g->oy * g->oy), tau, sigma0);
+    f->lanes = BF_SEL(BF_R(0.0), BF_R(1.0), (ui >= BF_HE_U_FLAT) && (uo >= BF_HE_U_FLAT));
+}
+
+BF_FN int bf_he_bin_serves(const bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
+                           const double (*p)[3], int np)
+{
+    if (m->bnp != (double)np || BF_ANY(f->lanes <= 0.0))
+        return 0;
+    for (int j = 0; j <= np; j++)
+        for (int c = 0; c < 3; c++)
+            if (m->bpt[j][c] != p[j][c])
+                return 0;
+    return !BF_ANY((fabs(g->nh - m->bnh) > BF_HE_BIN_TOL) || (fabs(g->vh - m->bvh) > BF_HE_BIN_TOL));
+}
+
+BF_FN void bf_he_bin_serve(bf_he_memo *m, const bf_he_flat *f, int np, BF_REAL *K0,
+                           BF_REAL (*Kj)[3])
+{
+    BF_REAL q = 1.0 / (f->ci * f->co);
+    for (int c = 0; c < 3; c++)
+        K0[c] = m->bk[0][c] * q;
+    for (int j = 0; j < np; j++)
+        for (int c = 0; c < 3; c++)
+            Kj[j][c] = m->bk[1 + j][c] * q;
+    m->bhits += 1.0;
+    m->hits += 3.0;
+}
+
+BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
+                           const double (*p)[3], int np, const BF_REAL *K0, BF_REAL (*Kj)[3])
+{
+    if (!(BF_LAST(f->lanes) > 0.0) || np > BF_HE_NP)
+        return;
+    double cc = BF_LAST(f->ci) * BF_LAST(f->co);
+    m->bnh = BF_LAST(g->nh);
+    m->bvh = BF_LAST(g->vh);
+    m->bnp = (double)np;
+    for (int j = 0; j <= np; j++)
+        for (int c = 0; c < 3; c++)
+            m->bpt[j][c] = p[j][c];
+    for (int c = 0; c < 3; c++)
+        m->bk[0][c] = BF_LAST(K0[c]) * cc;
+    for (int j = 0; j < np; j++)
+        for (int c = 0; c < 3; c++)
+            m->bk[1 + j][c] = BF_LAST(Kj[j][c]) * cc;
+}
+
 /* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
  * p[j] = (tau, sigma0, n), a small step from p[0]) for one data pass:
  * K0[c] = bf_he(p[0]) bit for bit, Kj[j-1][c] = bf_he(p[j]) to second order
@@ -863,14 +955,29 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
                     BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {
     bf_he_pconst own, *pc = memo ? &memo->pc : &own;
-    if (!memo || !bf_he_pconst_for(pc, p[0][0], lam))
+    if (!memo || !bf_he_pconst_for(pc, p[0][0], lam)) {
         bf_he_pconst_make(p[0][0], lam, pc);
+        if (memo)
+            memo->bnp = -1.0; /* the bin memo was made at another tau or lam */
+    }
+    bf_he_flat fl;
+    if (memo) {
+        bf_he_flat_make(g, p[0][0], p[0][1], &fl);
+        if (bf_he_bin_serves(memo, g, &fl, p, np)) {
+            bf_he_bin_serve(memo, &fl, np, K0, Kj);
+            return;
+        }
+    } else {
+        fl.ci = fl.co = fl.lanes = BF_R(0.0);
+    }
     bf_he_base b;
     bf_he_fd_base(g, p[0], lam, pc, &b);
     for (int ch = 0; ch < 3; ch++)
         K0[ch] = bf_he_fd_channel(&b, p[0][0], lam[ch], ch, pc, memo);
     for (int j = 0; j < np; j++)
         bf_he_fd_neighbour(&b, p[0], p[1 + j], lam, Kj[j]);
+    if (memo)
+        bf_he_bin_store(memo, g, &fl, p, np, K0, Kj);
 }
 
 /* K per channel into K[0..2] at wavelengths lam[0..2]: bf_he_fd's value. */

@@ -668,12 +668,14 @@ END_TEST
 
 /* The memo of a data pass (bf_he_fd): samples walked in table order (phi_d
  * fastest) reuse the previous series where g and a are unchanged, carried
- * to first order.  Over whole (theta_h, theta_d) cells of the table, K0 with
- * the memo agrees with bf_he to 1e-12 relative and the neighbours with those
- * made without it to 1e-11, and on a smooth set (alum-bronze's fit) the
- * memo serves a quarter or more of the nonzero channel-samples (measured
- * 38%: the others are in the rough limit, which needs no series, or begin
- * a cell). */
+ * to first order, and where the shadowing is flat the previous lane's whole
+ * K cos ti cos to in the same cell (the bin memo).  Over whole (theta_h,
+ * theta_d) cells of the table, K0 with the memo agrees with bf_he to 2e-12
+ * relative (measured 1.24e-12, at K ~ 1e-148, where a large a turns the
+ * rounding of the lanes' directions into that) and the neighbours with those
+ * made without it to 1e-11; on a smooth set (alum-bronze's fit) the memo
+ * serves a quarter or more of the nonzero channel-samples (measured 38%
+ * before the bin memo) and the bin memo 80% or more of the samples. */
 START_TEST(pass_memo)
 {
     const double *P = fd_sets[_i];
@@ -685,7 +687,7 @@ START_TEST(pass_memo)
     }
     bf_he_memo memo;
     memset(&memo, 0, sizeof memo);
-    long nonzero = 0;
+    long nonzero = 0, samples = 0;
     for (int i = 2; i < 90; i += 11)          /* theta_h bins */
         for (int j = 1; j < 90; j += 8)       /* theta_d bins */
             for (int k = 0; k < 180; k++) {   /* phi_d, as the table stores them */
@@ -694,13 +696,14 @@ START_TEST(pass_memo)
                     wo[2] <= 0.0)
                     continue;
                 bf_geom g = geom(wi, wo);
+                samples++;
                 double K0[3], Kj[3][3], Kb[3], Kn[3][3];
                 bf_he_fd(&g, (const double(*)[3])p, 3, default_lam, K0, Kj, &memo);
                 bf_he_fd(&g, (const double(*)[3])p, 3, default_lam, Kb, Kn, NULL);
                 for (int c = 0; c < 3; c++) {
                     ck_assert_msg(isfinite(K0[c]) && K0[c] >= 0, "set %d: K0 %g", _i, K0[c]);
                     double e0 = fabs(K0[c] - Kb[c]) / fmax(Kb[c], 1e-300);
-                    ck_assert_msg(e0 <= 1e-12, "set %d bin (%d %d %d) channel %d: %.17g vs %.17g",
+                    ck_assert_msg(e0 <= 2e-12, "set %d bin (%d %d %d) channel %d: %.17g vs %.17g",
                                   _i, i, j, k, c, K0[c], Kb[c]);
                     for (int n = 0; n < 3; n++) {
                         double ej = fabs(Kj[n][c] - Kn[n][c]) / fmax(Kn[n][c], 1e-300);
@@ -712,9 +715,13 @@ START_TEST(pass_memo)
                 }
             }
     /* measured: K0 and K_j agree to 2e-13 in every set */
-    if (P[0] == 37.44) /* smooth: sigma = sigma0 at every sample, so cells share g and a */
+    if (P[0] == 37.44) { /* smooth: sigma = sigma0 at every sample, so cells share g and a */
         ck_assert_msg(memo.hits >= 0.25 * nonzero, "set %d: %g hits of %ld", _i, memo.hits,
                       nonzero);
+        /* measured: 12157 of 13540 (each cell's first vector is computed) */
+        ck_assert_msg(memo.bhits >= 0.8 * samples, "set %d: the bin memo served %g of %ld", _i,
+                      memo.bhits, samples);
+    }
 }
 END_TEST
 

@@ -230,7 +230,10 @@ BF_FN BF_REAL bf_he_dshadow1(BF_REAL u, BF_REAL ec, BF_REAL ex)
  * r = (K(ti) + K(to)) / sqrt(8 pi) >= 0.  Newton on ln x + x^2/2 - ln r (no
  * overflow for any r), from r when r <= 1 (the right of the root; the first
  * step lands left of it and the rest increase monotonically) and from
- * max(sqrt(2 ln r), 0.75) otherwise (monotone on either side of x = 1). */
+ * max(sqrt(2 ln r), 0.75) otherwise (monotone on either side of x = 1).
+ * A lane stops after a step |dx| <= 1e-8 x: with F = ln x + x^2/2 - ln r the
+ * relative error after a step is (x F'' / 2F') (dx / x)^2 and |x F'' / 2F'| =
+ * |x^2 - 1| / (2 (1 + x^2)) < 1/2, so x is then within 5e-17 of the root. */
 BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
 {
     BF_REAL rs = fmax(r, BF_TINY);
@@ -244,7 +247,7 @@ BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
     for (int it = 0; it < 60 && BF_ANY(act > 0.0); it++) {
         BF_REAL dx = (log(x) + 0.5 * x * x - lr) * x / (1.0 + x * x);
         x = BF_SEL(x, fmax(x - dx, 0.5 * x), act > 0.0);
-        act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-15 * x);
+        act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-8 * x);
     }
     return BF_SEL(x, rs, rs <= BF_HE_R_LIN);
 }

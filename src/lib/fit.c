@@ -129,6 +129,8 @@ typedef struct lmstate {
     int secant_from;               /* > 0: correct it from this evaluation of an
                                     * lmder run on (secant unset)           */
     int nev;                       /* evaluations assembled in this lmder run */
+    unsigned pinned;               /* lobe coordinates held on their bounds
+                                    * (bits; see pinned_run)               */
     int have_prev;                 /* prev_x, prev_g: the point evaluated before in this lmder run */
     double prev_x[NX_MAX], prev_g[NX_MAX];
     double Sc[NX_MAX][NX_MAX];     /* estimate of the Hessian's residual-curvature part */
@@ -268,6 +270,12 @@ static void assemble(lmstate *S, const double *x, const double *mom, double rr,
     S->nev++;
     if (S->secant || (S->secant_from > 0 && S->nev >= S->secant_from))
         secant_correct(S, x, H, g);
+    for (int j = 0; j < nx; j++)
+        if (S->pinned & (1u << j)) {
+            for (int l = 0; l < nx; l++)
+                H[j][l] = H[l][j] = 0.0;
+            g[j] = 0.0;
+        }
     double R[BF_MAX_NP][BF_MAX_NP], z[BF_MAX_NP];
     cholesky_solve(nx, H, g, hdiag, R, z);
     double zz = 0.0;
@@ -622,6 +630,47 @@ static brdffit_status lm_on(lmstate *S, bf_pass_driver *dr, const brdffit_fit_op
     return st;
 }
 
+/* Two runs whose lobe coordinates end within SAME_POINT of each other in
+ * their place in the range (directions: in cos and sin) are at one point
+ * (same_coords).  Two subset runs there with r^T r within SAME_RR (relative)
+ * ended at one minimum (same_point): refining the second on all samples
+ * would repeat the first (measured over the 100 MERL tables, He: 98 of the
+ * 100 fits had such a pair, ~1e-6 apart; skipping them changed no fit by
+ * more than 1e-9; He's time in fits 148 -> 135 s). */
+#define SAME_POINT 1e-4
+#define SAME_RR 1e-6
+
+static int same_coords(const fitmap *fm, const double *xa, const double *xb)
+{
+    for (int j = 0; j < fm->nl; j++) {
+        double ta = coord_position(fm, j, xa[j]), tb = coord_position(fm, j, xb[j]);
+        if (ta < 0.0) {
+            if (fabs(cos(xa[j]) - cos(xb[j])) > SAME_POINT || fabs(sin(xa[j]) - sin(xb[j])) > SAME_POINT)
+                return 0;
+        } else if (fabs(ta - tb) > SAME_POINT) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+static int same_point(const fitmap *fm, const lmrun *a, const lmrun *b)
+{
+    return fabs(a->rr - b->rr) <= SAME_RR * fmax(a->rr, b->rr) && same_coords(fm, a->x, b->x);
+}
+
+/* The lobe coordinates of x on a bound (bit j: coordinate j). */
+static unsigned on_bounds(const fitmap *fm, const double *x)
+{
+    unsigned mask = 0;
+    for (int j = 0; j < fm->nl; j++) {
+        double t = coord_position(fm, j, x[j]);
+        if (t >= 0.0 && (t < ON_BOUND || t > 1.0 - ON_BOUND))
+            mask |= 1u << j;
+    }
+    return mask;
+}
+
 /* Refining a start is two stages.  refine_subset: LM on the screening's
  * subset when the model's registry entry says so (S->sub; else the start as
  * screened on all samples), with the secant correction from its
@@ -648,25 +697,33 @@ static brdffit_status refine_subset(lmstate *S, const brdffit_fit_options *o, co
     return st;
 }
 
-static brdffit_status refine_all(lmstate *S, const brdffit_fit_options *o, lmrun *run,
-                                 double *solver_s)
+/* A run that ended with lobe coordinates on their bounds (mask), from a
+ * quarter of the range inside on those: on the subset first when there is
+ * one, and on all samples only if it did not come back to the same bounds
+ * and point there; the lower run into *run. */
+static brdffit_status bound_restart(lmstate *S, const brdffit_fit_options *o, lmrun *run,
+                                    unsigned mask, double *solver_s)
 {
-    S->ref = run->lin;
-    S->secant = 1; /* on all samples: ALWAYS and ON_ALL alike */
-    brdffit_status st = lm_converge(S, o, run, solver_s);
-    if (st != BRDFFIT_OK)
-        return st;
     lmrun again = *run;
-    int moved = 0;
-    for (int j = 0; j < S->fm.nl; j++) {
-        double t = coord_position(&S->fm, j, run->x[j]);
-        if (t >= 0.0 && (t < ON_BOUND || t > 1.0 - ON_BOUND)) {
-            again.x[j] = asin(t < 0.5 ? -0.5 : 0.5); /* t = 1/4 or 3/4 */
-            moved = 1;
+    for (int j = 0; j < S->fm.nl; j++)
+        if (mask & (1u << j))
+            again.x[j] = asin(coord_position(&S->fm, j, run->x[j]) < 0.5 ? -0.5 : 0.5);
+    brdffit_status st;
+    if (S->sub) {
+        S->ref = again.lin;
+        S->secant = S->secant_use == BF_SECANT_ALWAYS;
+        S->secant_from = SUBSET_SECANT_FROM;
+        st = lm_on(S, S->sub, o, &again, solver_s);
+        S->secant_from = 0;
+        if (st != BRDFFIT_OK)
+            return st;
+        if (on_bounds(&S->fm, again.x) == mask && same_coords(&S->fm, again.x, run->x)) {
+            run->njev = again.njev;
+            return BRDFFIT_OK;
         }
     }
-    if (!moved)
-        return BRDFFIT_OK;
+    S->ref = again.lin;
+    S->secant = 1;
     st = lm_converge(S, o, &again, solver_s);
     if (st != BRDFFIT_OK)
         return st;
@@ -677,30 +734,50 @@ static brdffit_status refine_all(lmstate *S, const brdffit_fit_options *o, lmrun
     return BRDFFIT_OK;
 }
 
-/* Two subset runs whose lobe coordinates end within SAME_POINT of each other
- * in their place in the range (directions: in cos and sin), with r^T r within
- * SAME_RR (relative), ended at one minimum: refining the second on all samples
- * would repeat the first (measured over the 100 MERL tables, He: 98 of the
- * 100 fits had such a pair, ~1e-6 apart; skipping them changed no fit by
- * more than 1e-9; He's time in fits 148 -> 135 s). */
-#define SAME_POINT 1e-4
-#define SAME_RR 1e-6
-
-static int same_point(const fitmap *fm, const lmrun *a, const lmrun *b)
+/* LM on all samples with the coordinates of mask held exactly on their
+ * bounds (S->pinned: their rows of J^T J and J^T r are 0, so every step
+ * leaves them), from *run, kept when lower.  LM that ends on a bound with
+ * the coordinate free stops early: the sin map's fold leaves a column that
+ * vanishes only at the bound itself, and the rest converge slowly beside it
+ * (measured, He, black-soft-plastic: 1.2e-5 above where a second run from
+ * inside went). */
+static brdffit_status pinned_run(lmstate *S, const brdffit_fit_options *o, lmrun *run,
+                                 unsigned mask, double *solver_s)
 {
-    if (!(fabs(a->rr - b->rr) <= SAME_RR * fmax(a->rr, b->rr)))
-        return 0;
-    for (int j = 0; j < fm->nl; j++) {
-        double ta = coord_position(fm, j, a->x[j]), tb = coord_position(fm, j, b->x[j]);
-        if (ta < 0.0) {
-            if (fabs(cos(a->x[j]) - cos(b->x[j])) > SAME_POINT
-                || fabs(sin(a->x[j]) - sin(b->x[j])) > SAME_POINT)
-                return 0;
-        } else if (fabs(ta - tb) > SAME_POINT) {
-            return 0;
-        }
-    }
-    return 1;
+    lmrun pin = *run;
+    for (int j = 0; j < S->fm.nl; j++)
+        if (mask & (1u << j))
+            pin.x[j] = coord_position(&S->fm, j, run->x[j]) < 0.5 ? -M_PI_2 : M_PI_2;
+    S->ref = pin.lin;
+    S->secant = 1;
+    S->pinned = mask;
+    S->cache[0].valid = S->cache[1].valid = 0; /* assembled without the pins */
+    brdffit_status st = lm_converge(S, o, &pin, solver_s);
+    S->pinned = 0;
+    S->cache[0].valid = S->cache[1].valid = 0; /* assembled with them */
+    if (st != BRDFFIT_OK)
+        return st;
+    if (pin.rr < run->rr)
+        *run = pin;
+    else
+        run->njev = pin.njev;
+    return BRDFFIT_OK;
+}
+
+static brdffit_status refine_all(lmstate *S, const brdffit_fit_options *o, lmrun *run,
+                                 double *solver_s)
+{
+    S->ref = run->lin;
+    S->secant = 1; /* on all samples: ALWAYS and ON_ALL alike */
+    brdffit_status st = lm_converge(S, o, run, solver_s);
+    unsigned mask = st == BRDFFIT_OK ? on_bounds(&S->fm, run->x) : 0u;
+    if (!mask)
+        return st;
+    st = bound_restart(S, o, run, mask, solver_s);
+    mask = st == BRDFFIT_OK ? on_bounds(&S->fm, run->x) : 0u;
+    if (!mask)
+        return st;
+    return pinned_run(S, o, run, mask, solver_s);
 }
 
 /* Every kept start on the subset, then on all samples those whose subset

@@ -430,11 +430,17 @@ static double stored_error(const char *material, const char *model)
  * the stored run's minimum, 1.3e-10 below it here; with the caller's
  * tolerances 2.6e-8 above) reach it or go below.  blue-metallic-paint gets
  * 1e-8 of room: nearby minima along He's valley differ by ~1e-9, and another
- * CPU's vector code may settle in a neighbour. */
+ * CPU's vector code may settle in a neighbour.  black-soft-plastic's tau
+ * ends on its lower bound: there the fit holds tau on the bound for a last
+ * run (with the bound restart on the subset alone and no such run, it ended
+ * 6.1e-6 above the stored run), so tau is the bound exactly. */
+static const char *const stored_cases[] = { "pickled-oak-260", "blue-metallic-paint",
+                                            "black-soft-plastic" };
+
 START_TEST(he_at_or_below_stored_run)
 {
-    const char *material = _i == 0 ? "pickled-oak-260" : "blue-metallic-paint";
-    const double room = _i == 0 ? 1e-9 : 1e-8;
+    const char *material = stored_cases[_i];
+    const double room = _i == 1 ? 1e-8 : 1e-9;
     double stored = stored_error(material, "he");
     ck_assert_msg(stored > 0, "%s/he: not in bench/baseline-errors.tsv", material);
     brdffit_samples *s = merl_samples(material);
@@ -442,6 +448,12 @@ START_TEST(he_at_or_below_stored_run)
     brdffit_fit_result r = fit_he(ctx, s, material, 0);
     ck_assert_msg(r.error <= stored * (1 + room), "he/%s: Error %.12g above the stored run's %.12g",
                   material, r.error, stored);
+    if (_i == 2) {
+        double lower = brdffit_model_get(BRDFFIT_HE)->params[0].lower;
+        ck_assert_msg((r.at_bound & BRDFFIT_AT_BOUND_P0) && r.params.p[0] == lower,
+                      "he/%s: tau %.17g, its bound %.17g (at_bound 0x%x)", material, r.params.p[0],
+                      lower, r.at_bound);
+    }
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
 }
@@ -473,7 +485,8 @@ Suite *fit_suite(void)
     tcase_add_loop_test(th, he_beats_published, 0, 2);
     tcase_add_test(th, he_published_rows_finite);
     tcase_add_loop_test(th, he_more_starts_no_worse, 0, 2);
-    tcase_add_loop_test(th, he_at_or_below_stored_run, 0, 2);
+    tcase_add_loop_test(th, he_at_or_below_stored_run, 0,
+                        (int)(sizeof stored_cases / sizeof stored_cases[0]));
     suite_add_tcase(s, th);
     return s;
 }

@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "batch.h"
 #include "cli.h"
+#include "prefetch.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -362,6 +363,7 @@ typedef struct batch_run {
     double seconds_fitting;  /* inside brdffit_fit and brdffit_error_of */
     double seconds_render;   /* of the render jobs (in their thread)   */
     struct render_job *job;  /* the renders and plots in flight        */
+    table_prefetch *pre;     /* the next material's table, read meanwhile */
 } batch_run;
 
 static void fill_key(bj_record *r, bj_kind kind, const batch_material *m, const bj_settings *s)
@@ -731,7 +733,10 @@ static int identify_material(batch_run *R, batch_material *m, int i, int n, brdf
                           3 * (size_t)BRDFFIT_MERL_BINS * sizeof(double), &m->id);
         return 0;
     }
-    if (bj_identify(m->path, &m->id, &err) == 0) {
+    int have = prefetch_wait(R->pre, m->path) && R->pre->identified;
+    if (have)
+        m->id = R->pre->id;
+    if (have || bj_identify(m->path, &m->id, &err) == 0) {
         m->identified = 1;
         note_changed(R, m);
         return 0;
@@ -750,6 +755,14 @@ static int material_samples(batch_run *R, batch_material *m, int i, int n, brdff
     const cli_options *o = &R->b->common;
     brdffit_error err;
     memset(&err, 0, sizeof err);
+    if (!*t && prefetch_wait(R->pre, m->path) && R->pre->table) { /* read meanwhile */
+        *t = R->pre->table;
+        *s = R->pre->samples;
+        R->pre->table = NULL;
+        R->pre->samples = NULL;
+        if (*s)
+            return 0;
+    }
     brdffit_status st = *t ? BRDFFIT_OK : load_table(m, o->sample.scale, t, &err);
     if (st == BRDFFIT_OK)
         st = brdffit_samples_create(*t, &o->sample, s, &err);
@@ -788,7 +801,8 @@ static void fit_planned(batch_run *R, batch_material *m, int i, int n, const tod
             published_one(R, m, s, o->models[k]);
 }
 
-static int do_material(batch_run *R, batch_material *m, int i, int n)
+/* next: the material after m, whose table is read while m is fitted (NULL: none). */
+static int do_material(batch_run *R, batch_material *m, const batch_material *next, int i, int n)
 {
     const cli_options *o = &R->b->common;
     brdffit_table *t = NULL;
@@ -814,6 +828,8 @@ static int do_material(batch_run *R, batch_material *m, int i, int n)
         rc = -1;
         goto done;
     }
+    if (next && !next->embedded)
+        prefetch_start(R->pre, next->path, &o->sample);
     fit_planned(R, m, i, n, &td, s);
     if (td.assets && !R->out_failed && !stop_signal) {
         brdffit_samples_free(s);
@@ -825,6 +841,8 @@ static int do_material(batch_run *R, batch_material *m, int i, int n)
         progress_material(&R->P, i, n, m->name, stop_signal ? "interrupted" : "done");
     rc = R->out_failed ? -1 : 0;
 done:
+    if (prefetch_wait(R->pre, m->path)) /* m's, not taken (journaled, failed) */
+        prefetch_drop(R->pre);
     brdffit_samples_free(s);
     brdffit_table_free(t);
     return rc < 0 ? -1 : 0;
@@ -928,9 +946,10 @@ static int run_batch(batch_run *R, material_list *L)
     double t0 = now();
     for (int i = 0; i < L->n && !stop_signal; i++) {
         batch_material *m = &L->m[i];
-        if (do_material(R, m, i, L->n) != 0)
+        if (do_material(R, m, i + 1 < L->n ? &L->m[i + 1] : NULL, i, L->n) != 0)
             break;
     }
+    prefetch_drop(R->pre);
     render_collect(R, R->job);
     if (R->P.live && !b->quiet)
         fputs("\r\033[K", stderr);
@@ -981,9 +1000,11 @@ int cmd_batch(int argc, char **argv)
     if (rc == CLI_OK) {
         batch_run R;
         static render_job job;
+        static table_prefetch pre;
         memset(&R, 0, sizeof R);
         R.b = &b;
         R.job = &job;
+        R.pre = &pre;
         R.journal.fd = -1;
         bj_settings_make(&R.settings, &b.common.sample, &b.common.fit);
         R.P.live = isatty(STDERR_FILENO);

@@ -1,0 +1,53 @@
+/* SPDX-License-Identifier: MIT */
+/* prefetch.c -- a material's identity, table and sample set read in a
+ * thread while the batch fits the material before it (prefetch.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "prefetch.h"
+
+#include <string.h>
+
+static void *prefetch_main(void *arg)
+{
+    table_prefetch *P = arg;
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    P->identified = bj_identify(P->path, &P->id, &err) == 0;
+    if (!P->identified || brdffit_table_read(P->path, &P->table, &err) != BRDFFIT_OK) {
+        P->table = NULL;
+        return NULL;
+    }
+    if (brdffit_samples_create(P->table, &P->sample, &P->samples, &err) != BRDFFIT_OK)
+        P->samples = NULL;
+    return NULL;
+}
+
+void prefetch_drop(table_prefetch *P)
+{
+    if (P->running)
+        pthread_join(P->thread, NULL);
+    brdffit_samples_free(P->samples);
+    brdffit_table_free(P->table);
+    memset(P, 0, sizeof *P);
+}
+
+void prefetch_start(table_prefetch *P, const char *path, const brdffit_sample_options *sample)
+{
+    prefetch_drop(P);
+    if (strlen(path) >= sizeof P->path)
+        return;
+    memcpy(P->path, path, strlen(path) + 1);
+    P->sample = *sample;
+    P->running = pthread_create(&P->thread, NULL, prefetch_main, P) == 0;
+    if (!P->running)
+        P->path[0] = '\0';
+}
+
+int prefetch_wait(table_prefetch *P, const char *path)
+{
+    if (!P->path[0] || strcmp(P->path, path) != 0)
+        return 0;
+    if (P->running)
+        pthread_join(P->thread, NULL);
+    P->running = 0;
+    return 1;
+}

@@ -927,8 +927,8 @@ BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
 
 /* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
  * p[j] = (tau, sigma0, n), a small step from p[0]) for one data pass:
- * K0[c] = bf_he(p[0]) bit for bit, Kj[j-1][c] = bf_he(p[j]) to second order
- * in the step.
+ * K0[c] = bf_he(p[0]) bit for bit without a memo (to ~1e-12 with one),
+ * Kj[j-1][c] = bf_he(p[j]) to second order in the step.
  *
  * All the transcendental work is done once, at p[0]: the series (most of
  * it) with the partials of its log in g and a, the shadowing and sigma with
@@ -949,11 +949,14 @@ BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
  * series is also summed for g in [19, 19 m) and the limit made for g in
  * (18 / m, 18], m = BF_HE_FD_MARGIN, where the value does not use them, so
  * that a step across 19 or 18 is covered; a step of 1e-3 relative in g
- * would not be.  np = 0 with no memo is bf_he.  The memo: see bf_he_memo.
+ * would not be.  np = 0 with no memo is bf_he.  The memos: see bf_he_memo
+ * (the series) and bf_he_flat (the bin memo).
  *
- * In steps: bf_he_fd_base (the directions, S, sigma, F), bf_he_fd_channel
- * per channel (the value, through bf_he_dblend), bf_he_fd_neighbour per
- * neighbour. */
+ * In steps: with a memo, the bin memo serves the vector if it can
+ * (bf_he_bin_serves); else bf_he_fd_base (the directions, S, sigma, F),
+ * bf_he_fd_channel per channel (the value, through bf_he_dblend),
+ * bf_he_fd_neighbour per neighbour, and the bin memo takes the last lane
+ * (bf_he_bin_store). */
 BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                     BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {

@@ -678,8 +678,10 @@ static unsigned on_bounds(const fitmap *fm, const double *x)
  * always).  refine_all: LM on all samples from there, with it.  A lobe
  * coordinate that ends on its bound is stuck there whether or not the data's
  * optimum is inside (v = lo + (hi-lo)(1+sin u)/2 has no gradient at the
- * bounds), so such a run is repeated on all samples from a point a quarter of
- * the range inside on those coordinates, and the better kept. */
+ * bounds), so such a run is repeated from a point a quarter of the range
+ * inside on those coordinates (bound_restart), and the better kept; one that
+ * still ends there is taken once more with them held on the bound
+ * (pinned_run). */
 static brdffit_status refine_subset(lmstate *S, const brdffit_fit_options *o, const start *sp,
                                     lmrun *run, double *solver_s)
 {

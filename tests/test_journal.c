@@ -68,6 +68,30 @@ static const bad_line bad_lines[] = {
 };
 enum { NBAD = (int)(sizeof bad_lines / sizeof bad_lines[0]) };
 
+/* A number beyond the double range anywhere in a line (here the Error, as
+ * the journal fuzzer found: "error":0.05E568 read as inf, written back as
+ * null, read again as NaN) is refused, not read as inf. */
+START_TEST(journal_refuses_out_of_range_numbers)
+{
+    static const char *const fields[] = { "\"error\":0.05E568", "\"error\":-1e999",
+                                          "\"error\":1e-999" };
+    char line[2048];
+    fit_line(line, sizeof line, "34992012", "", "3");
+    char *at = strstr(line, "\"error\":0.0568");
+    ck_assert_ptr_nonnull(at);
+    size_t head = (size_t)(at - line), old = strlen("\"error\":0.0568");
+    char edited[2100];
+    snprintf(edited, sizeof edited, "%.*s%s%s", (int)head, line, fields[_i], at + old);
+    bj_record r;
+    if (_i < 2) {
+        ck_assert_msg(bj_record_parse(edited, &r) == -1, "read as a record:\n%s", edited);
+    } else { /* underflow is 0, a number JSON can say back */
+        ck_assert_int_eq(bj_record_parse(edited, &r), 0);
+        ck_assert(r.error == 0.0);
+    }
+}
+END_TEST
+
 START_TEST(journal_refuses_impossible_lines)
 {
     const bad_line *b = &bad_lines[_i];
@@ -84,6 +108,7 @@ Suite *journal_suite(void)
     TCase *tc = tcase_create("lines");
     tcase_add_test(tc, journal_line_round_trips);
     tcase_add_loop_test(tc, journal_refuses_impossible_lines, 0, NBAD);
+    tcase_add_loop_test(tc, journal_refuses_out_of_range_numbers, 0, 3);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -168,7 +168,12 @@ static int number(jr_parser *j, double *x)
         while (*s >= '0' && *s <= '9')
             s++;
     }
-    *x = strtod(j->p, NULL);
+    /* a number beyond the double range (1e999) is refused: it would read as
+     * inf, which no writer here writes and JSON cannot say back */
+    double v = strtod(j->p, NULL);
+    if (!isfinite(v))
+        return -1;
+    *x = v;
     j->p = s;
     return 0;
 }

@@ -616,6 +616,12 @@ static brdffit_status lm_converge(lmstate *S, const brdffit_fit_options *o, lmru
  * no fit higher than the stored run (from the 4th: about the same). */
 #define SUBSET_SECANT_FROM 8
 
+/* Forget the evaluated points (assembled for other samples or pins). */
+static void cache_clear(lmstate *S)
+{
+    S->cache[0].valid = S->cache[1].valid = 0;
+}
+
 /* lm_converge on the passes of dr (the points cached for the other driver's
  * samples are not this one's). */
 static brdffit_status lm_on(lmstate *S, bf_pass_driver *dr, const brdffit_fit_options *o,
@@ -623,11 +629,35 @@ static brdffit_status lm_on(lmstate *S, bf_pass_driver *dr, const brdffit_fit_op
 {
     bf_pass_driver *was = S->ps;
     S->ps = dr;
-    S->cache[0].valid = S->cache[1].valid = 0;
+    cache_clear(S);
     brdffit_status st = lm_converge(S, o, run, solver_s);
     S->ps = was;
-    S->cache[0].valid = S->cache[1].valid = 0;
+    cache_clear(S);
     return st;
+}
+
+/* LM on the screening's subset from run (its d, s the reference), with the
+ * secant correction from the SUBSET_SECANT_FROM-th evaluation on (from the
+ * first if the model uses it always). */
+static brdffit_status lm_subset(lmstate *S, const brdffit_fit_options *o, lmrun *run,
+                                double *solver_s)
+{
+    S->ref = run->lin;
+    S->secant = S->secant_use == BF_SECANT_ALWAYS;
+    S->secant_from = SUBSET_SECANT_FROM;
+    brdffit_status st = lm_on(S, S->sub, o, run, solver_s);
+    S->secant_from = 0;
+    return st;
+}
+
+/* Keep cand in *run when it ended lower; its LM iterations count either way
+ * (cand started as a copy of *run, so its njev includes run's). */
+static void keep_lower(lmrun *run, const lmrun *cand)
+{
+    if (cand->rr < run->rr)
+        *run = *cand;
+    else
+        run->njev = cand->njev;
 }
 
 /* Two runs whose lobe coordinates end within SAME_POINT of each other in
@@ -691,12 +721,7 @@ static brdffit_status refine_subset(lmstate *S, const brdffit_fit_options *o, co
     run->rr = sp->cost;
     if (!S->sub)
         return BRDFFIT_OK;
-    S->ref = sp->lin;
-    S->secant = S->secant_use == BF_SECANT_ALWAYS;
-    S->secant_from = SUBSET_SECANT_FROM;
-    brdffit_status st = lm_on(S, S->sub, o, run, solver_s);
-    S->secant_from = 0;
-    return st;
+    return lm_subset(S, o, run, solver_s);
 }
 
 /* A run that ended with lobe coordinates on their bounds (mask), from a
@@ -712,11 +737,7 @@ static brdffit_status bound_restart(lmstate *S, const brdffit_fit_options *o, lm
             again.x[j] = asin(coord_position(&S->fm, j, run->x[j]) < 0.5 ? -0.5 : 0.5);
     brdffit_status st;
     if (S->sub) {
-        S->ref = again.lin;
-        S->secant = S->secant_use == BF_SECANT_ALWAYS;
-        S->secant_from = SUBSET_SECANT_FROM;
-        st = lm_on(S, S->sub, o, &again, solver_s);
-        S->secant_from = 0;
+        st = lm_subset(S, o, &again, solver_s);
         if (st != BRDFFIT_OK)
             return st;
         if (on_bounds(&S->fm, again.x) == mask && same_coords(&S->fm, again.x, run->x)) {
@@ -727,13 +748,9 @@ static brdffit_status bound_restart(lmstate *S, const brdffit_fit_options *o, lm
     S->ref = again.lin;
     S->secant = 1;
     st = lm_converge(S, o, &again, solver_s);
-    if (st != BRDFFIT_OK)
-        return st;
-    if (again.rr < run->rr)
-        *run = again;
-    else
-        run->njev = again.njev;
-    return BRDFFIT_OK;
+    if (st == BRDFFIT_OK)
+        keep_lower(run, &again);
+    return st;
 }
 
 /* LM on all samples with the coordinates of mask held exactly on their
@@ -753,17 +770,13 @@ static brdffit_status pinned_run(lmstate *S, const brdffit_fit_options *o, lmrun
     S->ref = pin.lin;
     S->secant = 1;
     S->pinned = mask;
-    S->cache[0].valid = S->cache[1].valid = 0; /* assembled without the pins */
+    cache_clear(S); /* assembled without the pins */
     brdffit_status st = lm_converge(S, o, &pin, solver_s);
     S->pinned = 0;
-    S->cache[0].valid = S->cache[1].valid = 0; /* assembled with them */
-    if (st != BRDFFIT_OK)
-        return st;
-    if (pin.rr < run->rr)
-        *run = pin;
-    else
-        run->njev = pin.njev;
-    return BRDFFIT_OK;
+    cache_clear(S); /* assembled with them */
+    if (st == BRDFFIT_OK)
+        keep_lower(run, &pin);
+    return st;
 }
 
 static brdffit_status refine_all(lmstate *S, const brdffit_fit_options *o, lmrun *run,
@@ -838,13 +851,9 @@ static brdffit_status polish(lmstate *S, const brdffit_fit_options *o, lmrun *be
     tight.ftol *= POLISH_TOL;
     tight.xtol *= POLISH_TOL;
     brdffit_status st = lm_converge(S, &tight, &pol, solver_s);
-    if (st != BRDFFIT_OK)
-        return st;
-    if (pol.rr < best->rr)
-        *best = pol;
-    else
-        best->njev = pol.njev;
-    return BRDFFIT_OK;
+    if (st == BRDFFIT_OK)
+        keep_lower(best, &pol);
+    return st;
 }
 
 #define ROUNDED_AWAY 1e-12
@@ -863,11 +872,10 @@ static unsigned bound_mask(const fitmap *fm, const double *u, const bf_linear *l
         if (s == 0.0 || s <= ROUNDED_AWAY * d)
             mask |= (unsigned)BRDFFIT_AT_BOUND_S_R << c;
     }
-    for (int j = 0; j < fm->nl; j++) {
-        double t = coord_position(fm, j, u[j]);
-        if (t >= 0.0 && (t < ON_BOUND || t > 1.0 - ON_BOUND))
+    unsigned on = on_bounds(fm, u);
+    for (int j = 0; j < fm->nl; j++)
+        if (on & (1u << j))
             mask |= (unsigned)BRDFFIT_AT_BOUND_P0 << fm->param[j];
-    }
     return mask;
 }
 

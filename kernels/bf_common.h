@@ -14,6 +14,11 @@
  *   BF_SEL(a, b, c)   c ? b : a, lane by lane (OpenCL select()).
  *   BF_ANY(c)         true when c holds in some lane.
  *   BF_LAST(v)        the last lane of v, as a double.
+ *   BF_NLANES         the lanes of a BF_REAL (1 on the host, BF_WIDTH in the kernel).
+ *   BF_IOTA           a BF_REAL whose lane i is i (0.0 on the host).
+ *   BF_LOADC(p), BF_LOADP(p), BF_STORE(v, p)
+ *                     BF_NLANES consecutive doubles from a constant table, from
+ *                     private memory, and into private memory.
  *
  * Code that uses BF_REAL is branch-free per lane: data-dependent choices go
  * through BF_SEL, loops that depend on the data run while BF_ANY(...).
@@ -30,12 +35,21 @@
 #  if BF_WIDTH == 4
 #    define BF_REAL double4
 #    define BF_LAST(v) ((v).s3)
+#    define BF_IOTA ((double4)(0.0, 1.0, 2.0, 3.0))
+#    define BF_LOADC(p) vload4(0, (p))
+#    define BF_LOADP(p) vload4(0, (p))
+#    define BF_STORE(v, p) vstore4((v), 0, (p))
 #  elif BF_WIDTH == 8
 #    define BF_REAL double8
 #    define BF_LAST(v) ((v).s7)
+#    define BF_IOTA ((double8)(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0))
+#    define BF_LOADC(p) vload8(0, (p))
+#    define BF_LOADP(p) vload8(0, (p))
+#    define BF_STORE(v, p) vstore8((v), 0, (p))
 #  else
 #    error "BF_WIDTH must be 4 or 8"
 #  endif
+#  define BF_NLANES BF_WIDTH
 #  define BF_FN inline
 #  define BF_SEL(a, b, c) select((a), (b), (c))
 #  define BF_ANY(c) any(c)
@@ -46,6 +60,11 @@
 #  define BF_SEL(a, b, c) ((c) ? (b) : (a))
 #  define BF_ANY(c) (c)
 #  define BF_LAST(v) (v)
+#  define BF_NLANES 1
+#  define BF_IOTA 0.0
+#  define BF_LOADC(p) (*(p))
+#  define BF_LOADP(p) (*(p))
+#  define BF_STORE(v, p) (*(p) = (v))
 #endif
 
 #define BF_PI 3.14159265358979323846

@@ -435,6 +435,134 @@ BF_FN int bf_he_pconst_for(const bf_he_pconst *pc, double tau, const double *lam
     return pc->key[0] == tau && pc->key[1] == lam[0] && pc->key[2] == lam[1] && pc->key[3] == lam[2];
 }
 
+/* The series table of a bin (bf_he_tab_make, bf_he_tab_eval): a data pass
+ * walks a (theta_h, theta_d) bin's samples one after another, and within a
+ * bin a = pi^2 (tau/lam)^2 |v_xy|^2 is fixed (|v_xy| = 2 cos theta_d
+ * sin theta_h) while g varies with sigma alone, never above the bin's g at
+ * sigma = sigma0 (g_ref).  So
+ *     V(g) = sum_m T_m(g) = e^(L - g) sum_{m=k}^{k+n-1} b_m y^m,  y = g / g_ref,
+ * b_m = e^(ln T_m(g_ref) + g_ref - L) is a polynomial in y whose
+ * coefficients are made once per bin and channel (n scalar exps), and each
+ * lane then costs n multiply-adds instead of a search for its peak and an
+ * exp per term.  The table keeps c_j = b_{k+j} / (k+j), and one Horner pass
+ * gives Q = sum c_j y^j with Q' and Q''/2, from which (D = y d/dy)
+ *     sum (t_m / m) = y^k Q,  sum t_m = y^k (k Q + y Q'),
+ *     sum m t_m = y^k (k^2 Q + (2k+1) y Q' + y^2 Q''):
+ * the value and both partials of ln V (bf_he_series_x's).  All coefficients
+ * are positive and y <= 1, so Horner loses nothing to cancellation (~n ulp).
+ * The window: the terms at g_ref from the first within e^-BF_HE_TAB_HEAD of
+ * its largest (the ones below put less than e^-680 of g_ref's largest term
+ * into any lane's sum: y >= 0 and e^(g_ref - g) <= e^19) to the last within
+ * e^-BF_HE_TAB_TAIL past it (for g <= g_ref the tail falls off faster still).
+ * So a lane's V agrees with bf_he_series_x's, which stops at 1e-12 of the sum,
+ * to that truncation (~3e-13 measured). */
+#define BF_HE_TAB_HEAD 700.0
+#define BF_HE_TAB_TAIL 45.0
+/* A lane is in a table's bin when its a is the table's within this (relative;
+ * the lanes of one bin differ by the rounding of their directions, and the
+ * first-order carry in a covers that) and its g at most g_ref within
+ * BF_HE_TAB_GTOL (g_ref is the bin's g at sigma0, to rounding). */
+#define BF_HE_TAB_ATOL 1e-12
+#define BF_HE_TAB_GTOL 1e-9
+
+typedef struct bf_he_tab {
+    double a, gref;       /* what it was made for (n = 0: nothing yet)        */
+    double lngref, igref; /* ln g_ref, 1 / g_ref                              */
+    double L;             /* ln of the largest T_m(g_ref) e^g_ref             */
+    double k, n;          /* the window: m = k .. k + n - 1                   */
+    double c[BF_HE_MMAX + 8]; /* c[j] = b_{k+j} / (k + j); the 8 past MMAX take
+                               * the last vector's overreach in the kernel    */
+} bf_he_tab;
+
+/* The table for a and g_ref, BF_NLANES terms at a time (BF_HE_MMAX = 400 is
+ * a multiple of 4 and 8, so the loads of bf_he_lkk stay inside it). */
+BF_FN void bf_he_tab_make(bf_he_tab *t, double a, double gref)
+{
+    double lng = log(gref), lmax = -1e300;
+    int mend = BF_HE_MMAX, past = 0;
+    /* ln(T_m(g_ref) e^g_ref) into c[m - 1], up to the first term more than
+     * BF_HE_TAB_TAIL below the largest (past the peak: ln T is concave) */
+    for (int m0 = 1; m0 <= BF_HE_MMAX && !past; m0 += BF_NLANES) {
+        BF_REAL mv = (double)m0 + BF_IOTA;
+        BF_STORE(mv * lng - a / mv - BF_LOADC(bf_he_lkk + m0), t->c + (m0 - 1));
+        for (int i = 0; i < BF_NLANES && !past; i++) {
+            double l = t->c[m0 - 1 + i];
+            if (l > lmax) {
+                lmax = l;
+            } else if (l < lmax - BF_HE_TAB_TAIL) {
+                mend = m0 + i - 1;
+                past = 1;
+            }
+        }
+    }
+    int k = 1;
+    while (k < mend && t->c[k - 1] < lmax - BF_HE_TAB_HEAD)
+        k++;
+    /* c[j] from c[k - 1 + j]: a vector is loaded before it is stored over,
+     * and k >= 1, so no later load reads a stored value */
+    for (int j0 = 0; j0 <= mend - k; j0 += BF_NLANES) {
+        BF_REAL mv = (double)(k + j0) + BF_IOTA;
+        BF_STORE(exp(BF_LOADP(t->c + (k - 1 + j0)) - lmax) / mv, t->c + j0);
+    }
+    t->a = a;
+    t->gref = gref;
+    t->lngref = lng;
+    t->igref = 1.0 / gref;
+    t->L = lmax;
+    t->k = (double)k;
+    t->n = (double)(mend - k + 1);
+}
+
+/* V = e^lpk sum at gs <= g_ref (lngs = ln gs) from table t, and the partials
+ * of ln V in g and a (see bf_he_tab; the caller carries ln V from t's a to
+ * the lane's). */
+BF_FN void bf_he_tab_eval(const bf_he_tab *t, BF_REAL gs, BF_REAL lngs, BF_REAL *lpk,
+                          BF_REAL *sum, BF_REAL *vg, BF_REAL *va)
+{
+    BF_REAL y = gs * t->igref;
+    BF_REAL q0 = BF_R(0.0), q1 = BF_R(0.0), q2 = BF_R(0.0); /* Q, Q', Q''/2 */
+    for (int j = (int)t->n - 1; j >= 0; j--) {
+        q2 = q2 * y + q1;
+        q1 = q1 * y + q0;
+        q0 = q0 * y + t->c[j];
+    }
+    const double k = t->k;
+    BF_REAL yq1 = y * q1;
+    BF_REAL s0 = k * q0 + yq1;
+    BF_REAL s1 = (k * k) * q0 + (2.0 * k + 1.0) * yq1 + 2.0 * (y * y) * q2;
+    BF_REAL is0 = 1.0 / s0;
+    *lpk = k * (lngs - t->lngref) + (t->L - gs);
+    *sum = s0;
+    *vg = (s1 * is0) / gs - 1.0;
+    *va = -(q0 * is0);
+}
+
+/* The lanes of need whose series table t serves (see bf_he_tab): 1 or 0. */
+BF_FN BF_REAL bf_he_tab_lanes(const bf_he_tab *t, BF_REAL gs, BF_REAL aa, BF_REAL need)
+{
+    if (!(t->n > 0.0))
+        return BF_R(0.0);
+    return BF_SEL(BF_R(0.0), BF_R(1.0),
+                  (need > 0.0) && (fabs(aa - t->a) <= BF_HE_TAB_ATOL * t->a)
+                      && (gs <= t->gref * (1.0 + BF_HE_TAB_GTOL)));
+}
+
+/* The series of the lanes of tl > 0 from table t into *lpk, *sum, *vg, *va
+ * and *ser = e^(lpk + lk) sum (bf_he_series_x's outputs), the others left. */
+BF_FN void bf_he_tab_serve(const bf_he_tab *t, BF_REAL tl, BF_REAL gs, BF_REAL lngs, BF_REAL aa,
+                           BF_REAL lk, BF_REAL *lpk, BF_REAL *sum, BF_REAL *vg, BF_REAL *va,
+                           BF_REAL *ser)
+{
+    BF_REAL tlpk, tsum, tvg, tva;
+    bf_he_tab_eval(t, gs, lngs, &tlpk, &tsum, &tvg, &tva);
+    tlpk = tlpk + tva * (aa - t->a); /* to the lane's own a, to first order */
+    *lpk = BF_SEL(*lpk, tlpk, tl > 0.0);
+    *sum = BF_SEL(*sum, tsum, tl > 0.0);
+    *vg = BF_SEL(*vg, tvg, tl > 0.0);
+    *va = BF_SEL(*va, tva, tl > 0.0);
+    *ser = BF_SEL(*ser, tsum * exp(fmin(tlpk + lk, BF_R(700.0))), tl > 0.0);
+}
+
 /* He's lobe parameters: the forward-difference neighbours of a pass, at most. */
 #define BF_HE_NP 3
 
@@ -457,6 +585,10 @@ typedef struct bf_he_memo {
     double bpt[1 + BF_HE_NP][3]; /* the points p[0..np] it was made at      */
     double bk[1 + BF_HE_NP][3]; /* K cos ti cos to at each point, per channel */
     double bhits;               /* vectors served wholly by the bin memo    */
+    /* the series tables (bf_he_tab), one per channel */
+    bf_he_tab tab[3];
+    double thits;               /* channel-vectors whose lanes that needed a
+                                 * series all took it from a table          */
 } bf_he_memo;
 
 BF_FN void bf_he_memo_clear(bf_he_memo *m)
@@ -476,16 +608,24 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
         for (int c = 0; c < 3; c++)
             m->bpt[j][c] = m->bk[j][c] = 0.0;
     m->bhits = 0.0;
+    for (int c = 0; c < 3; c++) /* the coefficients are read only up to n */
+        m->tab[c].a = m->tab[c].gref = m->tab[c].lngref = m->tab[c].igref = m->tab[c].L =
+            m->tab[c].k = m->tab[c].n = 0.0;
+    m->thits = 0.0;
 }
 
 /* The series of one channel ch for the lanes where act > 0, at gs = min(g, 19)
  * with lngs = ln gs (see bf_he_series_x for a, la, lk and deriv).  With a
  * memo (deriv must then be 1) the lanes it serves take its series carried to
- * their g and a, the others sum theirs, and the memo takes the last lane if
- * that one summed (see above).  With deriv, the partials of ln V go to *vg_out
- * and *va_out (0 where V is 0). */
+ * their g and a; the others take it from the channel's series table when it
+ * covers them (bf_he_tab: same a, g <= its g_ref), made anew for the last
+ * lane when that lane needs a series the table does not cover (gtop: the
+ * lane's g at sigma = sigma0, the largest its bin has), and sum it
+ * (bf_he_series_x) only when neither serves them; the memo takes the last
+ * lane if that one needed a series (see above).  With deriv, the partials of
+ * ln V go to *vg_out and *va_out (0 where V is 0). */
 BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la, BF_REAL lk,
-                                BF_REAL act, int deriv, bf_he_memo *memo, int ch,
+                                BF_REAL gtop, BF_REAL act, int deriv, bf_he_memo *memo, int ch,
                                 BF_REAL *vg_out, BF_REAL *va_out)
 {
     /* hl: the lanes the memo serves; the others (that need it) sum */
@@ -511,8 +651,34 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
     }
     BF_REAL ser = BF_R(0.0), vg = BF_R(0.0), va = BF_R(0.0);
     if (BF_ANY(need > 0.0)) {
-        BF_REAL lpk = BF_R(0.0), sum = BF_R(0.0);
-        ser = bf_he_series_x(gs, lngs, aa, la, lk, need, deriv, &vg, &va, &lpk, &sum);
+        BF_REAL lpk = BF_R(0.0), sum = BF_R(0.0), tl = BF_R(0.0);
+        if (memo) {
+            /* the lanes the table covers (a vector that straddles two bins:
+             * those of the bin before), then a table for the last lane's bin */
+            bf_he_tab *t = &memo->tab[ch];
+            tl = bf_he_tab_lanes(t, gs, aa, need);
+            if (BF_ANY(tl > 0.0))
+                bf_he_tab_serve(t, tl, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
+            if (BF_LAST(need) > 0.0 && !(BF_LAST(tl) > 0.0)) {
+                double gl = BF_LAST(gs);
+                bf_he_tab_make(t, BF_LAST(aa), fmin(fmax(BF_LAST(gtop), gl), BF_HE_G_HI));
+                BF_REAL tn = bf_he_tab_lanes(t, gs, aa, BF_SEL(need, BF_R(0.0), tl > 0.0));
+                bf_he_tab_serve(t, tn, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
+                tl = BF_SEL(tl, BF_R(1.0), tn > 0.0);
+            }
+        }
+        BF_REAL sx = BF_SEL(need, BF_R(0.0), tl > 0.0); /* the lanes that sum */
+        if (BF_ANY(sx > 0.0)) {
+            BF_REAL xlpk = BF_R(0.0), xsum = BF_R(0.0), xvg = BF_R(0.0), xva = BF_R(0.0);
+            BF_REAL xser = bf_he_series_x(gs, lngs, aa, la, lk, sx, deriv, &xvg, &xva, &xlpk, &xsum);
+            lpk = BF_SEL(lpk, xlpk, sx > 0.0);
+            sum = BF_SEL(sum, xsum, sx > 0.0);
+            vg = BF_SEL(vg, xvg, sx > 0.0);
+            va = BF_SEL(va, xva, sx > 0.0);
+            ser = BF_SEL(ser, xser, sx > 0.0);
+        } else if (memo) {
+            memo->thits += 1.0;
+        }
         if (memo && BF_LAST(need) > 0.0) {
             memo->ok[ch] = 1.0;
             memo->g[ch] = BF_LAST(gs);
@@ -545,13 +711,13 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
  * bf_he_series_memo.  Finite wherever e^lk D is (lanes on one side never see
  * the other side's value). */
 BF_FN BF_REAL bf_he_dblend(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL lk,
-                           BF_REAL lim, double margin, int deriv, bf_he_memo *memo, int ch,
-                           BF_REAL *V, BF_REAL *vg, BF_REAL *va)
+                           BF_REAL lim, BF_REAL gtop, double margin, int deriv, bf_he_memo *memo,
+                           int ch, BF_REAL *V, BF_REAL *vg, BF_REAL *va)
 {
     BF_REAL t = bf_he_blend_t(g);
     BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), g < BF_HE_G_HI * margin);
-    *V = bf_he_series_memo(fmin(g, BF_HE_G_HI), fmin(lng, BF_R(BF_HE_LN_G_HI)), a, la, lk, act,
-                           deriv, memo, ch, vg, va);
+    *V = bf_he_series_memo(fmin(g, BF_HE_G_HI), fmin(lng, BF_R(BF_HE_LN_G_HI)), a, la, lk, gtop,
+                           act, deriv, memo, ch, vg, va);
     return bf_he_blend(t, *V, lim);
 }
 
@@ -562,7 +728,7 @@ BF_FN BF_REAL bf_he_dscaled(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_RE
     if (BF_ANY(bf_he_blend_t(g) > 0.0))
         lim = bf_he_limit(g, lng, a, lk);
     BF_REAL V, vg, va;
-    return bf_he_dblend(g, lng, a, la, lk, lim, 1.0, 0, (bf_he_memo *)0, 0, &V, &vg, &va);
+    return bf_he_dblend(g, lng, a, la, lk, lim, g, 1.0, 0, (bf_he_memo *)0, 0, &V, &vg, &va);
 }
 
 /* The distribution D(g, a) of one wavelength lam (um) for tau (um), g > 0, a >= 0. */
@@ -626,6 +792,9 @@ typedef struct bf_he_rough {
     BF_REAL ui, uo, ei, eo, xi, xo; /* u, erfc(u), exp(-u^2) of ti and to  */
     BF_REAL dshi, dsho;             /* d(S(t) / cos t) / du                */
     BF_REAL r, x;                   /* sigma's r and x                     */
+    BF_REAL tani, tano;             /* tan ti, tan to (r's weights)        */
+    BF_REAL xk, xr;                 /* x / (1 + x^2) and that / r: dx / (dr/r)
+                                     * and dx / dr at the root, and -dln(sigma) / dx */
 } bf_he_rough;
 
 BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int deriv,
@@ -648,6 +817,7 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
             r->dshi = r->dsho = BF_R(0.0);
             r->r = BF_R(0.0);
             r->x = BF_R(BF_TINY);
+            r->tani = r->tano = r->xk = r->xr = BF_R(0.0);
         }
         return;
     }
@@ -658,10 +828,15 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
     r->So = bf_he_shadow1x(uo, eo, xo);
     r->shi = r->Si / d->ci;
     r->sho = r->So / d->co;
-    BF_REAL rr = (d->si / d->ci * ei + d->so / d->co * eo) * (1.0 / sqrt(8.0 * BF_PI));
+    BF_REAL tani = d->si / d->ci, tano = d->so / d->co;
+    BF_REAL rr = (tani * ei + tano * eo) * (1.0 / sqrt(8.0 * BF_PI));
     BF_REAL x = bf_he_newton_x(rr);
     r->sigma = sigma0 / sqrt(1.0 + x * x);
     if (deriv) {
+        r->tani = tani;
+        r->tano = tano;
+        r->xk = x / (1.0 + x * x);
+        r->xr = r->xk / fmax(rr, BF_R(BF_TINY));
         r->ui = ui;
         r->uo = uo;
         r->ei = ei;
@@ -695,13 +870,15 @@ BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
     return r.sigma;
 }
 
-/* r0 (made with deriv) carried to (tau, sigma0) nearby, to first order in
- * the steps of u (exact: u is a product): S(t) / cos t by dS/du, erfc by
- * -2 e^(-u^2) / sqrt(pi), x by one Newton step on ln x + x^2/2 = ln r from
- * r0's root, ln(r / r0) ~ r / r0 - 1.  No exp, erfc or log.  (It sets shi,
- * sho and sigma: all that a neighbour uses.) */
-BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double tau, double sigma0,
-                            bf_he_rough *r)
+/* r0 (made with deriv at (tau0, sigma00)) carried to (tau, sigma0) nearby,
+ * to first order in the steps: u scales with tau / sigma0 (so du = u0 times
+ * the ratio's step, exactly but for rounding), S(t) / cos t by dS/du, erfc by
+ * -2 e^(-u^2) / sqrt(pi), r by its weights tan t, x by one Newton step on
+ * ln x + x^2/2 = ln r from r0's root (dx = x dr / (r (1 + x^2))), sigma by
+ * d ln sigma = d ln sigma0 - x dx / (1 + x^2).  No exp, erfc, log, square
+ * root or division.  (It sets shi, sho and sigma: all that a neighbour uses.) */
+BF_FN void bf_he_rough_step(const bf_he_rough *r0, double tau0, double sigma00, double tau,
+                            double sigma0, bf_he_rough *r)
 {
     r->flat = r0->flat;
     if (r0->flat) { /* every partial is 0 and x = BF_TINY: the general path's values */
@@ -710,16 +887,16 @@ BF_FN void bf_he_rough_step(const bf_he_dir *d, const bf_he_rough *r0, double ta
         r->sigma = BF_R(sigma0);
         return;
     }
-    BF_REAL dui = bf_he_u(d->ci, d->si, tau, sigma0) - r0->ui;
-    BF_REAL duo = bf_he_u(d->co, d->so, tau, sigma0) - r0->uo;
+    /* u'/u - 1; u = 1e10 is the normal's clamp (bf_he_u), where u stays */
+    const double du = (tau * sigma00 - tau0 * sigma0) / (tau0 * sigma0);
+    BF_REAL dui = BF_SEL(r0->ui * du, BF_R(0.0), r0->ui >= 1e10);
+    BF_REAL duo = BF_SEL(r0->uo * du, BF_R(0.0), r0->uo >= 1e10);
     r->shi = r0->shi + r0->dshi * dui;
     r->sho = r0->sho + r0->dsho * duo;
-    BF_REAL ei = r0->ei - (2.0 / BF_SQRT_PI) * r0->xi * dui;
-    BF_REAL eo = r0->eo - (2.0 / BF_SQRT_PI) * r0->xo * duo;
-    BF_REAL rr = (d->si / d->ci * ei + d->so / d->co * eo) * (1.0 / sqrt(8.0 * BF_PI));
-    BF_REAL x0 = r0->x;
-    BF_REAL x = x0 + x0 / (1.0 + x0 * x0) * ((rr - r0->r) / fmax(r0->r, BF_TINY));
-    r->sigma = sigma0 / sqrt(1.0 + x * x);
+    BF_REAL dr = (r0->tani * r0->xi * dui + r0->tano * r0->xo * duo)
+               * (-2.0 / (BF_SQRT_PI * sqrt(8.0 * BF_PI)));
+    BF_REAL dx = r0->xr * dr;
+    r->sigma = (r0->sigma * (sigma0 / sigma00)) * (1.0 - r0->xk * dx);
 }
 
 /* What bf_he_fd computes at p[0] and its neighbours are carried from. */
@@ -731,6 +908,7 @@ typedef struct bf_he_base {
     BF_REAL lc;                   /* ln fs + ln G                             */
     BF_REAL zero;                 /* 1 where fs underflows: K = 0             */
     BF_REAL sv, lsv2;             /* sigma v_z and 2 ln(sigma v_z)            */
+    BF_REAL s0v;                  /* sigma0 v_z                               */
     double klmax2;                /* the largest (2 pi / lam)^2 of the channels */
     BF_REAL q0, lim0;             /* a / g and e^lk / g of the rough limit (see bf_he_fd_base) */
     /* per channel: the value before the zero flag, the series V (summed at
@@ -754,6 +932,7 @@ BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam,
     b->zero = BF_SEL(BF_R(0.0), BF_R(1.0), b->fs < BF_TINY);
     b->sv = b->r.sigma * b->d.vz;             /* > 1e-106: g never underflows */
     b->lsv2 = 2.0 * log(b->sv);
+    b->s0v = sigma0 * b->d.vz;
 
     /* The rough limit e^(lk - a/g) / g is the same in every channel where
      * g >= 18: a/g = q0 = tau^2 |v_xy|^2 / (4 sv^2) and e^lk / g =
@@ -792,8 +971,9 @@ BF_FN BF_REAL bf_he_fd_channel(bf_he_base *b, double tau, double lam, int ch,
         }
         lim = BF_SEL(lim, BF_R(0.0), gg <= BF_HE_G_LO / BF_HE_FD_MARGIN);
     }
-    b->Kr[ch] = bf_he_dblend(gg, lng, aa, la, lk, lim, BF_HE_FD_MARGIN, 1, memo, ch, &b->V[ch],
-                             &b->Vg[ch], &b->Va[ch]);
+    BF_REAL gtop = kl2 * (b->s0v * b->s0v); /* g at sigma = sigma0: the bin's largest */
+    b->Kr[ch] = bf_he_dblend(gg, lng, aa, la, lk, lim, gtop, BF_HE_FD_MARGIN, 1, memo, ch,
+                             &b->V[ch], &b->Vg[ch], &b->Va[ch]);
     b->L[ch] = lim;
     b->g0[ch] = fmin(gg, BF_HE_G_HI);
     b->a0[ch] = aa;
@@ -819,7 +999,7 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
         return;
     }
     bf_he_rough rj;
-    bf_he_rough_step(&b->d, &b->r, tj, s0j, &rj);
+    bf_he_rough_step(&b->r, tau, sigma0, tj, s0j, &rj);
     BF_REAL fsj = Fj * rj.shi * rj.sho * (1.0 / BF_PI);
     BF_REAL zj = BF_SEL(b->zero, BF_R(1.0), fsj < BF_TINY);
     BF_REAL rat = fsj * b->ifs;
@@ -828,8 +1008,9 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
      * g, g' >= 18 (see bf_he_fd_base) */
     BF_REAL ej = BF_R(0.0);
     if (BF_ANY(b->klmax2 * (svj * svj) > BF_HE_G_LO)) {
-        BF_REAL qj = (0.25 * tj * tj) * b->d.vxy2 / (svj * svj);
-        ej = exp(fmin(b->q0 - qj, BF_R(700.0))) * ((b->sv * b->sv) / (svj * svj));
+        BF_REAL isv2 = 1.0 / (svj * svj);
+        BF_REAL qj = (0.25 * tj * tj) * b->d.vxy2 * isv2;
+        ej = exp(fmin(b->q0 - qj, BF_R(700.0))) * ((b->sv * b->sv) * isv2);
     }
     for (int ch = 0; ch < 3; ch++) {
         double kl = 2.0 * BF_PI / lam[ch];

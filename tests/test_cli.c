@@ -356,6 +356,48 @@ START_TEST(fit_json_good_and_missing)
 }
 END_TEST
 
+/* `fit` reads the next file while it fits one (prefetch.c): with a missing
+ * and a truncated file between two copies of one table, the records and the
+ * messages come in file order, each failure as a read in order reports it,
+ * and the fourth file's fit (from the sample set made ahead) equals the
+ * first's to the bit. */
+START_TEST(fit_read_ahead_keeps_order)
+{
+    char table[1024], dir[] = "/tmp/brdffit-readahead-XXXXXX", cut[1100], args[4096];
+    blue_rubber(table, sizeof table);
+    ck_assert(mkdtemp(dir) != NULL);
+    snprintf(cut, sizeof cut, "%s/cut.binary", dir);
+    char *whole = tu_slurp(table);
+    ck_assert(whole != NULL);
+    FILE *f = fopen(cut, "wb");
+    ck_assert(f != NULL && fwrite(whole, 1, 5000, f) == 5000 && fclose(f) == 0);
+    free(whole);
+    snprintf(args, sizeof args, "fit --json --model ward '%s' %s/missing.binary '%s' '%s'", table,
+             dir, cut, table);
+    run_out r = run(args);
+    expect_status(r, 1, args);
+    char *lines[16];
+    int n = split_lines(r.out, lines, 16);
+    ck_assert_msg(n == 4, "%d lines, expected 4:\n%s", n, r.out);
+    check_fit_record(lines[0], "blue-rubber", "ward");
+    check_fit_record(lines[3], "blue-rubber", "ward");
+    char s[1024];
+    ck_assert(tu_json_get_string(lines[1], "status", s, sizeof s));
+    ck_assert_str_eq(s, brdffit_strerror(BRDFFIT_E_FILE_OPEN));
+    ck_assert(tu_json_get_string(lines[2], "status", s, sizeof s));
+    ck_assert_str_eq(s, brdffit_strerror(BRDFFIT_E_FILE_TRUNCATED));
+    double e0, e3;
+    ck_assert(tu_json_get_number(lines[0], "error", &e0));
+    ck_assert(tu_json_get_number(lines[3], "error", &e3));
+    ck_assert_msg(memcmp(&e0, &e3, sizeof e0) == 0, "%.17g vs %.17g", e0, e3);
+    const char *m1 = strstr(r.err, "missing.binary"), *m2 = strstr(r.err, "cut.binary");
+    ck_assert_msg(m1 && m2 && m1 < m2, "stderr out of order:\n%s", r.err);
+    run_free(&r);
+    unlink(cut);
+    rmdir(dir);
+}
+END_TEST
+
 /* A device that does not exist with --backend opencl: a failure (1), not a usage error. */
 START_TEST(fit_no_such_device)
 {
@@ -495,6 +537,7 @@ Suite *cli_suite(void)
     tcase_set_tags(tf, TU_NEEDS_SHARED);
     tcase_add_test(tf, fit_good_and_missing);
     tcase_add_test(tf, fit_json_good_and_missing);
+    tcase_add_test(tf, fit_read_ahead_keeps_order);
     tcase_add_test(tf, fit_no_such_device);
     suite_add_tcase(s, tf);
 

@@ -10,7 +10,7 @@
  *                  DIR/fits.tsv and the headline figure (SVG)
  *   cmd_batch.c    `brdffit batch`: inputs, shards, fits, resume, signals, progress
  *   prefetch.c     the next material's identity, table and sample set, read in a
- *                  thread while the current one is fitted (prefetch.h)
+ *                  thread while the current one is fitted (prefetch.h; `fit` too)
  *   cmd_report.c   `brdffit report DIR...`: shard journals merged into one report
  *   cmd_score.c    `brdffit score`: the Error of given parameters
  *   report_data.c  the materials of a report chosen from the records; medians, best

@@ -4,6 +4,7 @@
  *   brdffit.c     main: the table of subcommands, --help, --version
  *   usage.c       the --help text, from the table of subcommands
  *   cmd_fit.c     `fit` and `demo`: tables, sample sets, one context, the fits
+ *                 (the next file read meanwhile by batch.h's prefetch.c)
  *   cmd_models.c  `models`: the models and their lobe parameters
  *   cmd_eval.c    `eval`: one BRDF value
  *   args.c        strict number parsing, usage errors, the list of model names

@@ -829,7 +829,7 @@ static int do_material(batch_run *R, batch_material *m, const batch_material *ne
         goto done;
     }
     if (next && !next->embedded)
-        prefetch_start(R->pre, next->path, &o->sample);
+        prefetch_start(R->pre, next->path, &o->sample, 1);
     fit_planned(R, m, i, n, &td, s);
     if (td.assets && !R->out_failed && !stop_signal) {
         brdffit_samples_free(s);

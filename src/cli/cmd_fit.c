@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* cmd_fit.c -- `brdffit fit` and `brdffit demo`: read (or synthesise) each
- * table, make its sample set, and fit the requested models with ONE context. */
+ * table, make its sample set, and fit the requested models with ONE context;
+ * the next file's table is read in a thread while one is fitted (prefetch.h). */
 #include "cli.h"
+#include "prefetch.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -13,6 +15,7 @@ typedef struct runner {
     brdffit_error ctx_err;   /* why no context could be made: each later material fails with it */
     int failures;            /* files and fits that failed */
     int fits_ok;
+    table_prefetch pre;      /* the next file's sample set, made meanwhile */
 } runner;
 
 /* The best fit of one material. */
@@ -131,11 +134,19 @@ static void print_best(const best_fit *b, int nmodels, double seconds)
 
 /* ------------------------------------------------------------------ fit */
 
-/* The sample set of one MERL file, or NULL (failure reported). */
+/* The sample set of one MERL file, or NULL (failure reported): the
+ * prefetch's when it made it, else made here (where a failure is reported). */
 static brdffit_samples *file_samples(runner *R, const cli_material *m)
 {
     brdffit_error err;
     memset(&err, 0, sizeof err);
+    if (prefetch_wait(&R->pre, m->file) && R->pre.samples) {
+        brdffit_samples *taken = R->pre.samples;
+        R->pre.samples = NULL;
+        prefetch_drop(&R->pre); /* and its table */
+        return taken;
+    }
+    prefetch_drop(&R->pre);
     brdffit_table *table = NULL;
     brdffit_status st = brdffit_table_read(m->file, &table, &err);
     if (st != BRDFFIT_OK) {
@@ -158,8 +169,9 @@ static brdffit_samples *file_samples(runner *R, const cli_material *m)
     return samples;
 }
 
-/* Fit and report one file (its failures reported, whatever they are). */
-static void fit_file(runner *R, const char *path, int first)
+/* Fit and report one file (its failures reported, whatever they are),
+ * reading the next one (NULL: none) meanwhile. */
+static void fit_file(runner *R, const char *path, const char *next, int first)
 {
     const cli_options *o = R->o;
     char name[1024];
@@ -172,6 +184,8 @@ static void fit_file(runner *R, const char *path, int first)
         brdffit_samples_free(samples);
         return;
     }
+    if (next) /* after the first context: its set-up may set POCL_CACHE_DIR */
+        prefetch_start(&R->pre, next, &o->sample, 0);
     if (!o->json) {
         if (!first)
             putchar('\n');
@@ -191,7 +205,8 @@ static int run_fit(const cli_options *o)
     memset(&R, 0, sizeof R);
     R.o = o;
     for (int fi = 0; fi < o->nfiles; fi++)
-        fit_file(&R, o->files[fi], fi == 0);
+        fit_file(&R, o->files[fi], fi + 1 < o->nfiles ? o->files[fi + 1] : NULL, fi == 0);
+    prefetch_drop(&R.pre);
     brdffit_context_free(R.ctx);
     if (R.failures)
         fprintf(stderr, "brdffit: %d failure%s (see above); %d fit%s done\n", R.failures,

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* prefetch.c -- a material's identity, table and sample set read in a
- * thread while the batch fits the material before it (prefetch.h). */
+ * thread while the material before it is fitted (prefetch.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "prefetch.h"
 
@@ -11,8 +11,9 @@ static void *prefetch_main(void *arg)
     table_prefetch *P = arg;
     brdffit_error err;
     memset(&err, 0, sizeof err);
-    P->identified = bj_identify(P->path, &P->id, &err) == 0;
-    if (!P->identified || brdffit_table_read(P->path, &P->table, &err) != BRDFFIT_OK) {
+    if (P->identify && !(P->identified = bj_identify(P->path, &P->id, &err) == 0))
+        return NULL;
+    if (brdffit_table_read(P->path, &P->table, &err) != BRDFFIT_OK) {
         P->table = NULL;
         return NULL;
     }
@@ -30,13 +31,15 @@ void prefetch_drop(table_prefetch *P)
     memset(P, 0, sizeof *P);
 }
 
-void prefetch_start(table_prefetch *P, const char *path, const brdffit_sample_options *sample)
+void prefetch_start(table_prefetch *P, const char *path, const brdffit_sample_options *sample,
+                    int identify)
 {
     prefetch_drop(P);
     if (strlen(path) >= sizeof P->path)
         return;
     memcpy(P->path, path, strlen(path) + 1);
     P->sample = *sample;
+    P->identify = identify;
     P->running = pthread_create(&P->thread, NULL, prefetch_main, P) == 0;
     if (!P->running)
         P->path[0] = '\0';

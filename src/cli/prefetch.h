@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* prefetch.h -- the batch reads the next material's table while the current
- * one is fitted: its identity (path, size, hash), the table and its sample
- * set, in a thread of their own.  Each step either succeeds or leaves its
- * result empty; the batch then does that step itself, in order, so that a
- * failure is reported exactly as without the prefetch.  At most one
+/* prefetch.h -- the batch (and `brdffit fit`) reads the next material's
+ * table while the current one is fitted: its identity (path, size, hash; the
+ * batch's journal needs it, fit does not ask for it), the table and its
+ * sample set, in a thread of their own.  Each step either succeeds or leaves
+ * its result empty; the caller then does that step itself, in order, so
+ * that a failure is reported exactly as without the prefetch.  At most one
  * prefetch is in flight; it holds one more table and sample set in memory
  * (~130 MB for a MERL table). */
 #ifndef BRDFFIT_PREFETCH_H
@@ -18,16 +19,19 @@ typedef struct table_prefetch {
     int running;                  /* a thread to join                        */
     char path[BJ_PATH_MAX];       /* the file ("" when none was started)     */
     brdffit_sample_options sample;
+    int identify;                 /* 1: identify the file first              */
     int identified;               /* id holds the file's identity            */
     bj_identity id;
     brdffit_table *table;         /* NULL when not read                      */
     brdffit_samples *samples;     /* NULL when not made                      */
 } table_prefetch;
 
-/* Start reading path (a table file) and making its sample set with these
- * options; waits for and drops any prefetch still held.  Without a thread
- * to be had it does nothing (the batch then reads the table itself). */
-void prefetch_start(table_prefetch *P, const char *path, const brdffit_sample_options *sample);
+/* Start reading path (a table file), after its identity when identify is
+ * set, and making its sample set with these options; waits for and drops
+ * any prefetch still held.  Without a thread to be had it does nothing (the
+ * caller then reads the table itself). */
+void prefetch_start(table_prefetch *P, const char *path, const brdffit_sample_options *sample,
+                    int identify);
 
 /* Wait for the prefetch of path, if it is the one held; 1 then (its results
  * are P's to take: set what is taken to NULL), else 0 (nothing held for it). */

@@ -37,7 +37,9 @@
  * (and far beyond), so no later term reaches the double range.  The peak can
  * lie far beyond the ~80 terms a = 0 needs (m* = 166 at g = 16.3, a = 6.4e4,
  * K = 2e-269: a row of he-reference.tsv).  Cosines are floored at 1e-100, so
- * every lane stays finite for any direction strictly above the horizon.
+ * every lane stays finite for any direction strictly above the horizon.  A
+ * data pass takes the series of most lanes from a table of its terms made
+ * once per (theta_h, theta_d) bin (bf_he_tab), to the same accuracy.
  */
 #ifndef BF_HE_H
 #define BF_HE_H
@@ -442,7 +444,8 @@ BF_FN int bf_he_pconst_for(const bf_he_pconst *pc, double tau, const double *lam
  * sigma = sigma0 (g_ref).  So
  *     V(g) = sum_m T_m(g) = e^(L - g) sum_{m=k}^{k+n-1} b_m y^m,  y = g / g_ref,
  * b_m = e^(ln T_m(g_ref) + g_ref - L) is a polynomial in y whose
- * coefficients are made once per bin and channel (n scalar exps), and each
+ * coefficients are made once per bin and channel (n exps, a vector of them
+ * at a time), and each
  * lane then costs n multiply-adds instead of a search for its peak and an
  * exp per term.  The table keeps c_j = b_{k+j} / (k+j), and one Horner pass
  * gives Q = sum c_j y^j with Q' and Q''/2, from which (D = y d/dy)
@@ -793,8 +796,9 @@ typedef struct bf_he_rough {
     BF_REAL dshi, dsho;             /* d(S(t) / cos t) / du                */
     BF_REAL r, x;                   /* sigma's r and x                     */
     BF_REAL tani, tano;             /* tan ti, tan to (r's weights)        */
-    BF_REAL xk, xr;                 /* x / (1 + x^2) and that / r: dx / (dr/r)
-                                     * and dx / dr at the root, and -dln(sigma) / dx */
+    BF_REAL xk, xr;                 /* xk = x / (1 + x^2): dx per d ln r at the
+                                     * root, and -d ln sigma per dx; xr = xk / r:
+                                     * dx per dr                           */
 } bf_he_rough;
 
 BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int deriv,
@@ -876,7 +880,8 @@ BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
  * -2 e^(-u^2) / sqrt(pi), r by its weights tan t, x by one Newton step on
  * ln x + x^2/2 = ln r from r0's root (dx = x dr / (r (1 + x^2))), sigma by
  * d ln sigma = d ln sigma0 - x dx / (1 + x^2).  No exp, erfc, log, square
- * root or division.  (It sets shi, sho and sigma: all that a neighbour uses.) */
+ * root or division per lane.  (It sets shi, sho and sigma: all that a
+ * neighbour uses.) */
 BF_FN void bf_he_rough_step(const bf_he_rough *r0, double tau0, double sigma00, double tau,
                             double sigma0, bf_he_rough *r)
 {

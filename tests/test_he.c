@@ -375,8 +375,9 @@ static void series_brute3(long double g, long double a, int mmax, long double *s
  * every lane at g = y g_ref, y from 1 down to 0.002 (sigma / sigma0 at a
  * direction 1e-100 from the horizon), the series and the partials of its
  * log against the plain sums: V to 1e-12, d ln V / dg and d ln V / da to
- * 1e-10 of their scale (1 and 1 / m*); and the memo's pass over a straddling
- * vector of lanes uses it (bf_he_series_memo: counted in thits). */
+ * 1e-10 of their scale (1 and 1 / m*); and bf_he_series_memo, handed a bin's
+ * lanes one call at a time as a pass does, serves them all from one table
+ * (counted in thits) to 1e-12 of the plain sums. */
 START_TEST(series_table_brute_force)
 {
     const double grefs[] = { 1e-6, 0.05, 1, 3, 12, 16.3, 19 };

@@ -336,7 +336,6 @@ START_TEST(series_brute_force)
     const double tau = 37.6, lam = 0.526, kk = M_PI * tau / (2 * lam), pref = kk * kk;
     const double gs[] = { 1e-12, 1e-6, 1e-3, 0.05, 0.5, 1, 3, 7.7, 12, 16.3, 17.99 };
     const double as[] = { 0, 1e-9, 1e-3, 0.3, 1, 10, 100, 1e3, 1e4, 6.4e4, 1e5, 3e5, 1e6, 1e8 };
-    double worst = 0;
     int compared = 0;
     for (size_t i = 0; i < sizeof gs / sizeof gs[0]; i++)
         for (size_t j = 0; j < sizeof as / sizeof as[0]; j++) {
@@ -351,7 +350,6 @@ START_TEST(series_brute_force)
             double rd = tu_reldiff(D, (double)ref);
             ck_assert_msg(rd <= 1e-12, "g %g a %g: D = %.17g, brute force %.17Lg (rel %g)", gs[i],
                           as[j], D, ref, rd);
-            worst = fmax(worst, rd);
             compared++;
         }
     ck_assert_int_gt(compared, 80);
@@ -383,7 +381,6 @@ START_TEST(series_table_brute_force)
     const double grefs[] = { 1e-6, 0.05, 1, 3, 12, 16.3, 19 };
     const double as[] = { 0, 1e-3, 1, 100, 1e4, 6.4e4, 1e6 };
     const double ys[] = { 1, 0.999999, 0.9, 0.5, 0.17, 0.01, 0.002 };
-    double worst = 0, worstp = 0;
     int compared = 0;
     for (size_t i = 0; i < sizeof grefs / sizeof grefs[0]; i++)
         for (size_t j = 0; j < sizeof as / sizeof as[0]; j++) {
@@ -409,8 +406,6 @@ START_TEST(series_table_brute_force)
                 ck_assert_msg(rd <= 1e-12 && pg <= 1e-10 && pa <= 1e-10,
                               "g %g a %g: V %.17g vs %.17Lg (rel %g), vg %.17g vs %.17g, va %.17g vs %.17g",
                               g, as[j], V, s0, rd, vg, vgr, va, var);
-                worst = fmax(worst, rd);
-                worstp = fmax(worstp, fmax(pg, pa));
                 compared++;
             }
         }
@@ -445,7 +440,6 @@ START_TEST(dblend_as_the_pass_calls_it)
     const double gs[] = { 1e-3, 0.5, 3, 12, 17.99, 18, 18.3, 18.999, 19, 19.01, 25 };
     const double as[] = { 0, 1e-3, 1, 100, 1e4, 1e6 };
     int served = 0;
-    double worst = 0.0;
     for (size_t i = 0; i < sizeof gs / sizeof gs[0]; i++)
         for (size_t j = 0; j < sizeof as / sizeof as[0]; j++) {
             double g = gs[i], a = as[j], lng = log(g), la = log(fmax(a, 1e-300));
@@ -461,16 +455,14 @@ START_TEST(dblend_as_the_pass_calls_it)
                                      &va);
             double y2 = bf_he_dblend(g, lng, a, la, lk, lim, g, BF_HE_FD_MARGIN, 1, &memo, 1, &V2,
                                      &vg2, &va2);
+            /* measured: 4.4e-13 at worst (the summed series' own truncation) */
             ck_assert_msg(tu_reldiff(y1, x) <= 1e-12, "g %g a %g: with a memo %.17g vs %.17g", g,
                           a, y1, x);
-            worst = fmax(worst, tu_reldiff(y1, x));
             ck_assert_msg(tu_reldiff(y2, y1) <= 1e-13 && tu_reldiff(V2, V) <= 1e-13,
                           "g %g a %g: served %.17g vs %.17g", g, a, y2, y1);
             served += (int)memo.hits;
         }
     ck_assert_int_gt(served, 20); /* where g < 19 m and the series is alive */
-    /* measured: 4.4e-13 at worst (the summed series' own truncation) */
-    ck_assert_msg(worst <= 1e-12, "table against summed series: %g", worst);
 }
 END_TEST
 

@@ -140,13 +140,14 @@ static brdffit_samples *file_samples(runner *R, const cli_material *m)
 {
     brdffit_error err;
     memset(&err, 0, sizeof err);
-    if (prefetch_wait(&R->pre, m->file) && R->pre.samples) {
-        brdffit_samples *taken = R->pre.samples;
+    brdffit_samples *taken = NULL;
+    if (prefetch_wait(&R->pre, m->file)) {
+        taken = R->pre.samples;
         R->pre.samples = NULL;
-        prefetch_drop(&R->pre); /* and its table */
-        return taken;
     }
-    prefetch_drop(&R->pre);
+    prefetch_drop(&R->pre); /* what it held besides: its table */
+    if (taken)
+        return taken;
     brdffit_table *table = NULL;
     brdffit_status st = brdffit_table_read(m->file, &table, &err);
     if (st != BRDFFIT_OK) {

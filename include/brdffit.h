@@ -501,8 +501,8 @@ typedef enum brdffit_fit_flag {
 } brdffit_fit_flag;
 
 /* Fit a model to a sample set.  opt may be NULL for the defaults.  The
- * starts are screened on every 8th sample of a large set, and He's kept
- * starts are refined there first; the result (params, error) is always that
+ * starts are screened on every 8th sample of a large set (He: 12th), and
+ * He's kept starts are refined there first; the result (params, error) is always that
  * of all samples (README: How a fit works).  A sample
  * set with fewer distinct geometries than the model's unknowns per channel
  * (d, s and the lobe parameters; directions differing only by a turn about

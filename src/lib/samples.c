@@ -190,9 +190,11 @@ static void finish_fields(brdffit_samples *samples)
 {
     const size_t stride = samples->npad;
     double *F = samples->data;
+    samples->sum_a2 = 0.0;
     for (size_t m = 0; m < samples->n; m++) {
         double iz = F[BF_F_IZ * stride + m];
         F[BF_F_A2 * stride + m] = samples->w[m] * iz * iz / (3.0 * samples->sum_w);
+        samples->sum_a2 += F[BF_F_A2 * stride + m];
     }
     pad_fields(samples);
 }
@@ -353,6 +355,7 @@ brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdff
         sub->w[m] = src->w[m * stride];
         sub->bin[m] = src->bin[m * stride];
         sub->sum_w += sub->w[m];
+        sub->sum_a2 += sub->data[BF_F_A2 * sub->npad + m];
     }
     pad_fields(sub); /* a2 stays the full set's */
 done:

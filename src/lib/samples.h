@@ -24,6 +24,7 @@ struct brdffit_samples {
     size_t beyond_cutoff;        /* valid bins outside the cutoff (or below the horizon) */
     brdffit_sample_options opt;
     double sum_w;                /* sum of the solid-angle weights of the n samples */
+    double sum_a2;               /* sum of the metric weights a2 of the n samples */
     double *data;                /* BF_NFIELDS * npad doubles, aligned */
     double *w;                   /* n solid-angle weights */
     int *bin;                    /* n bin indices k + 180*(j + 90*i) */

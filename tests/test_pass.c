@@ -88,13 +88,17 @@ START_TEST(weights_normalised)
     bf_host_loop(s, BRDFFIT_WARD, 1, 0, &pp, h);
     /* a2 = w cos^2 / (3 sum w) so 3 A = sum w cos^2 / sum w, in (0, 1] */
     ck_assert(3 * h[BF_MOM_A] > 0.1 && 3 * h[BF_MOM_A] <= 1.0);
+    /* the set's own sum of a2 (what the fit scales its secant estimate by) is the pass's A */
+    ck_assert_msg(tu_reldiff(s->sum_a2, h[BF_MOM_A]) <= 1e-12, "sum_a2 %.17g, A %.17g", s->sum_a2,
+                  h[BF_MOM_A]);
     brdffit_samples_free(s);
 }
 END_TEST
 
 /* The screening subset (bf_samples_every): every 8th sample of the set with
- * its fields and metric weights, harmless padding, and He's value moments
- * over it (host loop, with the memo) equal to the sums of bf_accumulate over
+ * its fields and metric weights, harmless padding, its sum of a2 that of
+ * those weights (about an eighth of the set's), and He's value moments over
+ * it (host loop, with the memo) equal to the sums of bf_accumulate over
  * those samples of the full set one at a time (no memo) to 1e-12. */
 START_TEST(subset_every_8th)
 {
@@ -127,6 +131,9 @@ START_TEST(subset_every_8th)
     for (int i = 0; i < nmom; i++)
         ck_assert_msg(tu_reldiff(h[i], ref[i]) <= 1e-12, "moment %d: subset %.17g samples %.17g", i,
                       h[i], ref[i]);
+    ck_assert_msg(tu_reldiff(sub->sum_a2, ref[BF_MOM_A]) <= 1e-12, "subset sum_a2 %.17g, A %.17g",
+                  sub->sum_a2, ref[BF_MOM_A]);
+    ck_assert(sub->sum_a2 > 0.1 * s->sum_a2 && sub->sum_a2 < 0.15 * s->sum_a2);
     brdffit_samples_free(sub);
     brdffit_samples_free(s);
 }

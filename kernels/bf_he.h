@@ -477,30 +477,70 @@ typedef struct bf_he_tab {
                                * the last vector's overreach in the kernel    */
 } bf_he_tab;
 
-/* The table for a and g_ref, BF_NLANES terms at a time (BF_HE_MMAX = 400 is
- * a multiple of 4 and 8, so the loads of bf_he_lkk stay inside it). */
+/* ln(T_m(g_ref) e^g_ref) of one term, lng = ln g_ref: what bf_he_tab_make
+ * searches (concave in m, as its log ratios bf_he_dlog decrease). */
+BF_FN double bf_he_tab_l(int m, double lng, double a)
+{
+    double dm = (double)m;
+    return dm * lng - a / dm - bf_he_lkk[m];
+}
+
+/* The window of the table for a and g_ref (see bf_he_tab): the largest term
+ * l_m* = *lmax, the first term k within BF_HE_TAB_HEAD of it and the last
+ * term *mend before the first past the peak that is more than BF_HE_TAB_TAIL
+ * below it (BF_HE_MMAX if none).  l_m is concave in m, so each is a bisection
+ * on a monotone side: about 27 scalar terms instead of every term up to the
+ * tail's end (a scan of m = 1 .. ~200 at a sharp lobe's bins, which cost as
+ * much as the table's exps). */
+BF_FN int bf_he_tab_window(double a, double lng, double *lmax, int *mend)
+{
+    int lo = 1, hi = BF_HE_MMAX; /* the peak: the first m with l_(m+1) <= l_m */
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (bf_he_tab_l(mid + 1, lng, a) > bf_he_tab_l(mid, lng, a))
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    const int peak = lo;
+    const double top = bf_he_tab_l(peak, lng, a);
+    lo = peak + 1;             /* the tail: the first m past it below top - TAIL */
+    hi = BF_HE_MMAX + 1;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (bf_he_tab_l(mid, lng, a) < top - BF_HE_TAB_TAIL)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    *mend = lo - 1;
+    lo = 1;                    /* the head: the first m within HEAD of top */
+    hi = peak;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (bf_he_tab_l(mid, lng, a) < top - BF_HE_TAB_HEAD)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *lmax = top;
+    return lo;
+}
+
+/* The table for a and g_ref: its window (bf_he_tab_window), then the terms
+ * of the window BF_NLANES at a time (BF_HE_MMAX = 400 is a multiple of 4 and
+ * 8, and the vectors start at m = 1 mod BF_NLANES, so the loads of bf_he_lkk
+ * stay inside it). */
 BF_FN void bf_he_tab_make(bf_he_tab *t, double a, double gref)
 {
-    double lng = log(gref), lmax = -1e300;
-    int mend = BF_HE_MMAX, past = 0;
-    /* ln(T_m(g_ref) e^g_ref) into c[m - 1], up to the first term more than
-     * BF_HE_TAB_TAIL below the largest (past the peak: ln T is concave) */
-    for (int m0 = 1; m0 <= BF_HE_MMAX && !past; m0 += BF_NLANES) {
+    double lng = log(gref), lmax;
+    int mend;
+    const int k = bf_he_tab_window(a, lng, &lmax, &mend);
+    /* ln(T_m(g_ref) e^g_ref) into c[m - 1] for the window's vectors */
+    for (int m0 = k - (k - 1) % BF_NLANES; m0 <= mend; m0 += BF_NLANES) {
         BF_REAL mv = (double)m0 + BF_IOTA;
         BF_STORE(mv * lng - a / mv - BF_LOADC(bf_he_lkk + m0), t->c + (m0 - 1));
-        for (int i = 0; i < BF_NLANES && !past; i++) {
-            double l = t->c[m0 - 1 + i];
-            if (l > lmax) {
-                lmax = l;
-            } else if (l < lmax - BF_HE_TAB_TAIL) {
-                mend = m0 + i - 1;
-                past = 1;
-            }
-        }
     }
-    int k = 1;
-    while (k < mend && t->c[k - 1] < lmax - BF_HE_TAB_HEAD)
-        k++;
     /* c[j] from c[k - 1 + j]: a vector is loaded before it is stored over,
      * and k >= 1, so no later load reads a stored value */
     for (int j0 = 0; j0 <= mend - k; j0 += BF_NLANES) {

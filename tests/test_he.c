@@ -427,6 +427,59 @@ START_TEST(series_table_brute_force)
 }
 END_TEST
 
+/* The window of a series table (bf_he_tab_window, found by bisection)
+ * against its definition, a scan of every term in long double: the largest
+ * term L, the first term k within BF_HE_TAB_HEAD of it and the last term
+ * before the first past the peak more than BF_HE_TAB_TAIL below it.  A term
+ * within 1e-9 of either threshold may fall on either side. */
+static int near_threshold(long double l, long double thr)
+{
+    return fabsl(l - thr) <= 1e-9L;
+}
+
+START_TEST(series_table_window)
+{
+    const double grefs[] = { 1e-300, 1e-6, 0.05, 1, 3, 12, 16.3, 18.5, 19 };
+    const double as[] = { 0, 1e-3, 1, 37, 100, 1e4, 6.4e4, 1e6, 1e9 };
+    int checked = 0;
+    for (size_t i = 0; i < sizeof grefs / sizeof grefs[0]; i++)
+        for (size_t j = 0; j < sizeof as / sizeof as[0]; j++) {
+            long double l[BF_HE_MMAX + 1], top = -INFINITY;
+            int peak = 1;
+            for (int m = 1; m <= BF_HE_MMAX; m++) {
+                l[m] = m * logl(grefs[i]) - as[j] / (long double)m - lgammal(m + 1.0L) - logl(m);
+                if (l[m] > top) {
+                    top = l[m];
+                    peak = m;
+                }
+            }
+            int mend = BF_HE_MMAX, k = 1;
+            for (int m = peak + 1; m <= BF_HE_MMAX; m++)
+                if (l[m] < top - BF_HE_TAB_TAIL) {
+                    mend = m - 1;
+                    break;
+                }
+            while (k < peak && l[k] < top - BF_HE_TAB_HEAD)
+                k++;
+            bf_he_tab t;
+            bf_he_tab_make(&t, as[j], grefs[i]);
+            int tk = (int)t.k, tend = (int)(t.k + t.n) - 1;
+            ck_assert_msg(fabsl(t.L - top) <= 1e-12L * fmaxl(1.0L, fabsl(top)),
+                          "g_ref %g a %g: L %.17g, largest term %.17Lg", grefs[i], as[j], t.L, top);
+            ck_assert_msg(tk == k || (abs(tk - k) == 1 && near_threshold(l[tk < k ? tk : k], top - BF_HE_TAB_HEAD)),
+                          "g_ref %g a %g: first term %d, by definition %d", grefs[i], as[j], tk, k);
+            ck_assert_msg(tend == mend
+                              || (abs(tend - mend) == 1
+                                  && near_threshold(l[(tend > mend ? tend : mend)], top - BF_HE_TAB_TAIL)),
+                          "g_ref %g a %g: last term %d, by definition %d", grefs[i], as[j], tend, mend);
+            ck_assert_msg(tk <= peak && peak <= tend, "g_ref %g a %g: window %d..%d without the peak %d",
+                          grefs[i], as[j], tk, tend, peak);
+            checked++;
+        }
+    ck_assert_int_eq(checked, 81);
+}
+END_TEST
+
 /* bf_he_dblend, the one blend of the series and the limit, gives bf_he_D's
  * value (what the D tests above check) bit for bit also as bf_he_fd calls
  * it: with the partials of the series and the margin that keeps the series
@@ -856,6 +909,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, distribution_switch);
     tcase_add_test(tc, series_brute_force);
     tcase_add_test(tc, series_table_brute_force);
+    tcase_add_test(tc, series_table_window);
     tcase_add_test(tc, dblend_as_the_pass_calls_it);
     tcase_add_test(tc, rough_normal_limit);
     tcase_add_test(tc, shadowing_smooth_limit);

@@ -485,6 +485,20 @@ BF_FN double bf_he_tab_l(int m, double lng, double a)
     return dm * lng - a / dm - bf_he_lkk[m];
 }
 
+/* The first m in [lo, hi) whose l_m < thr is `below` (hi if none), on a
+ * side of the peak where l_m is monotone (a bisection). */
+BF_FN int bf_he_tab_cross(int lo, int hi, double lng, double a, double thr, int below)
+{
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if ((bf_he_tab_l(mid, lng, a) < thr) == below)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
 /* The window of the table for a and g_ref (see bf_he_tab): the largest term
  * l_m* = *lmax, the first term k within BF_HE_TAB_HEAD of it and the last
  * term *mend before the first past the peak that is more than BF_HE_TAB_TAIL
@@ -504,27 +518,11 @@ BF_FN int bf_he_tab_window(double a, double lng, double *lmax, int *mend)
     }
     const int peak = lo;
     const double top = bf_he_tab_l(peak, lng, a);
-    lo = peak + 1;             /* the tail: the first m past it below top - TAIL */
-    hi = BF_HE_MMAX + 1;
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (bf_he_tab_l(mid, lng, a) < top - BF_HE_TAB_TAIL)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    *mend = lo - 1;
-    lo = 1;                    /* the head: the first m within HEAD of top */
-    hi = peak;
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (bf_he_tab_l(mid, lng, a) < top - BF_HE_TAB_HEAD)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
+    /* the tail: the first m past the peak below top - TAIL; the head: the
+     * first m before it within HEAD of top (the peak itself if none) */
+    *mend = bf_he_tab_cross(peak + 1, BF_HE_MMAX + 1, lng, a, top - BF_HE_TAB_TAIL, 1) - 1;
     *lmax = top;
-    return lo;
+    return bf_he_tab_cross(1, peak, lng, a, top - BF_HE_TAB_HEAD, 0);
 }
 
 /* The table for a and g_ref: its window (bf_he_tab_window), then the terms

@@ -458,7 +458,15 @@ BF_FN int bf_he_pconst_for(const bf_he_pconst *pc, double tau, const double *lam
  * into any lane's sum: y >= 0 and e^(g_ref - g) <= e^19) to the last within
  * e^-BF_HE_TAB_TAIL past it (for g <= g_ref the tail falls off faster still).
  * So a lane's V agrees with bf_he_series_x's, which stops at 1e-12 of the sum,
- * to that truncation (~3e-13 measured). */
+ * to that truncation (~3e-13 measured).
+ * A pass opens a bin's table (bf_he_tab_open: the window and L, a few dozen
+ * scalar terms) and fills its coefficients (bf_he_tab_fill: the exps) only
+ * when a lane it serves is not dead: a lane's ln V is at most
+ * lpk + ln n with lpk = k ln y + L - g (y <= 1, every b_m <= 1), and a lane
+ * with lpk + lk < BF_HE_LN_DEAD is 0 (bf_he_tab_serve), as bf_he_series_x
+ * leaves a lane whose peak term is that small.  At a sharp lobe most bins
+ * far from the specular direction are dead (alum-bronze at its fit: 38% of
+ * the table terms of a pass). */
 #define BF_HE_TAB_HEAD 700.0
 #define BF_HE_TAB_TAIL 45.0
 /* A lane is in a table's bin when its a is the table's within this (relative;
@@ -473,6 +481,7 @@ typedef struct bf_he_tab {
     double lngref, igref; /* ln g_ref, 1 / g_ref                              */
     double L;             /* ln of the largest T_m(g_ref) e^g_ref             */
     double k, n;          /* the window: m = k .. k + n - 1                   */
+    double filled;        /* 1: c holds the window's coefficients             */
     double c[BF_HE_MMAX + 8]; /* c[j] = b_{k+j} / (k + j); the 8 past MMAX take
                                * the last vector's overreach in the kernel    */
 } bf_he_tab;
@@ -525,15 +534,30 @@ BF_FN int bf_he_tab_window(double a, double lng, double *lmax, int *mend)
     return bf_he_tab_cross(1, peak, lng, a, top - BF_HE_TAB_HEAD, 0);
 }
 
-/* The table for a and g_ref: its window (bf_he_tab_window), then the terms
- * of the window BF_NLANES at a time (BF_HE_MMAX = 400 is a multiple of 4 and
- * 8, and the vectors start at m = 1 mod BF_NLANES, so the loads of bf_he_lkk
- * stay inside it). */
-BF_FN void bf_he_tab_make(bf_he_tab *t, double a, double gref)
+/* The table for a and g_ref opened: its window (bf_he_tab_window), its
+ * coefficients not made yet (bf_he_tab_fill). */
+BF_FN void bf_he_tab_open(bf_he_tab *t, double a, double gref)
 {
     double lng = log(gref), lmax;
     int mend;
     const int k = bf_he_tab_window(a, lng, &lmax, &mend);
+    t->a = a;
+    t->gref = gref;
+    t->lngref = lng;
+    t->igref = 1.0 / gref;
+    t->L = lmax;
+    t->k = (double)k;
+    t->n = (double)(mend - k + 1);
+    t->filled = 0.0;
+}
+
+/* The coefficients of an open table: the terms of its window BF_NLANES at a
+ * time (BF_HE_MMAX = 400 is a multiple of 4 and 8, and the vectors start at
+ * m = 1 mod BF_NLANES, so the loads of bf_he_lkk stay inside it). */
+BF_FN void bf_he_tab_fill(bf_he_tab *t)
+{
+    const double a = t->a, lng = t->lngref, lmax = t->L;
+    const int k = (int)t->k, mend = k + (int)t->n - 1;
     /* ln(T_m(g_ref) e^g_ref) into c[m - 1] for the window's vectors */
     for (int m0 = k - (k - 1) % BF_NLANES; m0 <= mend; m0 += BF_NLANES) {
         BF_REAL mv = (double)m0 + BF_IOTA;
@@ -545,18 +569,25 @@ BF_FN void bf_he_tab_make(bf_he_tab *t, double a, double gref)
         BF_REAL mv = (double)(k + j0) + BF_IOTA;
         BF_STORE(exp(BF_LOADP(t->c + (k - 1 + j0)) - lmax) / mv, t->c + j0);
     }
-    t->a = a;
-    t->gref = gref;
-    t->lngref = lng;
-    t->igref = 1.0 / gref;
-    t->L = lmax;
-    t->k = (double)k;
-    t->n = (double)(mend - k + 1);
+    t->filled = 1.0;
 }
 
-/* V = e^lpk sum at gs <= g_ref (lngs = ln gs) from table t, and the partials
- * of ln V in g and a (see bf_he_tab; the caller carries ln V from t's a to
- * the lane's). */
+/* The table for a and g_ref, opened and filled. */
+BF_FN void bf_he_tab_make(bf_he_tab *t, double a, double gref)
+{
+    bf_he_tab_open(t, a, gref);
+    bf_he_tab_fill(t);
+}
+
+/* lpk of bf_he_tab_eval: ln V - ln sum at gs <= g_ref (lngs = ln gs). */
+BF_FN BF_REAL bf_he_tab_lpk(const bf_he_tab *t, BF_REAL gs, BF_REAL lngs)
+{
+    return t->k * (lngs - t->lngref) + (t->L - gs);
+}
+
+/* V = e^lpk sum at gs <= g_ref (lngs = ln gs) from filled table t, and the
+ * partials of ln V in g and a (see bf_he_tab; the caller carries ln V from
+ * t's a to the lane's). */
 BF_FN void bf_he_tab_eval(const bf_he_tab *t, BF_REAL gs, BF_REAL lngs, BF_REAL *lpk,
                           BF_REAL *sum, BF_REAL *vg, BF_REAL *va)
 {
@@ -572,7 +603,7 @@ BF_FN void bf_he_tab_eval(const bf_he_tab *t, BF_REAL gs, BF_REAL lngs, BF_REAL 
     BF_REAL s0 = k * q0 + yq1;
     BF_REAL s1 = (k * k) * q0 + (2.0 * k + 1.0) * yq1 + 2.0 * (y * y) * q2;
     BF_REAL is0 = 1.0 / s0;
-    *lpk = k * (lngs - t->lngref) + (t->L - gs);
+    *lpk = bf_he_tab_lpk(t, gs, lngs);
     *sum = s0;
     *vg = (s1 * is0) / gs - 1.0;
     *va = -(q0 * is0);
@@ -589,19 +620,35 @@ BF_FN BF_REAL bf_he_tab_lanes(const bf_he_tab *t, BF_REAL gs, BF_REAL aa, BF_REA
 }
 
 /* The series of the lanes of tl > 0 from table t into *lpk, *sum, *vg, *va
- * and *ser = e^(lpk + lk) sum (bf_he_series_x's outputs), the others left. */
-BF_FN void bf_he_tab_serve(const bf_he_tab *t, BF_REAL tl, BF_REAL gs, BF_REAL lngs, BF_REAL aa,
+ * and *ser = e^(lpk + lk) sum (bf_he_series_x's outputs), the others left;
+ * lanes with lpk + lk < BF_HE_LN_DEAD are dead, as in bf_he_series_x (sum,
+ * partials and value 0), and t is filled when another lane needs it. */
+BF_FN void bf_he_tab_serve(bf_he_tab *t, BF_REAL tl, BF_REAL gs, BF_REAL lngs, BF_REAL aa,
                            BF_REAL lk, BF_REAL *lpk, BF_REAL *sum, BF_REAL *vg, BF_REAL *va,
                            BF_REAL *ser)
 {
+    BF_REAL dlpk = bf_he_tab_lpk(t, gs, lngs);
+    BF_REAL live = BF_SEL(BF_R(0.0), BF_R(1.0), (tl > 0.0) && (dlpk + lk >= BF_HE_LN_DEAD));
+    BF_REAL dead = BF_SEL(BF_R(0.0), BF_R(1.0), (tl > 0.0) && !(live > 0.0));
+    if (BF_ANY(dead > 0.0)) {
+        *lpk = BF_SEL(*lpk, dlpk, dead > 0.0);
+        *sum = BF_SEL(*sum, BF_R(0.0), dead > 0.0);
+        *vg = BF_SEL(*vg, BF_R(0.0), dead > 0.0);
+        *va = BF_SEL(*va, BF_R(0.0), dead > 0.0);
+        *ser = BF_SEL(*ser, BF_R(0.0), dead > 0.0);
+    }
+    if (!BF_ANY(live > 0.0))
+        return;
+    if (!(t->filled > 0.0))
+        bf_he_tab_fill(t);
     BF_REAL tlpk, tsum, tvg, tva;
     bf_he_tab_eval(t, gs, lngs, &tlpk, &tsum, &tvg, &tva);
     tlpk = tlpk + tva * (aa - t->a); /* to the lane's own a, to first order */
-    *lpk = BF_SEL(*lpk, tlpk, tl > 0.0);
-    *sum = BF_SEL(*sum, tsum, tl > 0.0);
-    *vg = BF_SEL(*vg, tvg, tl > 0.0);
-    *va = BF_SEL(*va, tva, tl > 0.0);
-    *ser = BF_SEL(*ser, tsum * exp(fmin(tlpk + lk, BF_R(700.0))), tl > 0.0);
+    *lpk = BF_SEL(*lpk, tlpk, live > 0.0);
+    *sum = BF_SEL(*sum, tsum, live > 0.0);
+    *vg = BF_SEL(*vg, tvg, live > 0.0);
+    *va = BF_SEL(*va, tva, live > 0.0);
+    *ser = BF_SEL(*ser, tsum * exp(fmin(tlpk + lk, BF_R(700.0))), live > 0.0);
 }
 
 /* He's lobe parameters: the forward-difference neighbours of a pass, at most. */
@@ -651,7 +698,7 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
     m->bhits = 0.0;
     for (int c = 0; c < 3; c++) /* the coefficients are read only up to n */
         m->tab[c].a = m->tab[c].gref = m->tab[c].lngref = m->tab[c].igref = m->tab[c].L =
-            m->tab[c].k = m->tab[c].n = 0.0;
+            m->tab[c].k = m->tab[c].n = m->tab[c].filled = 0.0;
     m->thits = 0.0;
 }
 
@@ -702,7 +749,7 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
                 bf_he_tab_serve(t, tl, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
             if (BF_LAST(need) > 0.0 && !(BF_LAST(tl) > 0.0)) {
                 double gl = BF_LAST(gs);
-                bf_he_tab_make(t, BF_LAST(aa), fmin(fmax(BF_LAST(gtop), gl), BF_HE_G_HI));
+                bf_he_tab_open(t, BF_LAST(aa), fmin(fmax(BF_LAST(gtop), gl), BF_HE_G_HI));
                 BF_REAL tn = bf_he_tab_lanes(t, gs, aa, BF_SEL(need, BF_R(0.0), tl > 0.0));
                 bf_he_tab_serve(t, tn, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
                 tl = BF_SEL(tl, BF_R(1.0), tn > 0.0);

@@ -427,6 +427,44 @@ START_TEST(series_table_brute_force)
 }
 END_TEST
 
+/* A bin's table is filled only for a lane that is not dead (bf_he_tab_open,
+ * bf_he_tab_serve): at a = 1e5, g = 9.6 (a sharp lobe's bin far from the
+ * specular direction, largest term ~e^-950) lanes with lk = 0 are 0 and
+ * leave the table unfilled; a lane with lk = 800 fills it and gets the
+ * value the filled table gives it and the plain sum's to 1e-12; a lane whose
+ * peak term is dead in bf_he_series_x is dead here as well. */
+START_TEST(series_table_dead_lanes)
+{
+    const double a = 1e5, g = 9.6, lng = log(g);
+    bf_he_memo memo;
+    bf_he_memo_clear(&memo);
+    for (int l = 0; l < 4; l++) {
+        double gl = g * (1.0 - 0.1 * l), vg, va;
+        double V = bf_he_series_memo(gl, log(gl), a, log(a), 0.0, g, 1.0, 1, &memo, 0, &vg, &va);
+        ck_assert_msg(V == 0.0 && vg == 0.0 && va == 0.0, "lane %d: V %g vg %g va %g", l, V, vg, va);
+    }
+    ck_assert_msg(memo.tab[0].n > 0 && !(memo.tab[0].filled > 0), "the table was filled for dead lanes");
+    double xvg, xva, xlpk, xsum;
+    double X = bf_he_series_x(g, lng, a, log(a), 0.0, 1.0, 1, &xvg, &xva, &xlpk, &xsum);
+    ck_assert_msg(X == 0.0 && xsum == 0.0, "bf_he_series_x: %g (sum %g)", X, xsum);
+
+    const double lk = 800.0, gl = 0.9 * g;
+    double vg, va;
+    double V = bf_he_series_memo(gl, log(gl), a, log(a), lk, g, 1.0, 1, &memo, 0, &vg, &va);
+    ck_assert_msg(memo.tab[0].filled > 0, "a live lane left the table unfilled");
+    double lpk, sum, tvg, tva;
+    bf_he_tab t;
+    bf_he_tab_make(&t, a, g);
+    bf_he_tab_eval(&t, gl, log(gl), &lpk, &sum, &tvg, &tva);
+    ck_assert_msg(V == sum * exp(lpk + lk) && vg == tvg && va == tva, "V %.17g, the filled table's %.17g",
+                  V, sum * exp(lpk + lk));
+    long double s0, s1, sinv;
+    series_brute3(gl, a, 3000, &s0, &s1, &sinv);
+    ck_assert_msg(tu_reldiff(V, (double)(s0 * expl(lk))) <= 1e-12, "V %.17g, plain sum %.17Lg", V,
+                  s0 * expl(lk));
+}
+END_TEST
+
 /* The window of a series table (bf_he_tab_window, found by bisection)
  * against its definition, a scan of every term in long double: the largest
  * term L, the first term k within BF_HE_TAB_HEAD of it and the last term
@@ -910,6 +948,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, series_brute_force);
     tcase_add_test(tc, series_table_brute_force);
     tcase_add_test(tc, series_table_window);
+    tcase_add_test(tc, series_table_dead_lanes);
     tcase_add_test(tc, dblend_as_the_pass_calls_it);
     tcase_add_test(tc, rough_normal_limit);
     tcase_add_test(tc, shadowing_smooth_limit);

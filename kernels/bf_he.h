@@ -673,6 +673,7 @@ typedef struct bf_he_memo {
     double bpt[1 + BF_HE_NP][3]; /* the points p[0..np] it was made at      */
     double bk[1 + BF_HE_NP][3]; /* K cos ti cos to at each point, per channel */
     double bhits;               /* vectors served wholly by the bin memo    */
+    double bgen;                /* bumped whenever bk changes               */
     /* the series tables (bf_he_tab), one per channel */
     bf_he_tab tab[3];
     double thits;               /* channel-vectors whose lanes that needed a
@@ -696,6 +697,7 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
         for (int c = 0; c < 3; c++)
             m->bpt[j][c] = m->bk[j][c] = 0.0;
     m->bhits = 0.0;
+    m->bgen = 0.0;
     for (int c = 0; c < 3; c++) /* the coefficients are read only up to n */
         m->tab[c].a = m->tab[c].gref = m->tab[c].lngref = m->tab[c].igref = m->tab[c].L =
             m->tab[c].k = m->tab[c].n = m->tab[c].filled = 0.0;
@@ -1164,10 +1166,17 @@ BF_FN int bf_he_bin_serves(const bf_he_memo *m, const bf_geom *g, const bf_he_fl
     return !BF_ANY((fabs(g->nh - m->bnh) > BF_HE_BIN_TOL) || (fabs(g->vh - m->bvh) > BF_HE_BIN_TOL));
 }
 
+/* The factor q = 1 / (cos ti cos to) of a vector the bin memo serves:
+ * its K at p[j] in channel c is bk[j][c] q. */
+BF_FN BF_REAL bf_he_bin_q(const bf_he_flat *f)
+{
+    return 1.0 / (f->ci * f->co);
+}
+
 BF_FN void bf_he_bin_serve(bf_he_memo *m, const bf_he_flat *f, int np, BF_REAL *K0,
                            BF_REAL (*Kj)[3])
 {
-    BF_REAL q = 1.0 / (f->ci * f->co);
+    BF_REAL q = bf_he_bin_q(f);
     for (int c = 0; c < 3; c++)
         K0[c] = m->bk[0][c] * q;
     for (int j = 0; j < np; j++)
@@ -1186,6 +1195,7 @@ BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
     m->bnh = BF_LAST(g->nh);
     m->bvh = BF_LAST(g->vh);
     m->bnp = (double)np;
+    m->bgen += 1.0;
     for (int j = 0; j <= np; j++)
         for (int c = 0; c < 3; c++)
             m->bpt[j][c] = p[j][c];
@@ -1227,9 +1237,15 @@ BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
  * (bf_he_bin_serves); else bf_he_fd_base (the directions, S, sigma, F),
  * bf_he_fd_channel per channel (the value, through bf_he_dblend),
  * bf_he_fd_neighbour per neighbour, and the bin memo takes the last lane
- * (bf_he_bin_store). */
-BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
-                    BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
+ * (bf_he_bin_store).
+ *
+ * bf_he_fd_factored is bf_he_fd, and with q != NULL it returns a vector the
+ * bin memo serves in factored form: 1, and *q (bf_he_bin_q), K0 and Kj
+ * left unset, its K at p[j] in channel c being memo->bk[j][c] * q (bk
+ * changes only with memo->bgen; bf_fold in bf_pass.h sums such vectors per
+ * bin).  Otherwise (0) K0 and Kj are set as bf_he_fd sets them. */
+BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, const double *lam,
+                            BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo, BF_REAL *q)
 {
     bf_he_pconst own, *pc = memo ? &memo->pc : &own;
     if (!memo || !bf_he_pconst_for(pc, p[0][0], lam)) {
@@ -1241,8 +1257,14 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
     if (memo) {
         bf_he_flat_make(g, p[0][0], p[0][1], &fl);
         if (bf_he_bin_serves(memo, g, &fl, p, np)) {
-            bf_he_bin_serve(memo, &fl, np, K0, Kj);
-            return;
+            if (!q) {
+                bf_he_bin_serve(memo, &fl, np, K0, Kj);
+                return 1;
+            }
+            *q = bf_he_bin_q(&fl);
+            memo->bhits += 1.0;
+            memo->hits += 3.0;
+            return 1;
         }
     } else {
         fl.ci = fl.co = fl.lanes = BF_R(0.0);
@@ -1255,6 +1277,14 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
         bf_he_fd_neighbour(&b, p[0], p[1 + j], lam, Kj[j]);
     if (memo)
         bf_he_bin_store(memo, g, &fl, p, np, K0, Kj);
+    return 0;
+}
+
+/* K0 and Kj always set (the bin memo's vectors too). */
+BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
+                    BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
+{
+    bf_he_fd_factored(g, p, np, lam, K0, Kj, memo, (BF_REAL *)0);
 }
 
 /* K per channel into K[0..2] at wavelengths lam[0..2]: bf_he_fd's value. */

@@ -97,6 +97,51 @@ BF_FN void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
         Kj[j][0] = Kj[j][1] = Kj[j][2] = BF_R(0.0);
 }
 
+/* The factored form of a vector: where a lobe's K at every point p[j] of a
+ * pass is F[j][c] q, with q per lane and the factors F fixed over a run of
+ * vectors (He's bin memo: F = bk, q = 1 / (cos ti cos to)), a pass can sum
+ * the run's moments from a few sums of q (bf_fold in bf_pass.h).
+ * bf_lobe_fd_factored returns 1 and sets *q for such a vector, leaving K0
+ * and Kj unset; its factors are bf_lobe_factor(st, j, c), unchanged while
+ * bf_lobe_factor_gen(st) is.  Otherwise it is bf_lobe_fd and returns 0.
+ * Only BF_FD_OWN lobes factor (bf_lobe_fdf_<name>). */
+BF_FN int bf_lobe_fdf_he(const bf_geom *g, const double (*p)[3], int np, const double *lam,
+                         BF_REAL *K0, BF_REAL (*Kj)[3], bf_lobe_state *st, BF_REAL *q)
+{
+    return bf_he_fd_factored(g, p, np, lam, K0, Kj, &st->he, q);
+}
+
+#define BF_FDF_BF_FD_POINTWISE(name)
+#define BF_FDF_BF_FD_SCHLICK(name)
+#define BF_FDF_BF_FD_OWN(name) return bf_lobe_fdf_##name(g, p, np, lam, K0, Kj, st, q);
+
+BF_FN int bf_lobe_fd_factored(int model, const bf_geom *g, const double (*p)[3], int np,
+                              const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3],
+                              bf_lobe_state *st, BF_REAL *q)
+{
+    if (st) {
+        switch (model) {
+#define BF_LOBE_FDF_CASE(id, name, fd) \
+    case id: { BF_FDF_##fd(name) } break;
+            BF_MODEL_LOBES(BF_LOBE_FDF_CASE)
+#undef BF_LOBE_FDF_CASE
+        default: break;
+        }
+    }
+    bf_lobe_fd(model, g, p, np, lam, K0, Kj, st);
+    return 0;
+}
+
+BF_FN double bf_lobe_factor_gen(const bf_lobe_state *st)
+{
+    return st->he.bgen;
+}
+
+BF_FN double bf_lobe_factor(const bf_lobe_state *st, int j, int c)
+{
+    return st->he.bk[j][c];
+}
+
 /* 1 when a model's lobe has forward differences of its own (BF_FD_OWN);
  * 0 when they are the lobe's values at each point, bit for bit
  * (BF_FD_POINTWISE, BF_FD_SCHLICK). */

@@ -47,8 +47,8 @@ inline void bf_kernel_pass(const int np, __global const double *data, const ulon
     for (int m = 0; m < nmom; m++)
         acc[m] = BF_R(0.0);
 
-    bf_lobe_state state;
-    bf_lobe_state_clear(&state);
+    bf_pass_state state;
+    bf_pass_state_clear(&state);
     const ulong nvec = npad / BF_WIDTH;
     ulong v0 = (ulong)gid * vec_per_item;
     ulong v1 = min(v0 + vec_per_item, nvec);
@@ -69,6 +69,7 @@ inline void bf_kernel_pass(const int np, __global const double *data, const ulon
         BF_REAL a2 = BF_VLOAD(v, data + BF_F_A2 * npad);
         bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc, &state);
     }
+    bf_accumulate_end(BF_NK, np, &pp, acc, &state);
     for (int m = 0; m < nmom; m++)
         out[(ulong)gid * nmom + m] = BF_HSUM(acc[m]);
 }

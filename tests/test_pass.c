@@ -139,6 +139,49 @@ START_TEST(subset_every_8th)
 }
 END_TEST
 
+/* He's full pass with the pass state (its memos and bf_fold, which sums the
+ * bin memo's vectors once per bin) against bf_accumulate sample by sample
+ * with none: every moment within 1e-9 relative (the forward differences'
+ * K(p_j) - K(p_0) cancel to ~1e-7 of K, so the fold's rounding, F (a^2 q)
+ * against (F q) a^2, shows at ~1e-16 / 1e-7 there), at a smooth point where
+ * the bin memo serves most samples (alum-bronze's fit). */
+START_TEST(fold_equals_plain)
+{
+    brdffit_samples *s = load_samples("alum-bronze");
+    bf_pass_par pp;
+    some_point(BRDFFIT_HE, &pp);
+    const double p0[3] = { 38.97, 0.3836, 1.607 };
+    for (int j = 0; j <= 3; j++) {
+        memcpy(pp.p[j], p0, sizeof p0);
+        if (j > 0) {
+            pp.p[j][j - 1] *= 1 + 1e-7;
+            pp.inv_h[j - 1] = 1e7;
+        }
+    }
+    const int np = 3, nmom = bf_nmom(3, np);
+    double fold[BF_NMOM_MAX] = { 0 }, plain[BF_NMOM_MAX] = { 0 };
+    bf_pass_state ps;
+    bf_pass_state_clear(&ps);
+    const double *f = s->data;
+    const size_t n = s->npad;
+    for (size_t i = 0; i < s->n; i++) {
+        bf_geom g = { f[BF_F_IX * n + i], f[BF_F_IY * n + i], f[BF_F_IZ * n + i],
+                      f[BF_F_OX * n + i], f[BF_F_OY * n + i], f[BF_F_OZ * n + i],
+                      f[BF_F_NH * n + i], f[BF_F_VH * n + i] };
+        double rho[3] = { f[BF_F_R * n + i], f[BF_F_G * n + i], f[BF_F_B * n + i] };
+        bf_accumulate(BRDFFIT_HE, 3, np, &pp, &g, rho, f[BF_F_A2 * n + i], fold, &ps);
+        bf_accumulate(BRDFFIT_HE, 3, np, &pp, &g, rho, f[BF_F_A2 * n + i], plain, NULL);
+    }
+    bf_accumulate_end(3, np, &pp, fold, &ps);
+    for (int i = 0; i < nmom; i++)
+        ck_assert_msg(tu_reldiff(fold[i], plain[i]) <= 1e-9, "moment %d: fold %.17g plain %.17g", i,
+                      fold[i], plain[i]);
+    ck_assert_msg(ps.lobe.he.bhits >= 0.5 * (double)s->n, "the fold summed %g of %zu samples",
+                  ps.lobe.he.bhits, s->n);
+    brdffit_samples_free(s);
+}
+END_TEST
+
 /* The named moment offsets of kernels/bf_layout.h (used by the kernel, the
  * host loop and the fit alike) tile [0, bf_nmom(nk, np)) exactly: every
  * moment has one name and no two names share a slot, for every nk and np. */
@@ -467,6 +510,7 @@ Suite *pass_suite(void)
     tcase_add_loop_test(tc, kernel_equals_host, 0, brdffit_model_count());
     tcase_add_test(tc, weights_normalised);
     tcase_add_test(tc, subset_every_8th);
+    tcase_add_test(tc, fold_equals_plain);
     suite_add_tcase(s, tc);
     TCase *tl = tcase_create("layout");
     tcase_add_test(tl, moment_layout);

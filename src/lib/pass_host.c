@@ -14,8 +14,8 @@ void bf_host_loop(const brdffit_samples *samples, brdffit_model model, int nk, i
     int nmom = bf_nmom(nk, np);
     for (int m = 0; m < nmom; m++)
         mom[m] = 0.0;
-    bf_lobe_state state;
-    bf_lobe_state_clear(&state);
+    bf_pass_state state;
+    bf_pass_state_clear(&state);
     for (size_t i = 0; i < samples->n; i++) {
         bf_geom g = { f[BF_F_IX * npad + i], f[BF_F_IY * npad + i], f[BF_F_IZ * npad + i],
                       f[BF_F_OX * npad + i], f[BF_F_OY * npad + i], f[BF_F_OZ * npad + i],
@@ -23,4 +23,5 @@ void bf_host_loop(const brdffit_samples *samples, brdffit_model model, int nk, i
         double rho[3] = { f[BF_F_R * npad + i], f[BF_F_G * npad + i], f[BF_F_B * npad + i] };
         bf_accumulate((int)model, nk, np, pp, &g, rho, f[BF_F_A2 * npad + i], mom, &state);
     }
+    bf_accumulate_end(nk, np, pp, mom, &state);
 }

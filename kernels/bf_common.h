@@ -16,6 +16,8 @@
  *   BF_LAST(v)        the last lane of v, as a double.
  *   BF_NLANES         the lanes of a BF_REAL (1 on the host, BF_WIDTH in the kernel).
  *   BF_IOTA           a BF_REAL whose lane i is i (0.0 on the host).
+ *   BF_HSUM(v)        the sum of v's lanes, in a fixed order, as a double.
+ *   bf_max_where(v, c, none)  the largest lane of v where c > 0 (none if no lane).
  *   BF_LOADC(p), BF_LOADP(p), BF_STORE(v, p)
  *                     BF_NLANES consecutive doubles from a constant table, from
  *                     private memory, and into private memory.
@@ -39,6 +41,7 @@
 #    define BF_LOADC(p) vload4(0, (p))
 #    define BF_LOADP(p) vload4(0, (p))
 #    define BF_STORE(v, p) vstore4((v), 0, (p))
+#    define BF_HSUM(v) (((v).s0 + (v).s1) + ((v).s2 + (v).s3))
 #  elif BF_WIDTH == 8
 #    define BF_REAL double8
 #    define BF_LAST(v) ((v).s7)
@@ -46,6 +49,7 @@
 #    define BF_LOADC(p) vload8(0, (p))
 #    define BF_LOADP(p) vload8(0, (p))
 #    define BF_STORE(v, p) vstore8((v), 0, (p))
+#    define BF_HSUM(v) ((((v).s0 + (v).s1) + ((v).s2 + (v).s3)) + (((v).s4 + (v).s5) + ((v).s6 + (v).s7)))
 #  else
 #    error "BF_WIDTH must be 4 or 8"
 #  endif
@@ -65,6 +69,7 @@
 #  define BF_LOADC(p) (*(p))
 #  define BF_LOADP(p) (*(p))
 #  define BF_STORE(v, p) (*(p) = (v))
+#  define BF_HSUM(v) (v)
 #endif
 
 #define BF_PI 3.14159265358979323846
@@ -73,5 +78,16 @@
 #define BF_TINY 2.2250738585072014e-308
 
 #define BF_R(x) ((BF_REAL)(x))
+
+BF_FN double bf_max_where(BF_REAL v, BF_REAL c, double none)
+{
+    double vv[BF_NLANES], cc[BF_NLANES], m = none;
+    BF_STORE(v, vv);
+    BF_STORE(c, cc);
+    for (int i = 0; i < BF_NLANES; i++)
+        if (cc[i] > 0.0 && !(vv[i] <= m))
+            m = vv[i];
+    return m;
+}
 
 #endif /* BF_COMMON_H */

@@ -508,14 +508,15 @@ BF_FN int bf_he_tab_cross(int lo, int hi, double lng, double a, double thr, int 
     return lo;
 }
 
-/* The window of the table for a and g_ref (see bf_he_tab): the largest term
- * l_m* = *lmax, the first term k within BF_HE_TAB_HEAD of it and the last
- * term *mend before the first past the peak that is more than BF_HE_TAB_TAIL
- * below it (BF_HE_MMAX if none).  l_m is concave in m, so each is a bisection
+/* The window of the terms l_m at a and g_ref (lng = ln g_ref): the largest
+ * term l_m* = *lmax, the first term k within `head` of it and the last
+ * term *mend before the first past the peak that is more than `tail`
+ * below it (BF_HE_MMAX if none); a table's (see bf_he_tab) with
+ * BF_HE_TAB_HEAD and BF_HE_TAB_TAIL (bf_he_tab_window).  l_m is concave in m, so each is a bisection
  * on a monotone side: about 27 scalar terms instead of every term up to the
  * tail's end (a scan of m = 1 .. ~200 at a sharp lobe's bins, which cost as
  * much as the table's exps). */
-BF_FN int bf_he_tab_window(double a, double lng, double *lmax, int *mend)
+BF_FN int bf_he_window(double a, double lng, double head, double tail, double *lmax, int *mend)
 {
     int lo = 1, hi = BF_HE_MMAX; /* the peak: the first m with l_(m+1) <= l_m */
     while (lo < hi) {
@@ -529,9 +530,14 @@ BF_FN int bf_he_tab_window(double a, double lng, double *lmax, int *mend)
     const double top = bf_he_tab_l(peak, lng, a);
     /* the tail: the first m past the peak below top - TAIL; the head: the
      * first m before it within HEAD of top (the peak itself if none) */
-    *mend = bf_he_tab_cross(peak + 1, BF_HE_MMAX + 1, lng, a, top - BF_HE_TAB_TAIL, 1) - 1;
+    *mend = bf_he_tab_cross(peak + 1, BF_HE_MMAX + 1, lng, a, top - tail, 1) - 1;
     *lmax = top;
-    return bf_he_tab_cross(1, peak, lng, a, top - BF_HE_TAB_HEAD, 0);
+    return bf_he_tab_cross(1, peak, lng, a, top - head, 0);
+}
+
+BF_FN int bf_he_tab_window(double a, double lng, double *lmax, int *mend)
+{
+    return bf_he_window(a, lng, BF_HE_TAB_HEAD, BF_HE_TAB_TAIL, lmax, mend);
 }
 
 /* The table for a and g_ref opened: its window (bf_he_tab_window), its
@@ -651,6 +657,64 @@ BF_FN void bf_he_tab_serve(bf_he_tab *t, BF_REAL tl, BF_REAL gs, BF_REAL lngs, B
     *ser = BF_SEL(*ser, tsum * exp(fmin(tlpk + lk, BF_R(700.0))), live > 0.0);
 }
 
+/* The series at one (a, g): where every lane of a vector that needs a series
+ * is flat (sigma = sigma0, so g is its bin's g_ref) with the (g, a) of its
+ * last lane (to BF_HE_MEMO_TOL; at a smooth point every table a pass made
+ * was for such lanes alone: alum-bronze at its fit), the pass sums that one series
+ * as a scalar, BF_NLANES terms at a time, instead of making the bin's table
+ * (whose head reaches e^-BF_HE_TAB_HEAD below the largest term for lanes
+ * at g far below g_ref) and a Horner pass per lane.  Its terms: those
+ * within e^-BF_HE_PT_EDGE of the largest on either side (what it leaves out
+ * is below 400 e^-45 ~ 1e-17 of the sum).  It gives *lpk (ln of the
+ * largest term T_m*), *sum (of T_m / T_m*) and the partials of ln V as
+ * bf_he_series_x gives them for a lane at (g, a); a series whose
+ * lpk + lkmax < BF_HE_LN_DEAD is dead (sum and partials 0, no exps), as
+ * bf_he_series_x leaves such a lane. */
+#define BF_HE_PT_EDGE 45.0
+
+BF_FN void bf_he_series_point(double a, double g, double lkmax, double *lpk, double *sum,
+                              double *vg, double *va)
+{
+    double lng = log(g), top;
+    int mend;
+    const int k = bf_he_window(a, lng, BF_HE_PT_EDGE, BF_HE_PT_EDGE, &top, &mend);
+    *lpk = top - g;
+    *sum = *vg = *va = 0.0;
+    if (*lpk + lkmax < BF_HE_LN_DEAD)
+        return;
+    BF_REAL s0 = BF_R(0.0), s1 = BF_R(0.0), si = BF_R(0.0);
+    for (int m0 = k - (k - 1) % BF_NLANES; m0 <= mend; m0 += BF_NLANES) {
+        BF_REAL mv = (double)m0 + BF_IOTA;
+        BF_REAL l = mv * lng - a / mv - BF_LOADC(bf_he_lkk + m0);
+        BF_REAL t = BF_SEL(BF_R(0.0), exp(fmin(l - top, BF_R(0.0))), (mv >= (double)k) && (mv <= (double)mend));
+        s0 += t;
+        s1 += t * mv;
+        si += t / mv;
+    }
+    const double S0 = BF_HSUM(s0);
+    *sum = S0;
+    *vg = BF_HSUM(s1) / (g * S0) - 1.0;
+    *va = -(BF_HSUM(si) / S0);
+}
+
+/* The lanes of `one` (every one at (gl, al) to BF_HE_MEMO_TOL) from the
+ * series at (gl, al) (bf_he_series_point), carried to their own g and a to
+ * first order in ln V as the memo carries its lanes, into *lpk, *sum, *vg,
+ * *va and *ser (bf_he_series_x's outputs); the other lanes left. */
+BF_FN void bf_he_point_serve(BF_REAL one, double gl, double al, BF_REAL gs, BF_REAL aa,
+                             BF_REAL lk, BF_REAL *lpk, BF_REAL *sum, BF_REAL *vg, BF_REAL *va,
+                             BF_REAL *ser)
+{
+    double plpk, psum, pvg, pva;
+    bf_he_series_point(al, gl, bf_max_where(lk, one, -INFINITY), &plpk, &psum, &pvg, &pva);
+    BF_REAL l = plpk + (pvg * (gs - gl) + pva * (aa - al));
+    *lpk = BF_SEL(*lpk, l, one > 0.0);
+    *sum = BF_SEL(*sum, BF_R(psum), one > 0.0);
+    *vg = BF_SEL(*vg, BF_R(pvg), one > 0.0);
+    *va = BF_SEL(*va, BF_R(pva), one > 0.0);
+    *ser = BF_SEL(*ser, psum * exp(fmin(l + lk, BF_R(700.0))), one > 0.0);
+}
+
 /* He's lobe parameters: the forward-difference neighbours of a pass, at most. */
 #define BF_HE_NP 3
 
@@ -750,11 +814,23 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
             if (BF_ANY(tl > 0.0))
                 bf_he_tab_serve(t, tl, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
             if (BF_LAST(need) > 0.0 && !(BF_LAST(tl) > 0.0)) {
-                double gl = BF_LAST(gs);
-                bf_he_tab_open(t, BF_LAST(aa), fmin(fmax(BF_LAST(gtop), gl), BF_HE_G_HI));
-                BF_REAL tn = bf_he_tab_lanes(t, gs, aa, BF_SEL(need, BF_R(0.0), tl > 0.0));
-                bf_he_tab_serve(t, tn, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
-                tl = BF_SEL(tl, BF_R(1.0), tn > 0.0);
+                /* the rest flat at the last lane's (g, a): its series alone
+                 * (bf_he_series_point); else a table for the last lane's bin */
+                double gl = BF_LAST(gs), al = BF_LAST(aa);
+                BF_REAL want = BF_SEL(need, BF_R(0.0), tl > 0.0);
+                BF_REAL one = BF_SEL(BF_R(0.0), BF_R(1.0),
+                                     (want > 0.0) && (fabs(gs - gl) <= BF_HE_MEMO_TOL * gl)
+                                         && (fabs(aa - al) <= BF_HE_MEMO_TOL * al)
+                                         && (gs >= fmin(gtop, BF_R(BF_HE_G_HI)) * (1.0 - BF_HE_MEMO_TOL)));
+                if (!BF_ANY((want > 0.0) && !(one > 0.0))) {
+                    bf_he_point_serve(one, gl, al, gs, aa, lk, &lpk, &sum, &vg, &va, &ser);
+                    tl = BF_SEL(tl, BF_R(1.0), one > 0.0);
+                } else {
+                    bf_he_tab_open(t, al, fmin(fmax(BF_LAST(gtop), gl), BF_HE_G_HI));
+                    BF_REAL tn = bf_he_tab_lanes(t, gs, aa, want);
+                    bf_he_tab_serve(t, tn, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
+                    tl = BF_SEL(tl, BF_R(1.0), tn > 0.0);
+                }
             }
         }
         BF_REAL sx = BF_SEL(need, BF_R(0.0), tl > 0.0); /* the lanes that sum */

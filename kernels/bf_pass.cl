@@ -23,10 +23,8 @@
 
 #if BF_WIDTH == 8
 #define BF_VLOAD(i, p) vload8((i), (p))
-#define BF_HSUM(v) ((((v).s0 + (v).s1) + ((v).s2 + (v).s3)) + (((v).s4 + (v).s5) + ((v).s6 + (v).s7)))
 #elif BF_WIDTH == 4
 #define BF_VLOAD(i, p) vload4((i), (p))
-#define BF_HSUM(v) (((v).s0 + (v).s1) + ((v).s2 + (v).s3))
 #else
 #error "BF_WIDTH must be 4 or 8"
 #endif

@@ -427,6 +427,57 @@ START_TEST(series_table_brute_force)
 }
 END_TEST
 
+/* The series at one (a, g) (bf_he_series_point, which a pass takes for a
+ * bin's flat lanes instead of a table): V, d ln V / dg and d ln V / da
+ * against the plain sums in long double to 1e-12, 1e-10 and 1e-10 of
+ * their scale, over the table test's grid; dead (sum 0, no exps) where
+ * lpk + lkmax < BF_HE_LN_DEAD; and bf_he_series_memo takes it for a flat
+ * lane (g at its bin's g_ref) without opening a table, and a table for a
+ * lane below g_ref. */
+START_TEST(series_point_brute_force)
+{
+    const double gs[] = { 1e-6, 0.05, 1, 3, 12, 16.3, 19 };
+    const double as[] = { 0, 1e-3, 1, 100, 1e4, 6.4e4, 1e6 };
+    int compared = 0;
+    for (size_t i = 0; i < sizeof gs / sizeof gs[0]; i++)
+        for (size_t j = 0; j < sizeof as / sizeof as[0]; j++) {
+            double g = gs[i], a = as[j], lpk, sum, vg, va;
+            bf_he_series_point(a, g, 0.0, &lpk, &sum, &vg, &va);
+            long double s0, s1, sinv;
+            series_brute3(g, a, 3000, &s0, &s1, &sinv);
+            if (lpk < BF_HE_LN_DEAD) {
+                ck_assert_msg(sum == 0.0 && vg == 0.0 && va == 0.0 && s0 < 1e-300L,
+                              "g %g a %g: dead at lpk %g, sum %g, plain %Lg", g, a, lpk, sum, s0);
+                continue;
+            }
+            double V = sum * exp(lpk);
+            double vgr = (double)(s1 / (g * s0) - 1), var = (double)(-sinv / s0);
+            double rd = tu_reldiff(V, (double)s0);
+            double pg = fabs(vg - vgr) / fmax(1.0, fabs(vgr)), pa = fabs(va - var) / fmax(fabs(var), 1e-300);
+            ck_assert_msg(rd <= 1e-12 && pg <= 1e-10 && pa <= 1e-10,
+                          "g %g a %g: V %.17g vs %.17Lg (rel %g), vg %.17g vs %.17g, va %.17g vs %.17g", g,
+                          a, V, s0, rd, vg, vgr, va, var);
+            compared++;
+        }
+    ck_assert_int_ge(compared, 35); /* measured: 37 (the rest dead: a large, g small) */
+
+    bf_he_memo memo;
+    bf_he_memo_clear(&memo);
+    const double a = 37.0, g = 6.0;
+    double vg, va;
+    double V = bf_he_series_memo(g, log(g), a, log(a), 0.0, g, 1.0, 1, &memo, 0, &vg, &va);
+    long double s0, s1, sinv;
+    series_brute3(g, a, 3000, &s0, &s1, &sinv);
+    ck_assert_msg(tu_reldiff(V, (double)s0) <= 1e-12, "flat lane: %.17g vs %.17Lg", V, s0);
+    ck_assert_msg(memo.tab[0].n == 0, "a flat lane opened a table (%g terms)", memo.tab[0].n);
+    double gl = 0.5 * g;
+    V = bf_he_series_memo(gl, log(gl), a, log(a), 0.0, g, 1.0, 1, &memo, 0, &vg, &va);
+    series_brute3(gl, a, 3000, &s0, &s1, &sinv);
+    ck_assert_msg(tu_reldiff(V, (double)s0) <= 1e-12, "lane below g_ref: %.17g vs %.17Lg", V, s0);
+    ck_assert_msg(memo.tab[0].n > 0 && memo.tab[0].filled > 0, "a lane below g_ref took no table");
+}
+END_TEST
+
 /* A bin's table is filled only for a lane that is not dead (bf_he_tab_open,
  * bf_he_tab_serve): at a = 1e5, g = 9.6 (a sharp lobe's bin far from the
  * specular direction, largest term ~e^-950) lanes with lk = 0 are 0 and
@@ -949,6 +1000,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, series_table_brute_force);
     tcase_add_test(tc, series_table_window);
     tcase_add_test(tc, series_table_dead_lanes);
+    tcase_add_test(tc, series_point_brute_force);
     tcase_add_test(tc, dblend_as_the_pass_calls_it);
     tcase_add_test(tc, rough_normal_limit);
     tcase_add_test(tc, shadowing_smooth_limit);

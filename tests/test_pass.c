@@ -141,10 +141,10 @@ END_TEST
 
 /* He's full pass with the pass state (its memos and bf_fold, which sums the
  * bin memo's vectors once per bin) against bf_accumulate sample by sample
- * with none: every moment within 1e-9 relative (the forward differences'
- * K(p_j) - K(p_0) cancel to ~1e-7 of K, so the fold's rounding, F (a^2 q)
- * against (F q) a^2, shows at ~1e-16 / 1e-7 there), at a smooth point where
- * the bin memo serves most samples (alum-bronze's fit). */
+ * with none: every moment within 1e-8 relative (the forward differences'
+ * K(p_j) - K(p_0) cancel to ~1e-7 of K, so either path's rounding of K,
+ * ~1e-16, shows at ~1e-9 in the moments of G: measured up to 1.6e-9), at a
+ * smooth point where the bin memo serves most samples (alum-bronze's fit). */
 START_TEST(fold_equals_plain)
 {
     brdffit_samples *s = load_samples("alum-bronze");
@@ -174,7 +174,7 @@ START_TEST(fold_equals_plain)
     }
     bf_accumulate_end(3, np, &pp, fold, &ps);
     for (int i = 0; i < nmom; i++)
-        ck_assert_msg(tu_reldiff(fold[i], plain[i]) <= 1e-9, "moment %d: fold %.17g plain %.17g", i,
+        ck_assert_msg(tu_reldiff(fold[i], plain[i]) <= 1e-8, "moment %d: fold %.17g plain %.17g", i,
                       fold[i], plain[i]);
     ck_assert_msg(ps.lobe.he.bhits >= 0.5 * (double)s->n, "the fold summed %g of %zu samples",
                   ps.lobe.he.bhits, s->n);

@@ -7,6 +7,7 @@
 #include "linear.h"
 #include "pass.h"
 #include "registry.h"
+#include "grid.h"
 #include "samples.h"
 
 #include "bf_pass.h"
@@ -134,6 +135,39 @@ START_TEST(subset_every_8th)
     ck_assert_msg(tu_reldiff(sub->sum_a2, ref[BF_MOM_A]) <= 1e-12, "subset sum_a2 %.17g, A %.17g",
                   sub->sum_a2, ref[BF_MOM_A]);
     ck_assert(sub->sum_a2 > 0.1 * s->sum_a2 && sub->sum_a2 < 0.15 * s->sum_a2);
+    brdffit_samples_free(sub);
+    brdffit_samples_free(s);
+}
+END_TEST
+
+/* The bin subset (bf_samples_bins): exactly the samples whose theta_h,
+ * theta_d and phi_d indices are on the steps, in table order, with their
+ * fields and metric weights, harmless padding, and its sum of a2 theirs. */
+START_TEST(subset_of_bins)
+{
+    brdffit_samples *s = load_samples("blue-rubber"), *sub = NULL;
+    brdffit_error err;
+    const int step[3] = { 2, 3, 6 };
+    ck_assert_msg(bf_samples_bins(s, step, &sub, &err) == BRDFFIT_OK, "%s", err.message);
+    size_t m = 0;
+    double a2 = 0.0;
+    for (size_t i = 0; i < s->n; i++) {
+        int h, j, k; /* theta_h, theta_d, phi_d */
+        bf_bin_ijk((size_t)s->bin[i], &h, &j, &k);
+        if (h % 2 || j % 3 || k % 6)
+            continue;
+        ck_assert_uint_lt(m, sub->n);
+        ck_assert_int_eq(sub->bin[m], s->bin[i]);
+        for (int f = 0; f < BF_NFIELDS; f++)
+            ck_assert(sub->data[f * sub->npad + m] == s->data[f * s->npad + i]);
+        a2 += s->data[BF_F_A2 * s->npad + i];
+        m++;
+    }
+    ck_assert_uint_eq(sub->n, m);
+    ck_assert(m > s->n / 40 && m < s->n / 30);
+    for (size_t q = sub->n; q < sub->npad; q++)
+        ck_assert(sub->data[BF_F_A2 * sub->npad + q] == 0.0 && sub->data[BF_F_IZ * sub->npad + q] == 1.0);
+    ck_assert_msg(tu_reldiff(sub->sum_a2, a2) <= 1e-12, "sum_a2 %.17g, its samples' %.17g", sub->sum_a2, a2);
     brdffit_samples_free(sub);
     brdffit_samples_free(s);
 }
@@ -511,6 +545,7 @@ Suite *pass_suite(void)
     tcase_add_test(tc, weights_normalised);
     tcase_add_test(tc, subset_every_8th);
     tcase_add_test(tc, fold_equals_plain);
+    tcase_add_test(tc, subset_of_bins);
     suite_add_tcase(s, tc);
     TCase *tl = tcase_create("layout");
     tcase_add_test(tl, moment_layout);

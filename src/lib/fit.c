@@ -129,6 +129,8 @@ typedef struct lmstate {
     int secant_from;               /* > 0: correct it from this evaluation of an
                                     * lmder run on (secant unset)           */
     int nev;                       /* evaluations assembled in this lmder run */
+    int passes_aside;              /* passes on the bin subset (screen_on_bins) */
+    double seconds_aside;          /* and their seconds                   */
     unsigned pinned;               /* lobe coordinates held on their bounds
                                     * (bits; see pinned_run)               */
     int have_prev;                 /* prev_x, prev_g: the point evaluated before in this lmder run */
@@ -365,6 +367,7 @@ typedef struct start {
     double x[NX_MAX];   /* lobe coordinates */
     bf_linear lin;      /* the best d, s there */
     double cost;        /* r^T r there */
+    int index, round;   /* its number in the start grid, its round */
 } start;
 
 /* The lobe parameters of start number i of n: the model's start grid (see
@@ -481,6 +484,8 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
         if (st != BRDFFIT_OK)
             return st;
         int r = start_round(S->fm.model, i);
+        cand.index = i;
+        cand.round = r;
         if (r < MAX_KEEP) {
             if (r >= nrounds || cand.cost < round_best[r].cost)
                 round_best[r] = cand;
@@ -507,15 +512,94 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
     return BRDFFIT_OK;
 }
 
-/* Below this many samples in the subset, a model's screen_stride is not used. */
+/* Below this many samples in the subset, a model's screen_stride (or
+ * screen_bins) is not used. */
 #define SCREEN_MIN_SAMPLES 4096
 
+/* Whether kept start a comes before b in screen_starts' order: the `refine`
+ * cheapest first (head: by cost, then by number), then the others by round. */
+static int kept_before(const start *a, int a_head, const start *b, int b_head)
+{
+    if (a_head != b_head)
+        return a_head;
+    if (a_head)
+        return a->cost < b->cost || (a->cost == b->cost && a->index < b->index);
+    return a->round < b->round;
+}
+
+/* Kept starts taken again on other samples put in the order screen_starts
+ * gives them there (so that the same kept starts lead to the same runs). */
+static void keep_order(start *keep, int nkeep, int refine)
+{
+    int head[MAX_KEEP] = { 0 };
+    for (int h = 0; h < refine && h < nkeep; h++) { /* the cheapest not yet in the head */
+        int best = -1;
+        for (int k = 0; k < nkeep; k++)
+            if (!head[k] && (best < 0 || kept_before(&keep[k], 1, &keep[best], 1)))
+                best = k;
+        head[best] = 1;
+    }
+    for (int i = 1; i < nkeep; i++) { /* insertion sort: a few starts */
+        start t = keep[i];
+        int th = head[i], j = i;
+        for (; j > 0 && kept_before(&t, th, &keep[j - 1], head[j - 1]); j--) {
+            keep[j] = keep[j - 1];
+            head[j] = head[j - 1];
+        }
+        keep[j] = t;
+        head[j] = th;
+    }
+}
+
+/* screen_starts on the model's bin subset (registry screen_bins), then the
+ * kept starts taken again on S->ps's samples and ordered as a screening
+ * there orders them; *done = 0 (nothing screened) when the model has no bin
+ * subset or it has too few samples. */
+static brdffit_status screen_on_bins(lmstate *S, brdffit_context *ctx,
+                                     const brdffit_samples *samples, int nstarts, int refine,
+                                     start *keep, int *nkeep, int *done)
+{
+    const bf_model_def *def = bf_model_def_get(S->fm.model);
+    *done = 0;
+    if (!(def->screen_bins[0] > 0 && def->screen_bins[1] > 0 && def->screen_bins[2] > 0))
+        return BRDFFIT_OK;
+    brdffit_samples *bins = NULL;
+    bf_pass_driver bd, *on = S->ps;
+    memset(&bd, 0, sizeof bd);
+    brdffit_status st = bf_samples_bins(samples, def->screen_bins, &bins, S->err);
+    if (st != BRDFFIT_OK || bins->n < SCREEN_MIN_SAMPLES)
+        goto done;
+    st = bf_driver_open(&bd, ctx, bins, S->fm.model, S->err);
+    if (st != BRDFFIT_OK)
+        goto done;
+    S->ps = &bd;
+    st = screen_starts(S, nstarts, refine, keep, nkeep);
+    S->ps = on;
+    for (int k = 0; k < *nkeep && st == BRDFFIT_OK; k++) {
+        start was = keep[k];
+        st = screen_start(S, was.p, &keep[k]);
+        keep[k].index = was.index;
+        keep[k].round = was.round;
+    }
+    if (st == BRDFFIT_OK) {
+        keep_order(keep, *nkeep, refine);
+        *done = 1;
+    }
+    S->passes_aside = bd.passes;
+    S->seconds_aside = bd.seconds;
+done:
+    bf_driver_close(&bd);
+    brdffit_samples_free(bins);
+    return st;
+}
+
 /* screen_starts on every screen_stride-th sample (registry) when the model
- * has one, into *sub (opened here, closed by the caller).  A model that
- * refines on the subset (registry: refine_on_subset) keeps S->sub = sd and
- * its kept starts as the subset left them; otherwise the kept starts' cost
- * and d, s are taken again on all samples, so that each is refined from
- * exactly where a screening on all samples would have left it. */
+ * has one, into *sub (opened here, closed by the caller), or first on its
+ * bin subset (screen_on_bins).  A model that refines on the subset
+ * (registry: refine_on_subset) keeps S->sub = sd and its kept starts as the
+ * subset left them; otherwise the kept starts' cost and d, s are taken again
+ * on all samples, so that each is refined from exactly where a screening on
+ * all samples would have left it. */
 static brdffit_status screen_kept(lmstate *S, brdffit_context *ctx, const brdffit_samples *samples,
                                   int nstarts, int refine, start *keep, int *nkeep,
                                   bf_pass_driver *sd, brdffit_samples **sub)
@@ -531,7 +615,10 @@ static brdffit_status screen_kept(lmstate *S, brdffit_context *ctx, const brdffi
     if (st != BRDFFIT_OK)
         return st;
     S->ps = sd;
-    st = screen_starts(S, nstarts, refine, keep, nkeep);
+    int done = 0;
+    st = screen_on_bins(S, ctx, samples, nstarts, refine, keep, nkeep, &done);
+    if (st == BRDFFIT_OK && !done)
+        st = screen_starts(S, nstarts, refine, keep, nkeep);
     S->ps = all;
     if (def->refine_on_subset) {
         S->sub = sd;
@@ -1023,11 +1110,11 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (st != BRDFFIT_OK)
         goto done;
     fill_result(&S, &best, result);
-    result->passes = ps.passes + sd.passes;
+    result->passes = ps.passes + sd.passes + S.passes_aside;
     result->seconds_build = ps.seconds_build;
     result->samples = samples->n;
     result->backend = brdffit_context_backend(ctx);
-    result->seconds_passes = ps.seconds + sd.seconds;
+    result->seconds_passes = ps.seconds + sd.seconds + S.seconds_aside;
     result->seconds_solver = solver_seconds;
     result->seconds = bf_now() - t_start;
     bf_ok(err);

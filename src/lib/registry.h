@@ -41,6 +41,13 @@ typedef struct bf_model_def {
                                   * screen_stride-th sample, and the kept ones
                                   * then taken on all, or refined on the subset
                                   * first (refine_on_subset); 0: all samples  */
+    int screen_bins[3];          /* all > 0: the starts are screened on the
+                                  * samples of every screen_bins[0]-th theta_h,
+                                  * [1]-th theta_d and [2]-th phi_d bin index
+                                  * (fewer bins than the screen_stride subset,
+                                  * for a lobe whose per-bin work is most of a
+                                  * pass), and the kept ones taken again on the
+                                  * screen_stride subset; zeros: not used     */
     bf_secant_use secant;        /* when LM's H gets the secant correction (fit.c) */
     int refine_on_subset;        /* 1: each kept start is refined by LM on the
                                   * screening's subset first, then on all

@@ -336,33 +336,68 @@ size_t bf_samples_geometries(const brdffit_samples *samples, size_t need)
     return found;
 }
 
-brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdffit_samples **out,
-                                brdffit_error *err)
+/* A sample set of src's samples i where keep[i] (n of them), in order. */
+static brdffit_status samples_pick(const brdffit_samples *src, const unsigned char *keep, size_t n,
+                                   brdffit_samples **out, brdffit_error *err)
 {
     *out = NULL;
     brdffit_samples *sub = calloc(1, sizeof *sub);
     if (!sub)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
-    size_t n = (src->n + stride - 1) / stride;
     brdffit_status st = alloc_samples(sub, n, err);
-    if (st != BRDFFIT_OK)
-        goto done;
-    sub->opt = src->opt;
-    sub->n = n;
-    for (size_t m = 0; m < n; m++) {
-        for (int q = 0; q < BF_NFIELDS; q++)
-            sub->data[q * sub->npad + m] = src->data[q * src->npad + m * stride];
-        sub->w[m] = src->w[m * stride];
-        sub->bin[m] = src->bin[m * stride];
-        sub->sum_w += sub->w[m];
-        sub->sum_a2 += sub->data[BF_F_A2 * sub->npad + m];
-    }
-    pad_fields(sub); /* a2 stays the full set's */
-done:
     if (st != BRDFFIT_OK) {
         brdffit_samples_free(sub);
         return st;
     }
+    sub->opt = src->opt;
+    sub->n = n;
+    size_t m = 0;
+    for (size_t i = 0; i < src->n; i++) {
+        if (!keep[i])
+            continue;
+        for (int q = 0; q < BF_NFIELDS; q++)
+            sub->data[q * sub->npad + m] = src->data[q * src->npad + i];
+        sub->w[m] = src->w[i];
+        sub->bin[m] = src->bin[i];
+        sub->sum_w += sub->w[m];
+        sub->sum_a2 += sub->data[BF_F_A2 * sub->npad + m];
+        m++;
+    }
+    pad_fields(sub); /* a2 stays the full set's */
     *out = sub;
     return BRDFFIT_OK;
+}
+
+brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdffit_samples **out,
+                                brdffit_error *err)
+{
+    *out = NULL;
+    unsigned char *keep = calloc(src->n ? src->n : 1, 1);
+    if (!keep)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
+    size_t n = 0;
+    for (size_t i = 0; i < src->n; i += stride, n++)
+        keep[i] = 1;
+    brdffit_status st = samples_pick(src, keep, n, out, err);
+    free(keep);
+    return st;
+}
+
+brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
+                               brdffit_samples **out, brdffit_error *err)
+{
+    *out = NULL;
+    unsigned char *keep = calloc(src->n ? src->n : 1, 1);
+    if (!keep)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
+    size_t n = 0;
+    for (size_t i = 0; i < src->n; i++) {
+        int h, j, k; /* theta_h, theta_d, phi_d */
+        bf_bin_ijk((size_t)src->bin[i], &h, &j, &k);
+        keep[i] = h % step[0] == 0 && j % step[1] == 0 && k % step[2] == 0;
+        n += keep[i];
+    }
+    brdffit_status st = samples_pick(src, keep, n, out, err);
+    free(keep);
+    return st;
 }

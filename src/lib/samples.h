@@ -45,4 +45,11 @@ size_t bf_samples_geometries(const brdffit_samples *samples, size_t need);
 brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdffit_samples **out,
                                 brdffit_error *err);
 
+/* The samples of src whose bin is on every step[0]-th theta_h, step[1]-th
+ * theta_d and step[2]-th phi_d index (steps >= 1), in table order, with
+ * src's metric weights a2: what a fit screens its starts on when its model
+ * has screen_bins (bf_model_def). */
+brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
+                               brdffit_samples **out, brdffit_error *err);
+
 #endif /* BRDFFIT_SAMPLES_H */

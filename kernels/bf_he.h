@@ -768,6 +768,38 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
     m->thits = 0.0;
 }
 
+/* The lanes of need that a pass's series tables serve, for
+ * bf_he_series_memo (1 in those lanes, returned; their series into *lpk,
+ * *sum, *vg, *va and *ser, bf_he_series_x's outputs): those that the
+ * channel's table t covers (a vector that straddles two bins: those of the
+ * bin before), then, when the last lane needs a series, the rest flat at
+ * its (g, a) from that one series (bf_he_series_point), else those of its
+ * bin from a table made for it. */
+BF_FN BF_REAL bf_he_memo_tables(bf_he_tab *t, BF_REAL need, BF_REAL gs, BF_REAL lngs, BF_REAL aa,
+                                BF_REAL lk, BF_REAL gtop, BF_REAL *lpk, BF_REAL *sum,
+                                BF_REAL *vg, BF_REAL *va, BF_REAL *ser)
+{
+    BF_REAL tl = bf_he_tab_lanes(t, gs, aa, need);
+    if (BF_ANY(tl > 0.0))
+        bf_he_tab_serve(t, tl, gs, lngs, aa, lk, lpk, sum, vg, va, ser);
+    if (!(BF_LAST(need) > 0.0) || BF_LAST(tl) > 0.0)
+        return tl;
+    double gl = BF_LAST(gs), al = BF_LAST(aa);
+    BF_REAL want = BF_SEL(need, BF_R(0.0), tl > 0.0);
+    BF_REAL one = BF_SEL(BF_R(0.0), BF_R(1.0),
+                         (want > 0.0) && (fabs(gs - gl) <= BF_HE_MEMO_TOL * gl)
+                             && (fabs(aa - al) <= BF_HE_MEMO_TOL * al)
+                             && (gs >= fmin(gtop, BF_R(BF_HE_G_HI)) * (1.0 - BF_HE_MEMO_TOL)));
+    if (!BF_ANY((want > 0.0) && !(one > 0.0))) {
+        bf_he_point_serve(one, gl, al, gs, aa, lk, lpk, sum, vg, va, ser);
+        return BF_SEL(tl, BF_R(1.0), one > 0.0);
+    }
+    bf_he_tab_open(t, al, fmin(fmax(BF_LAST(gtop), gl), BF_HE_G_HI));
+    BF_REAL tn = bf_he_tab_lanes(t, gs, aa, want);
+    bf_he_tab_serve(t, tn, gs, lngs, aa, lk, lpk, sum, vg, va, ser);
+    return BF_SEL(tl, BF_R(1.0), tn > 0.0);
+}
+
 /* The series of one channel ch for the lanes where act > 0, at gs = min(g, 19)
  * with lngs = ln gs (see bf_he_series_x for a, la, lk and deriv).  With a
  * memo (deriv must then be 1) the lanes it serves take its series carried to
@@ -806,33 +838,9 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
     BF_REAL ser = BF_R(0.0), vg = BF_R(0.0), va = BF_R(0.0);
     if (BF_ANY(need > 0.0)) {
         BF_REAL lpk = BF_R(0.0), sum = BF_R(0.0), tl = BF_R(0.0);
-        if (memo) {
-            /* the lanes the table covers (a vector that straddles two bins:
-             * those of the bin before), then a table for the last lane's bin */
-            bf_he_tab *t = &memo->tab[ch];
-            tl = bf_he_tab_lanes(t, gs, aa, need);
-            if (BF_ANY(tl > 0.0))
-                bf_he_tab_serve(t, tl, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
-            if (BF_LAST(need) > 0.0 && !(BF_LAST(tl) > 0.0)) {
-                /* the rest flat at the last lane's (g, a): its series alone
-                 * (bf_he_series_point); else a table for the last lane's bin */
-                double gl = BF_LAST(gs), al = BF_LAST(aa);
-                BF_REAL want = BF_SEL(need, BF_R(0.0), tl > 0.0);
-                BF_REAL one = BF_SEL(BF_R(0.0), BF_R(1.0),
-                                     (want > 0.0) && (fabs(gs - gl) <= BF_HE_MEMO_TOL * gl)
-                                         && (fabs(aa - al) <= BF_HE_MEMO_TOL * al)
-                                         && (gs >= fmin(gtop, BF_R(BF_HE_G_HI)) * (1.0 - BF_HE_MEMO_TOL)));
-                if (!BF_ANY((want > 0.0) && !(one > 0.0))) {
-                    bf_he_point_serve(one, gl, al, gs, aa, lk, &lpk, &sum, &vg, &va, &ser);
-                    tl = BF_SEL(tl, BF_R(1.0), one > 0.0);
-                } else {
-                    bf_he_tab_open(t, al, fmin(fmax(BF_LAST(gtop), gl), BF_HE_G_HI));
-                    BF_REAL tn = bf_he_tab_lanes(t, gs, aa, want);
-                    bf_he_tab_serve(t, tn, gs, lngs, aa, lk, &lpk, &sum, &vg, &va, &ser);
-                    tl = BF_SEL(tl, BF_R(1.0), tn > 0.0);
-                }
-            }
-        }
+        if (memo)
+            tl = bf_he_memo_tables(&memo->tab[ch], need, gs, lngs, aa, lk, gtop, &lpk, &sum, &vg,
+                                   &va, &ser);
         BF_REAL sx = BF_SEL(need, BF_R(0.0), tl > 0.0); /* the lanes that sum */
         if (BF_ANY(sx > 0.0)) {
             BF_REAL xlpk = BF_R(0.0), xsum = BF_R(0.0), xvg = BF_R(0.0), xva = BF_R(0.0);

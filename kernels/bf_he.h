@@ -494,6 +494,14 @@ BF_FN double bf_he_tab_l(int m, double lng, double a)
     return dm * lng - a / dm - bf_he_lkk[m];
 }
 
+/* bf_he_tab_l of the BF_NLANES terms from m0 (m0 = 1 mod BF_NLANES, so the
+ * load of bf_he_lkk stays inside it: BF_HE_MMAX is a multiple of 4 and 8). */
+BF_FN BF_REAL bf_he_tab_lv(int m0, double lng, double a)
+{
+    BF_REAL mv = (double)m0 + BF_IOTA;
+    return mv * lng - a / mv - BF_LOADC(bf_he_lkk + m0);
+}
+
 /* The first m in [lo, hi) whose l_m < thr is `below` (hi if none), on a
  * side of the peak where l_m is monotone (a bisection). */
 BF_FN int bf_he_tab_cross(int lo, int hi, double lng, double a, double thr, int below)
@@ -558,17 +566,14 @@ BF_FN void bf_he_tab_open(bf_he_tab *t, double a, double gref)
 }
 
 /* The coefficients of an open table: the terms of its window BF_NLANES at a
- * time (BF_HE_MMAX = 400 is a multiple of 4 and 8, and the vectors start at
- * m = 1 mod BF_NLANES, so the loads of bf_he_lkk stay inside it). */
+ * time (bf_he_tab_lv). */
 BF_FN void bf_he_tab_fill(bf_he_tab *t)
 {
     const double a = t->a, lng = t->lngref, lmax = t->L;
     const int k = (int)t->k, mend = k + (int)t->n - 1;
     /* ln(T_m(g_ref) e^g_ref) into c[m - 1] for the window's vectors */
-    for (int m0 = k - (k - 1) % BF_NLANES; m0 <= mend; m0 += BF_NLANES) {
-        BF_REAL mv = (double)m0 + BF_IOTA;
-        BF_STORE(mv * lng - a / mv - BF_LOADC(bf_he_lkk + m0), t->c + (m0 - 1));
-    }
+    for (int m0 = k - (k - 1) % BF_NLANES; m0 <= mend; m0 += BF_NLANES)
+        BF_STORE(bf_he_tab_lv(m0, lng, a), t->c + (m0 - 1));
     /* c[j] from c[k - 1 + j]: a vector is loaded before it is stored over,
      * and k >= 1, so no later load reads a stored value */
     for (int j0 = 0; j0 <= mend - k; j0 += BF_NLANES) {
@@ -685,7 +690,7 @@ BF_FN void bf_he_series_point(double a, double g, double lkmax, double *lpk, dou
     BF_REAL s0 = BF_R(0.0), s1 = BF_R(0.0), si = BF_R(0.0);
     for (int m0 = k - (k - 1) % BF_NLANES; m0 <= mend; m0 += BF_NLANES) {
         BF_REAL mv = (double)m0 + BF_IOTA;
-        BF_REAL l = mv * lng - a / mv - BF_LOADC(bf_he_lkk + m0);
+        BF_REAL l = bf_he_tab_lv(m0, lng, a);
         BF_REAL t = BF_SEL(BF_R(0.0), exp(fmin(l - top, BF_R(0.0))), (mv >= (double)k) && (mv <= (double)mend));
         s0 += t;
         s1 += t * mv;
@@ -1257,17 +1262,15 @@ BF_FN BF_REAL bf_he_bin_q(const bf_he_flat *f)
     return 1.0 / (f->ci * f->co);
 }
 
-BF_FN void bf_he_bin_serve(bf_he_memo *m, const bf_he_flat *f, int np, BF_REAL *K0,
+/* K0 and Kj of a vector the bin memo serves, from its factor q. */
+BF_FN void bf_he_bin_serve(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
                            BF_REAL (*Kj)[3])
 {
-    BF_REAL q = bf_he_bin_q(f);
     for (int c = 0; c < 3; c++)
         K0[c] = m->bk[0][c] * q;
     for (int j = 0; j < np; j++)
         for (int c = 0; c < 3; c++)
             Kj[j][c] = m->bk[1 + j][c] * q;
-    m->bhits += 1.0;
-    m->hits += 3.0;
 }
 
 BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
@@ -1341,13 +1344,13 @@ BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, cons
     if (memo) {
         bf_he_flat_make(g, p[0][0], p[0][1], &fl);
         if (bf_he_bin_serves(memo, g, &fl, p, np)) {
-            if (!q) {
-                bf_he_bin_serve(memo, &fl, np, K0, Kj);
-                return 1;
-            }
-            *q = bf_he_bin_q(&fl);
+            BF_REAL qv = bf_he_bin_q(&fl);
             memo->bhits += 1.0;
             memo->hits += 3.0;
+            if (q)
+                *q = qv;
+            else
+                bf_he_bin_serve(memo, qv, np, K0, Kj);
             return 1;
         }
     } else {

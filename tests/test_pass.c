@@ -120,15 +120,8 @@ START_TEST(subset_every_8th)
     double h[BF_NMOM_MAX], ref[BF_NMOM_MAX] = { 0 };
     int nmom = bf_nmom(3, 0);
     bf_host_loop(sub, BRDFFIT_HE, 3, 0, &pp, h);
-    for (size_t i = 0; i < s->n; i += 8) {
-        const double *f = s->data;
-        size_t np = s->npad;
-        bf_geom g = { f[BF_F_IX * np + i], f[BF_F_IY * np + i], f[BF_F_IZ * np + i],
-                      f[BF_F_OX * np + i], f[BF_F_OY * np + i], f[BF_F_OZ * np + i],
-                      f[BF_F_NH * np + i], f[BF_F_VH * np + i] };
-        double rho[3] = { f[BF_F_R * np + i], f[BF_F_G * np + i], f[BF_F_B * np + i] };
-        bf_accumulate(BRDFFIT_HE, 3, 0, &pp, &g, rho, f[BF_F_A2 * np + i], ref, NULL);
-    }
+    for (size_t i = 0; i < s->n; i += 8)
+        bf_host_sample(s, i, BRDFFIT_HE, 3, 0, &pp, ref, NULL);
     for (int i = 0; i < nmom; i++)
         ck_assert_msg(tu_reldiff(h[i], ref[i]) <= 1e-12, "moment %d: subset %.17g samples %.17g", i,
                       h[i], ref[i]);
@@ -196,15 +189,9 @@ START_TEST(fold_equals_plain)
     double fold[BF_NMOM_MAX] = { 0 }, plain[BF_NMOM_MAX] = { 0 };
     bf_pass_state ps;
     bf_pass_state_clear(&ps);
-    const double *f = s->data;
-    const size_t n = s->npad;
     for (size_t i = 0; i < s->n; i++) {
-        bf_geom g = { f[BF_F_IX * n + i], f[BF_F_IY * n + i], f[BF_F_IZ * n + i],
-                      f[BF_F_OX * n + i], f[BF_F_OY * n + i], f[BF_F_OZ * n + i],
-                      f[BF_F_NH * n + i], f[BF_F_VH * n + i] };
-        double rho[3] = { f[BF_F_R * n + i], f[BF_F_G * n + i], f[BF_F_B * n + i] };
-        bf_accumulate(BRDFFIT_HE, 3, np, &pp, &g, rho, f[BF_F_A2 * n + i], fold, &ps);
-        bf_accumulate(BRDFFIT_HE, 3, np, &pp, &g, rho, f[BF_F_A2 * n + i], plain, NULL);
+        bf_host_sample(s, i, BRDFFIT_HE, 3, np, &pp, fold, &ps);
+        bf_host_sample(s, i, BRDFFIT_HE, 3, np, &pp, plain, NULL);
     }
     bf_accumulate_end(3, np, &pp, fold, &ps);
     for (int i = 0; i < nmom; i++)

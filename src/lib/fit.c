@@ -412,7 +412,7 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *sp)
         return st;
     const bf_linear zero = { { 0, 0, 0 }, { 0, 0, 0 } };
     sp->cost = bf_linear_best(mom, S->ps->nk, 0, &zero, &sp->lin);
-    memcpy(sp->p, p, sizeof sp->p);
+    memmove(sp->p, p, sizeof sp->p); /* p may be sp->p: a kept start taken again */
     params_to_coords(&S->fm, p, sp->x);
     return BRDFFIT_OK;
 }
@@ -575,12 +575,8 @@ static brdffit_status screen_on_bins(lmstate *S, brdffit_context *ctx,
     S->ps = &bd;
     st = screen_starts(S, nstarts, refine, keep, nkeep);
     S->ps = on;
-    for (int k = 0; k < *nkeep && st == BRDFFIT_OK; k++) {
-        start was = keep[k];
-        st = screen_start(S, was.p, &keep[k]);
-        keep[k].index = was.index;
-        keep[k].round = was.round;
-    }
+    for (int k = 0; k < *nkeep && st == BRDFFIT_OK; k++)
+        st = screen_start(S, keep[k].p, &keep[k]); /* its index and round stay */
     if (st == BRDFFIT_OK) {
         keep_order(keep, *nkeep, refine);
         *done = 1;

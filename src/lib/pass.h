@@ -43,6 +43,13 @@ brdffit_status bf_driver_run(bf_pass_driver *dr, int full, const bf_pass_par *pp
                              brdffit_error *err);
 void bf_driver_close(bf_pass_driver *dr);
 
+/* Sample i of samples added to mom by bf_accumulate (kernels/bf_pass.h),
+ * with the pass state ps (a run's, or NULL: no memos): what bf_host_loop
+ * does for each sample. */
+struct bf_pass_state;
+void bf_host_sample(const brdffit_samples *samples, size_t i, brdffit_model model, int nk,
+                    int np, const bf_pass_par *pp, double *mom, struct bf_pass_state *ps);
+
 /* The plain single-threaded C loop over the samples (the host backend, and
  * the reference the kernel is tested and benchmarked against). */
 void bf_host_loop(const brdffit_samples *samples, brdffit_model model, int nk, int np,

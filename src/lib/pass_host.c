@@ -6,22 +6,27 @@
 
 #include "bf_pass.h"
 
-void bf_host_loop(const brdffit_samples *samples, brdffit_model model, int nk, int np,
-                  const bf_pass_par *pp, double *mom)
+void bf_host_sample(const brdffit_samples *samples, size_t i, brdffit_model model, int nk,
+                    int np, const bf_pass_par *pp, double *mom, struct bf_pass_state *ps)
 {
     const size_t npad = samples->npad;
     const double *f = samples->data;
+    bf_geom g = { f[BF_F_IX * npad + i], f[BF_F_IY * npad + i], f[BF_F_IZ * npad + i],
+                  f[BF_F_OX * npad + i], f[BF_F_OY * npad + i], f[BF_F_OZ * npad + i],
+                  f[BF_F_NH * npad + i], f[BF_F_VH * npad + i] };
+    double rho[3] = { f[BF_F_R * npad + i], f[BF_F_G * npad + i], f[BF_F_B * npad + i] };
+    bf_accumulate((int)model, nk, np, pp, &g, rho, f[BF_F_A2 * npad + i], mom, ps);
+}
+
+void bf_host_loop(const brdffit_samples *samples, brdffit_model model, int nk, int np,
+                  const bf_pass_par *pp, double *mom)
+{
     int nmom = bf_nmom(nk, np);
     for (int m = 0; m < nmom; m++)
         mom[m] = 0.0;
     bf_pass_state state;
     bf_pass_state_clear(&state);
-    for (size_t i = 0; i < samples->n; i++) {
-        bf_geom g = { f[BF_F_IX * npad + i], f[BF_F_IY * npad + i], f[BF_F_IZ * npad + i],
-                      f[BF_F_OX * npad + i], f[BF_F_OY * npad + i], f[BF_F_OZ * npad + i],
-                      f[BF_F_NH * npad + i], f[BF_F_VH * npad + i] };
-        double rho[3] = { f[BF_F_R * npad + i], f[BF_F_G * npad + i], f[BF_F_B * npad + i] };
-        bf_accumulate((int)model, nk, np, pp, &g, rho, f[BF_F_A2 * npad + i], mom, &state);
-    }
+    for (size_t i = 0; i < samples->n; i++)
+        bf_host_sample(samples, i, model, nk, np, pp, mom, &state);
     bf_accumulate_end(nk, np, pp, mom, &state);
 }

@@ -336,11 +336,17 @@ size_t bf_samples_geometries(const brdffit_samples *samples, size_t need)
     return found;
 }
 
-/* A sample set of src's samples i where keep[i] (n of them), in order. */
-static brdffit_status samples_pick(const brdffit_samples *src, const unsigned char *keep, size_t n,
-                                   brdffit_samples **out, brdffit_error *err)
+/* A sample set of src's samples i where keep(src, i, arg), in table order,
+ * with src's metric weights a2 (its sums are a sample of src's). */
+typedef int bf_sample_keep(const brdffit_samples *src, size_t i, const void *arg);
+
+static brdffit_status samples_pick(const brdffit_samples *src, bf_sample_keep *keep,
+                                   const void *arg, brdffit_samples **out, brdffit_error *err)
 {
     *out = NULL;
+    size_t n = 0;
+    for (size_t i = 0; i < src->n; i++)
+        n += keep(src, i, arg) != 0;
     brdffit_samples *sub = calloc(1, sizeof *sub);
     if (!sub)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
@@ -352,8 +358,8 @@ static brdffit_status samples_pick(const brdffit_samples *src, const unsigned ch
     sub->opt = src->opt;
     sub->n = n;
     size_t m = 0;
-    for (size_t i = 0; i < src->n; i++) {
-        if (!keep[i])
+    for (size_t i = 0; i < src->n && m < n; i++) {
+        if (!keep(src, i, arg))
             continue;
         for (int q = 0; q < BF_NFIELDS; q++)
             sub->data[q * sub->npad + m] = src->data[q * src->npad + i];
@@ -368,36 +374,28 @@ static brdffit_status samples_pick(const brdffit_samples *src, const unsigned ch
     return BRDFFIT_OK;
 }
 
+static int keep_every(const brdffit_samples *src, size_t i, const void *arg)
+{
+    (void)src;
+    return i % *(const size_t *)arg == 0;
+}
+
 brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdffit_samples **out,
                                 brdffit_error *err)
 {
-    *out = NULL;
-    unsigned char *keep = calloc(src->n ? src->n : 1, 1);
-    if (!keep)
-        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
-    size_t n = 0;
-    for (size_t i = 0; i < src->n; i += stride, n++)
-        keep[i] = 1;
-    brdffit_status st = samples_pick(src, keep, n, out, err);
-    free(keep);
-    return st;
+    return samples_pick(src, keep_every, &stride, out, err);
+}
+
+static int keep_bins(const brdffit_samples *src, size_t i, const void *arg)
+{
+    const int *step = arg;
+    int h, j, k; /* theta_h, theta_d, phi_d */
+    bf_bin_ijk((size_t)src->bin[i], &h, &j, &k);
+    return h % step[0] == 0 && j % step[1] == 0 && k % step[2] == 0;
 }
 
 brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
                                brdffit_samples **out, brdffit_error *err)
 {
-    *out = NULL;
-    unsigned char *keep = calloc(src->n ? src->n : 1, 1);
-    if (!keep)
-        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
-    size_t n = 0;
-    for (size_t i = 0; i < src->n; i++) {
-        int h, j, k; /* theta_h, theta_d, phi_d */
-        bf_bin_ijk((size_t)src->bin[i], &h, &j, &k);
-        keep[i] = h % step[0] == 0 && j % step[1] == 0 && k % step[2] == 0;
-        n += keep[i];
-    }
-    brdffit_status st = samples_pick(src, keep, n, out, err);
-    free(keep);
-    return st;
+    return samples_pick(src, keep_bins, step, out, err);
 }

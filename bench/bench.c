@@ -197,7 +197,7 @@ static int time_passes(bf_pass_driver *dr, bench_stream *bs, int reps, int creps
     }
     for (int r = 0; r < creps; r++) {
         t0 = bf_now();
-        bf_host_loop(dr->samples, dr->model, dr->nk, dr->np, &pp, ref);
+        bf_host_loop(dr->samples, &dr->bins, dr->model, dr->nk, dr->np, &pp, ref);
         t->c_loop = fmin(t->c_loop, bf_now() - t0);
     }
     return 0;

@@ -20,7 +20,10 @@
  *   bf_max_where(v, c, none)  the largest lane of v where c > 0 (none if no lane).
  *   BF_LOADC(p), BF_LOADP(p), BF_STORE(v, p)
  *                     BF_NLANES consecutive doubles from a constant table, from
- *                     private memory, and into private memory.
+ *                     private memory, and into private (or global) memory.
+ *   BF_LOADG(p)       BF_NLANES consecutive doubles from global memory.
+ *   BF_GLOBAL         the address space of buffers a pass writes and reads
+ *                     (__global in the kernel, nothing on the host).
  *
  * Code that uses BF_REAL is branch-free per lane: data-dependent choices go
  * through BF_SEL, loops that depend on the data run while BF_ANY(...).
@@ -41,6 +44,7 @@
 #    define BF_LOADC(p) vload4(0, (p))
 #    define BF_LOADP(p) vload4(0, (p))
 #    define BF_STORE(v, p) vstore4((v), 0, (p))
+#    define BF_LOADG(p) vload4(0, (p))
 #    define BF_HSUM(v) (((v).s0 + (v).s1) + ((v).s2 + (v).s3))
 #  elif BF_WIDTH == 8
 #    define BF_REAL double8
@@ -49,11 +53,13 @@
 #    define BF_LOADC(p) vload8(0, (p))
 #    define BF_LOADP(p) vload8(0, (p))
 #    define BF_STORE(v, p) vstore8((v), 0, (p))
+#    define BF_LOADG(p) vload8(0, (p))
 #    define BF_HSUM(v) ((((v).s0 + (v).s1) + ((v).s2 + (v).s3)) + (((v).s4 + (v).s5) + ((v).s6 + (v).s7)))
 #  else
 #    error "BF_WIDTH must be 4 or 8"
 #  endif
 #  define BF_NLANES BF_WIDTH
+#  define BF_GLOBAL __global
 #  define BF_FN inline
 #  define BF_SEL(a, b, c) select((a), (b), (c))
 #  define BF_ANY(c) any(c)
@@ -69,6 +75,8 @@
 #  define BF_LOADC(p) (*(p))
 #  define BF_LOADP(p) (*(p))
 #  define BF_STORE(v, p) (*(p) = (v))
+#  define BF_LOADG(p) (*(p))
+#  define BF_GLOBAL
 #  define BF_HSUM(v) (v)
 #endif
 

@@ -723,12 +723,6 @@ BF_FN void bf_he_point_serve(BF_REAL one, double gl, double al, BF_REAL gs, BF_R
 /* He's lobe parameters: the forward-difference neighbours of a pass, at most. */
 #define BF_HE_NP 3
 
-/* Two lanes whose N.H and V.H agree within this are in one (theta_h,
- * theta_d) bin (bf_he_bin_serves): in a MERL table the lanes of one bin
- * differ by rounding, at most 4e-15 (alum-bronze, every bin), and distinct
- * bins by 1.9e-8 or more. */
-#define BF_HE_BIN_TOL 1e-14
-
 typedef struct bf_he_memo {
     bf_he_pconst pc;            /* the point's constants (see above)        */
     double g[3], a[3];          /* the (clamped) g and a of the stored lane */
@@ -736,13 +730,14 @@ typedef struct bf_he_memo {
     double lpk[3], sum[3];      /* its series e^lpk sum (sum 0: dead)       */
     double vg[3], va[3];        /* the partials of ln V there               */
     double hits;                /* channel-vectors served wholly by the memo */
-    /* the bin memo (bf_he_bin_serves): a flat lane's K cos ti cos to */
-    double bnh, bvh;            /* its N.H and V.H (bnp < 0: none stored)   */
-    double bnp;                 /* the number of neighbours it was made with */
-    double bpt[1 + BF_HE_NP][3]; /* the points p[0..np] it was made at      */
-    double bk[1 + BF_HE_NP][3]; /* K cos ti cos to at each point, per channel */
-    double bhits;               /* vectors served wholly by the bin memo    */
-    double bgen;                /* bumped whenever bk changes               */
+    /* the bin rows (bf_he_bin_rows; rows NULL: none): a flat lane's
+     * K cos ti cos to per bin, field f of bin hd at rows[f * nrows + hd] */
+    BF_GLOBAL const double *rows;
+    int nrows;
+    BF_REAL vhd;                /* the bins hd of the vector's lanes         */
+    double bk[1 + BF_HE_NP][3]; /* the row of the last bin served whole      */
+    double bhits;               /* vectors served by the rows                */
+    double bgen;                /* 1 + the bin of bk (0: none)               */
     /* the series tables (bf_he_tab), one per channel */
     bf_he_tab tab[3];
     double thits;               /* channel-vectors whose lanes that needed a
@@ -760,11 +755,12 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
         m->lpk[c] = m->sum[c] = m->vg[c] = m->va[c] = 0.0;
     }
     m->hits = 0.0;
-    m->bnh = m->bvh = 0.0;
-    m->bnp = -1.0;
+    m->rows = 0;
+    m->nrows = 0;
+    m->vhd = BF_R(0.0);
     for (int j = 0; j <= BF_HE_NP; j++)
         for (int c = 0; c < 3; c++)
-            m->bpt[j][c] = m->bk[j][c] = 0.0;
+            m->bk[j][c] = 0.0;
     m->bhits = 0.0;
     m->bgen = 0.0;
     for (int c = 0; c < 3; c++) /* the coefficients are read only up to n */
@@ -962,7 +958,9 @@ BF_FN BF_REAL bf_he_geometry(const bf_geom *g)
 
 /* What depends on (tau, sigma0) too: S(ti), S(to), S(ti) / cos ti, S(to) / cos to
  * (within [1e-3, 1e3]-ish) and the effective roughness sigma; with deriv, also what
- * bf_he_rough_step needs to carry them to a nearby (tau, sigma0). */
+ * bf_he_rough_step needs to carry them to a nearby (tau, sigma0).  With flat,
+ * every lane takes the flat values (S = 1, sigma = sigma0) whatever its u:
+ * what a bin's row of a pass is made with (bf_he_bin_rows). */
 typedef struct bf_he_rough {
     int flat;                       /* 1: u >= BF_HE_U_FLAT in every lane and
                                      * both directions (see bf_he_rough_make) */
@@ -978,10 +976,10 @@ typedef struct bf_he_rough {
 } bf_he_rough;
 
 BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int deriv,
-                            bf_he_rough *r)
+                            int flat, bf_he_rough *r)
 {
     BF_REAL ui = bf_he_u(d->ci, d->si, tau, sigma0), uo = bf_he_u(d->co, d->so, tau, sigma0);
-    r->flat = !BF_ANY((ui < BF_HE_U_FLAT) || (uo < BF_HE_U_FLAT));
+    r->flat = flat || !BF_ANY((ui < BF_HE_U_FLAT) || (uo < BF_HE_U_FLAT));
     if (r->flat) {
         /* erfc and e^(-u^2) are 0 (bf_he_erfc2): S = 1, r = 0, x = BF_TINY
          * (bf_he_newton_x), sigma = sigma0, the partials in u 0: the values
@@ -1036,7 +1034,7 @@ BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
     bf_he_dir d;
     bf_he_rough r;
     bf_he_dir_make(g, &d);
-    bf_he_rough_make(&d, tau, sigma0, 0, &r);
+    bf_he_rough_make(&d, tau, sigma0, 0, 0, &r);
     return r.Si * r.So;
 }
 
@@ -1046,7 +1044,7 @@ BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
     bf_he_dir d;
     bf_he_rough r;
     bf_he_dir_make(g, &d);
-    bf_he_rough_make(&d, tau, sigma0, 0, &r);
+    bf_he_rough_make(&d, tau, sigma0, 0, 0, &r);
     return r.sigma;
 }
 
@@ -1099,13 +1097,14 @@ typedef struct bf_he_base {
 } bf_he_base;
 
 /* The direction pair, the shadowing and sigma (with their partials), F and
- * the rough limit shared by the channels, at p0 = (tau, sigma0, n). */
+ * the rough limit shared by the channels, at p0 = (tau, sigma0, n) (flat: see
+ * bf_he_rough_make). */
 BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam,
-                         const bf_he_pconst *pc, bf_he_base *b)
+                         const bf_he_pconst *pc, int flat, bf_he_base *b)
 {
     const double tau = p0[0], sigma0 = p0[1], n = p0[2];
     bf_he_dir_make(g, &b->d);
-    bf_he_rough_make(&b->d, tau, sigma0, 1, &b->r);
+    bf_he_rough_make(&b->d, tau, sigma0, 1, flat, &b->r);
     b->F = bf_he_fresnel(b->d.c, n);
     b->fs = b->F * b->r.shi * b->r.sho * (1.0 / BF_PI);
     b->ifs = 1.0 / fmax(b->fs, BF_TINY);
@@ -1216,19 +1215,37 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
     }
 }
 
-/* The bin memo of a data pass (in bf_he_memo).  Where the shadowing is flat
- * (u >= BF_HE_U_FLAT for both directions: S = 1, sigma = sigma0), K depends on
- * the sample through the bin's (theta_h, theta_d) alone (F at cos theta_d, G,
- * g and a, the rough limit) and through the factor 1 / (cos ti cos to) of
+/* The (theta_h, theta_d) bins of a sample set, for a lobe whose value factors
+ * on a bin (He where the shadowing is flat: bf_he_bin_rows).  Bin hd = the
+ * MERL bin index / 180 (0 .. BF_NHD - 1); field f of bin hd at
+ * bins[f * BF_NHD_PAD + hd]: the geometry of the set's first sample in the
+ * bin, and BF_B_COT, the largest over the bin's samples of
+ * min(cot ti, cot to) (0 for a bin with no sample).  A pass's bin rows hold
+ * BF_BK_FIELDS fields per bin (bf_he_bin_rows). */
+enum {
+    BF_B_IX, BF_B_IY, BF_B_IZ, BF_B_OX, BF_B_OY, BF_B_OZ, BF_B_NH, BF_B_VH,
+    BF_B_COT,
+    BF_BFIELDS
+};
+#define BF_NHD (90 * 90)
+#define BF_NHD_PAD (BF_NHD + 8) /* a vector from the last bin stays inside */
+#define BF_BK_FIELDS (3 * (1 + BF_HE_NP))
+
+/* The bin rows of a data pass (bf_he_memo.rows).  Where the shadowing is flat
+ * (u >= BF_HE_U_FLAT for both directions: S = 1, sigma = sigma0), K depends
+ * on the sample through its (theta_h, theta_d) bin alone (F at cos theta_d,
+ * G, g and a, the rough limit) and through the factor 1 / (cos ti cos to) of
  * S(ti) S(to) / (cos ti cos to); so do the neighbours (bf_he_rough_step keeps
- * S and sigma0's place there).  A vector whose every lane is flat and in the
- * bin of the stored lane (N.H and V.H within BF_HE_BIN_TOL) at the same points
- * p[0..np] takes K = bk / (cos ti cos to): no logarithm, exponential or
- * series.  The stored lane is the last lane of the last vector computed in
- * full, when it is flat.  The lanes of a bin differ from the stored one by
- * the rounding of their directions, so a served K differs from its own
- * evaluation by that rounding's effect (tests/test_he.c, pass_memo: at most
- * 1.24e-12 relative, at K ~ 1e-148 where a large a amplifies it). */
+ * S and sigma0's place there).  A pass therefore makes, once per bin of its
+ * samples and point p[0..np], the row K cos ti cos to at each point and
+ * channel (bf_he_bin_rows: the bin's geometry from the sample set's bin table,
+ * BF_NLANES bins at a time, so the series of distinct bins fill a vector's
+ * lanes), and a vector whose lanes are all flat takes K = row / (cos ti cos to):
+ * no logarithm, exponential or series.  The lanes of a bin differ from the
+ * table's sample by the rounding of their directions, so a served K differs
+ * from its own evaluation by that rounding's effect (tests/test_he.c,
+ * pass_memo: at most ~1e-12 relative, at K ~ 1e-148 where a large a
+ * amplifies it). */
 typedef struct bf_he_flat {
     BF_REAL ci, co;   /* cos ti, cos to, floored as bf_he_dir_make floors them */
     BF_REAL lanes;    /* 1 in a lane whose shadowing is flat at p[0]            */
@@ -1243,26 +1260,27 @@ BF_FN void bf_he_flat_make(const bf_geom *g, double tau, double sigma0, bf_he_fl
     f->lanes = BF_SEL(BF_R(0.0), BF_R(1.0), (ui >= BF_HE_U_FLAT) && (uo >= BF_HE_U_FLAT));
 }
 
-BF_FN int bf_he_bin_serves(const bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
-                           const double (*p)[3], int np)
-{
-    if (m->bnp != (double)np || BF_ANY(f->lanes <= 0.0))
-        return 0;
-    for (int j = 0; j <= np; j++)
-        for (int c = 0; c < 3; c++)
-            if (m->bpt[j][c] != p[j][c])
-                return 0;
-    return !BF_ANY((fabs(g->nh - m->bnh) > BF_HE_BIN_TOL) || (fabs(g->vh - m->bvh) > BF_HE_BIN_TOL));
-}
-
-/* The factor q = 1 / (cos ti cos to) of a vector the bin memo serves:
- * its K at p[j] in channel c is bk[j][c] q. */
+/* The factor q = 1 / (cos ti cos to) of a vector the rows serve: its K at
+ * p[j] in channel c is row[j][c] q. */
 BF_FN BF_REAL bf_he_bin_q(const bf_he_flat *f)
 {
     return 1.0 / (f->ci * f->co);
 }
 
-/* K0 and Kj of a vector the bin memo serves, from its factor q. */
+/* min(cot ti, cot to) of a direction pair, with bf_he_u's floors: a lane is
+ * flat at (tau, sigma0) where this is at least 2 BF_HE_U_FLAT sigma0 / tau
+ * (to rounding).  The sample set's bin table keeps its largest over a bin
+ * (BF_B_COT). */
+BF_FN BF_REAL bf_he_cot_min(const bf_geom *g)
+{
+    BF_REAL ci = fmax(g->iz, BF_HE_COS_MIN), co = fmax(g->oz, BF_HE_COS_MIN);
+    BF_REAL si = fmax(sqrt(g->ix * g->ix + g->iy * g->iy), 1e-300);
+    BF_REAL so = fmax(sqrt(g->ox * g->ox + g->oy * g->oy), 1e-300);
+    return fmin(ci / si, co / so);
+}
+
+/* K0 and Kj of a vector the rows serve whole (every lane in the bin of bk),
+ * from its factor q. */
 BF_FN void bf_he_bin_serve(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
                            BF_REAL (*Kj)[3])
 {
@@ -1273,24 +1291,81 @@ BF_FN void bf_he_bin_serve(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
             Kj[j][c] = m->bk[1 + j][c] * q;
 }
 
-BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
-                           const double (*p)[3], int np, const BF_REAL *K0, BF_REAL (*Kj)[3])
+/* bk from bin hd's row, for np neighbours. */
+BF_FN void bf_he_bin_load(bf_he_memo *m, int hd, int np)
 {
-    if (!(BF_LAST(f->lanes) > 0.0) || np > BF_HE_NP)
-        return;
-    double cc = BF_LAST(f->ci) * BF_LAST(f->co);
-    m->bnh = BF_LAST(g->nh);
-    m->bvh = BF_LAST(g->vh);
-    m->bnp = (double)np;
-    m->bgen += 1.0;
     for (int j = 0; j <= np; j++)
         for (int c = 0; c < 3; c++)
-            m->bpt[j][c] = p[j][c];
-    for (int c = 0; c < 3; c++)
-        m->bk[0][c] = BF_LAST(K0[c]) * cc;
+            m->bk[j][c] = m->rows[(3 * j + c) * m->nrows + hd];
+    m->bgen = 1.0 + (double)hd;
+}
+
+/* K0 and Kj of a flat vector whose lanes lie in several bins: each lane's
+ * row, times its q. */
+BF_FN void bf_he_bin_gather(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
+                            BF_REAL (*Kj)[3])
+{
+    double hv[BF_NLANES], t[BF_NLANES];
+    BF_STORE(m->vhd, hv);
+    for (int j = 0; j <= np; j++)
+        for (int c = 0; c < 3; c++) {
+            for (int l = 0; l < BF_NLANES; l++)
+                t[l] = m->rows[(3 * j + c) * m->nrows + (int)hv[l]];
+            BF_REAL v = BF_LOADP(t) * q;
+            if (j == 0)
+                K0[c] = v;
+            else
+                Kj[j - 1][c] = v;
+        }
+}
+
+/* K at p[0] and at p[1..np] of the lanes of g, every step of bf_he_fd
+ * (below) but the rows; with flat, every lane flat (bf_he_rough_make). */
+BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const double *lam,
+                          const bf_he_pconst *pc, int flat, BF_REAL *K0, BF_REAL (*Kj)[3],
+                          bf_he_memo *memo)
+{
+    bf_he_base b;
+    bf_he_fd_base(g, p[0], lam, pc, flat, &b);
+    for (int ch = 0; ch < 3; ch++)
+        K0[ch] = bf_he_fd_channel(&b, p[0][0], lam[ch], ch, pc, memo);
     for (int j = 0; j < np; j++)
+        bf_he_fd_neighbour(&b, p[0], p[1 + j], lam, Kj[j]);
+}
+
+/* A pass's rows (see above) of the bins h0 .. h1 of the bin table `bins`
+ * (bf_layout.h) at p[0..np]: field f = 3 j + c (K cos ti cos to at p[j] in
+ * channel c) of bin hd into rows[f * nrows + hd], BF_NLANES bins at a time
+ * (so also bins up to h1 + BF_NLANES - 1).  A run of bins where no sample
+ * can be flat at p[0] (BF_B_COT, with a margin for rounding) is skipped:
+ * no lane of theirs reads its row. */
+BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const double (*p)[3],
+                          int np, const double *lam, BF_GLOBAL double *rows, int nrows)
+{
+    const double cot_flat = (2.0 * BF_HE_U_FLAT) * p[0][1] / p[0][0] * (1.0 - 1e-9);
+    bf_he_pconst pc;
+    bf_he_pconst_make(p[0][0], lam, &pc);
+    for (int h = h0; h <= h1; h += BF_NLANES) {
+        if (!BF_ANY(BF_LOADG(bins + BF_B_COT * BF_NHD_PAD + h) >= cot_flat))
+            continue;
+        bf_geom g;
+        g.ix = BF_LOADG(bins + BF_B_IX * BF_NHD_PAD + h);
+        g.iy = BF_LOADG(bins + BF_B_IY * BF_NHD_PAD + h);
+        g.iz = BF_LOADG(bins + BF_B_IZ * BF_NHD_PAD + h);
+        g.ox = BF_LOADG(bins + BF_B_OX * BF_NHD_PAD + h);
+        g.oy = BF_LOADG(bins + BF_B_OY * BF_NHD_PAD + h);
+        g.oz = BF_LOADG(bins + BF_B_OZ * BF_NHD_PAD + h);
+        g.nh = BF_LOADG(bins + BF_B_NH * BF_NHD_PAD + h);
+        g.vh = BF_LOADG(bins + BF_B_VH * BF_NHD_PAD + h);
+        BF_REAL K0[3], Kj[BF_HE_NP][3];
+        bf_he_fd_lanes(&g, p, np, lam, &pc, 1, K0, Kj, (bf_he_memo *)0);
+        BF_REAL cc = fmax(g.iz, BF_HE_COS_MIN) * fmax(g.oz, BF_HE_COS_MIN);
         for (int c = 0; c < 3; c++)
-            m->bk[1 + j][c] = BF_LAST(Kj[j][c]) * cc;
+            BF_STORE(K0[c] * cc, rows + c * nrows + h);
+        for (int j = 0; j < np; j++)
+            for (int c = 0; c < 3; c++)
+                BF_STORE(Kj[j][c] * cc, rows + (3 * (1 + j) + c) * nrows + h);
+    }
 }
 
 /* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
@@ -1318,56 +1393,50 @@ BF_FN void bf_he_bin_store(bf_he_memo *m, const bf_geom *g, const bf_he_flat *f,
  * (18 / m, 18], m = BF_HE_FD_MARGIN, where the value does not use them, so
  * that a step across 19 or 18 is covered; a step of 1e-3 relative in g
  * would not be.  np = 0 with no memo is bf_he.  The memos: see bf_he_memo
- * (the series) and bf_he_flat (the bin memo).
+ * (the series) and bf_he_flat (the bin rows).
  *
- * In steps: with a memo, the bin memo serves the vector if it can
- * (bf_he_bin_serves); else bf_he_fd_base (the directions, S, sigma, F),
- * bf_he_fd_channel per channel (the value, through bf_he_dblend),
- * bf_he_fd_neighbour per neighbour, and the bin memo takes the last lane
- * (bf_he_bin_store).
+ * In steps: with a memo that has rows, a vector whose lanes are all flat
+ * takes them (bf_he_bin_serve when its lanes share a bin, else
+ * bf_he_bin_gather); else bf_he_fd_lanes: bf_he_fd_base (the directions, S,
+ * sigma, F), bf_he_fd_channel per channel (the value, through
+ * bf_he_dblend), bf_he_fd_neighbour per neighbour.
  *
- * bf_he_fd_factored is bf_he_fd, and with q != NULL it returns a vector the
- * bin memo serves in factored form: 1, and *q (bf_he_bin_q), K0 and Kj
- * left unset, its K at p[j] in channel c being memo->bk[j][c] * q (bk
- * changes only with memo->bgen; bf_fold in bf_pass.h sums such vectors per
- * bin).  Otherwise (0) K0 and Kj are set as bf_he_fd sets them. */
+ * bf_he_fd_factored is bf_he_fd, and with q != NULL it returns a vector
+ * whose lanes share a bin's row in factored form: 1, and *q (bf_he_bin_q),
+ * K0 and Kj left unset, its K at p[j] in channel c being memo->bk[j][c] * q
+ * (bk changes only with memo->bgen; bf_fold in bf_pass.h sums such vectors
+ * per bin).  Otherwise (0) K0 and Kj are set as bf_he_fd sets them. */
 BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                             BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo, BF_REAL *q)
 {
     bf_he_pconst own, *pc = memo ? &memo->pc : &own;
-    if (!memo || !bf_he_pconst_for(pc, p[0][0], lam)) {
+    if (!memo || !bf_he_pconst_for(pc, p[0][0], lam))
         bf_he_pconst_make(p[0][0], lam, pc);
-        if (memo)
-            memo->bnp = -1.0; /* the bin memo was made at another tau or lam */
-    }
-    bf_he_flat fl;
-    if (memo) {
+    if (memo && memo->rows) {
+        bf_he_flat fl;
         bf_he_flat_make(g, p[0][0], p[0][1], &fl);
-        if (bf_he_bin_serves(memo, g, &fl, p, np)) {
+        if (!BF_ANY(fl.lanes <= 0.0)) {
             BF_REAL qv = bf_he_bin_q(&fl);
+            const double hd = BF_LAST(memo->vhd);
             memo->bhits += 1.0;
-            memo->hits += 3.0;
+            if (BF_ANY(memo->vhd != hd)) {
+                bf_he_bin_gather(memo, qv, np, K0, Kj);
+                return 0;
+            }
+            if (memo->bgen != 1.0 + hd)
+                bf_he_bin_load(memo, (int)hd, np);
             if (q)
                 *q = qv;
             else
                 bf_he_bin_serve(memo, qv, np, K0, Kj);
             return 1;
         }
-    } else {
-        fl.ci = fl.co = fl.lanes = BF_R(0.0);
     }
-    bf_he_base b;
-    bf_he_fd_base(g, p[0], lam, pc, &b);
-    for (int ch = 0; ch < 3; ch++)
-        K0[ch] = bf_he_fd_channel(&b, p[0][0], lam[ch], ch, pc, memo);
-    for (int j = 0; j < np; j++)
-        bf_he_fd_neighbour(&b, p[0], p[1 + j], lam, Kj[j]);
-    if (memo)
-        bf_he_bin_store(memo, g, &fl, p, np, K0, Kj);
+    bf_he_fd_lanes(g, p, np, lam, pc, 0, K0, Kj, memo);
     return 0;
 }
 
-/* K0 and Kj always set (the bin memo's vectors too). */
+/* K0 and Kj always set (the factored vectors' too). */
 BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                     BF_REAL *K0, BF_REAL (*Kj)[3], bf_he_memo *memo)
 {

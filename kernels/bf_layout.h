@@ -38,6 +38,9 @@ enum {
 /* Lobe coordinates a pass differentiates in, at most. */
 #define BF_MAX_NP 3
 
+/* The bin table of a sample set that a pass with bin rows reads (He): see
+ * bf_he.h (BF_B_*). */
+
 /* The point of a pass.  Only doubles: the same bytes in C and OpenCL C
  * (the kernel reads it as BF_PASS_PAR_DOUBLES doubles). */
 typedef struct bf_pass_par {

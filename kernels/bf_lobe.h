@@ -99,7 +99,7 @@ BF_FN void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
 
 /* The factored form of a vector: where a lobe's K at every point p[j] of a
  * pass is F[j][c] q, with q per lane and the factors F fixed over a run of
- * vectors (He's bin memo: F = bk, q = 1 / (cos ti cos to)), a pass can sum
+ * vectors (He's bin rows: F = bk, q = 1 / (cos ti cos to)), a pass can sum
  * the run's moments from a few sums of q (bf_fold in bf_pass.h).
  * bf_lobe_fd_factored returns 1 and sets *q for such a vector, leaving K0
  * and Kj unset; its factors are bf_lobe_factor(st, j, c), unchanged while
@@ -130,6 +130,42 @@ BF_FN int bf_lobe_fd_factored(int model, const bf_geom *g, const double (*p)[3],
     }
     bf_lobe_fd(model, g, p, np, lam, K0, Kj, st);
     return 0;
+}
+
+/* The bin rows of a pass (He: bf_he_bin_rows), for the lobes that have them
+ * (BF_FD_OWN): made for the bins h0 .. h1 of the bin table `bins` (bf_layout.h)
+ * into rows (nrows per field) and handed to st, which then serves a vector
+ * whose lanes are flat from them, given the vector's bins (bf_lobe_bins). */
+BF_FN void bf_lobe_rows_he(BF_GLOBAL const double *bins, int h0, int h1, const double (*p)[3],
+                           int np, const double *lam, BF_GLOBAL double *rows, int nrows,
+                           bf_lobe_state *st)
+{
+    bf_he_bin_rows(bins, h0, h1, p, np, lam, rows, nrows);
+    st->he.rows = rows;
+    st->he.nrows = nrows;
+}
+
+#define BF_ROWS_BF_FD_POINTWISE(name)
+#define BF_ROWS_BF_FD_SCHLICK(name)
+#define BF_ROWS_BF_FD_OWN(name) bf_lobe_rows_##name(bins, h0, h1, p, np, lam, rows, nrows, st);
+
+BF_FN void bf_lobe_rows(int model, BF_GLOBAL const double *bins, int h0, int h1,
+                        const double (*p)[3], int np, const double *lam, BF_GLOBAL double *rows,
+                        int nrows, bf_lobe_state *st)
+{
+    switch (model) {
+#define BF_LOBE_ROWS_CASE(id, name, fd) \
+    case id: { BF_ROWS_##fd(name) } break;
+        BF_MODEL_LOBES(BF_LOBE_ROWS_CASE)
+#undef BF_LOBE_ROWS_CASE
+    default: break;
+    }
+}
+
+/* The bins hd of the lanes of the next vector (for the rows). */
+BF_FN void bf_lobe_bins(bf_lobe_state *st, BF_REAL hd)
+{
+    st->he.vhd = hd;
 }
 
 BF_FN double bf_lobe_factor_gen(const bf_lobe_state *st)

@@ -29,10 +29,15 @@
 #error "BF_WIDTH must be 4 or 8"
 #endif
 
-/* One work-item's run of vectors: the body of both kernels. */
+/* One work-item's run of vectors: the body of both kernels.  A model with
+ * bin rows (He: bf_lobe_rows) also gets the samples' bins hd (npad doubles),
+ * the bin table and room for the rows: nrows per field, the work-item's
+ * rows BF_NLANES gid further on than the one before's (its bins begin
+ * where that one's end, and a vector of rows reaches BF_NLANES - 1 past). */
 inline void bf_kernel_pass(const int np, __global const double *data, const ulong npad,
                            const uint vec_per_item, __constant const double *ppar,
-                           __global double *out)
+                           __global double *out, __global const double *hd,
+                           __global const double *bins, __global double *rows, const int nrows)
 {
     const uint gid = get_global_id(0);
     const int nmom = bf_nmom(BF_NK, np);
@@ -50,6 +55,9 @@ inline void bf_kernel_pass(const int np, __global const double *data, const ulon
     const ulong nvec = npad / BF_WIDTH;
     ulong v0 = (ulong)gid * vec_per_item;
     ulong v1 = min(v0 + vec_per_item, nvec);
+    if (nrows > 0 && v0 < v1)
+        bf_lobe_rows(BF_MODEL, bins, (int)hd[v0 * BF_WIDTH], (int)hd[v1 * BF_WIDTH - 1], pp.p, np,
+                     pp.lam, rows + (ulong)gid * BF_WIDTH, nrows, &state.lobe);
     for (ulong v = v0; v < v1; v++) {
         bf_geom g;
         g.ix = BF_VLOAD(v, data + BF_F_IX * npad);
@@ -65,6 +73,8 @@ inline void bf_kernel_pass(const int np, __global const double *data, const ulon
         rho[1] = BF_VLOAD(v, data + BF_F_G * npad);
         rho[2] = BF_VLOAD(v, data + BF_F_B * npad);
         BF_REAL a2 = BF_VLOAD(v, data + BF_F_A2 * npad);
+        if (nrows > 0)
+            bf_lobe_bins(&state.lobe, BF_VLOAD(v, hd));
         bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc, &state);
     }
     bf_accumulate_end(BF_NK, np, &pp, acc, &state);
@@ -73,13 +83,17 @@ inline void bf_kernel_pass(const int np, __global const double *data, const ulon
 }
 
 __kernel void bf_kernel_full(__global const double *data, const ulong npad, const uint vec_per_item,
-                             __constant const double *ppar, __global double *out)
+                             __constant const double *ppar, __global double *out,
+                             __global const double *hd, __global const double *bins,
+                             __global double *rows, const int nrows)
 {
-    bf_kernel_pass(BF_NP, data, npad, vec_per_item, ppar, out);
+    bf_kernel_pass(BF_NP, data, npad, vec_per_item, ppar, out, hd, bins, rows, nrows);
 }
 
 __kernel void bf_kernel_value(__global const double *data, const ulong npad, const uint vec_per_item,
-                              __constant const double *ppar, __global double *out)
+                              __constant const double *ppar, __global double *out,
+                              __global const double *hd, __global const double *bins,
+                              __global double *rows, const int nrows)
 {
-    bf_kernel_pass(0, data, npad, vec_per_item, ppar, out);
+    bf_kernel_pass(0, data, npad, vec_per_item, ppar, out, hd, bins, rows, nrows);
 }

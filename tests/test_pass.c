@@ -64,7 +64,7 @@ START_TEST(kernel_equals_host)
         int np = full ? dr.np : 0, nmom = bf_nmom(dr.nk, np);
         double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
         ck_assert_msg(bf_driver_run(&dr, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
-        bf_host_loop(s, m, dr.nk, np, &pp, h);
+        bf_host_loop(s, &dr.bins, m, dr.nk, np, &pp, h);
         for (int i = 0; i < nmom; i++) {
             ck_assert_msg(isfinite(k[i]) && isfinite(h[i]), "moment %d not finite", i);
             ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "%s full=%d moment %d: kernel %.17g host %.17g",
@@ -86,7 +86,7 @@ START_TEST(weights_normalised)
     bf_pass_par pp;
     some_point(BRDFFIT_WARD, &pp);
     double h[BF_NMOM_MAX];
-    bf_host_loop(s, BRDFFIT_WARD, 1, 0, &pp, h);
+    bf_host_loop(s, NULL, BRDFFIT_WARD, 1, 0, &pp, h);
     /* a2 = w cos^2 / (3 sum w) so 3 A = sum w cos^2 / sum w, in (0, 1] */
     ck_assert(3 * h[BF_MOM_A] > 0.1 && 3 * h[BF_MOM_A] <= 1.0);
     /* the set's own sum of a2 (what the fit scales its secant estimate by) is the pass's A */
@@ -99,8 +99,9 @@ END_TEST
 /* The screening subset (bf_samples_every): every 8th sample of the set with
  * its fields and metric weights, harmless padding, its sum of a2 that of
  * those weights (about an eighth of the set's), and He's value moments over
- * it (host loop, with the memo) equal to the sums of bf_accumulate over
- * those samples of the full set one at a time (no memo) to 1e-12. */
+ * it (host loop, with the memo and the subset's bin rows) equal to the sums
+ * of bf_accumulate over those samples of the full set one at a time (no memo,
+ * no rows) to 1e-12. */
 START_TEST(subset_every_8th)
 {
     brdffit_samples *s = load_samples("blue-rubber"), *sub = NULL;
@@ -119,9 +120,12 @@ START_TEST(subset_every_8th)
     some_point(BRDFFIT_HE, &pp);
     double h[BF_NMOM_MAX], ref[BF_NMOM_MAX] = { 0 };
     int nmom = bf_nmom(3, 0);
-    bf_host_loop(sub, BRDFFIT_HE, 3, 0, &pp, h);
+    bf_pass_bins bins;
+    ck_assert_msg(bf_pass_bins_make(sub, 1, &bins, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_host_loop(sub, &bins, BRDFFIT_HE, 3, 0, &pp, h);
+    bf_pass_bins_free(&bins);
     for (size_t i = 0; i < s->n; i += 8)
-        bf_host_sample(s, i, BRDFFIT_HE, 3, 0, &pp, ref, NULL);
+        bf_host_sample(s, NULL, i, BRDFFIT_HE, 3, 0, &pp, ref, NULL);
     for (int i = 0; i < nmom; i++)
         ck_assert_msg(tu_reldiff(h[i], ref[i]) <= 1e-12, "moment %d: subset %.17g samples %.17g", i,
                       h[i], ref[i]);
@@ -166,12 +170,13 @@ START_TEST(subset_of_bins)
 }
 END_TEST
 
-/* He's full pass with the pass state (its memos and bf_fold, which sums the
- * bin memo's vectors once per bin) against bf_accumulate sample by sample
- * with none: every moment within 1e-8 relative (the forward differences'
- * K(p_j) - K(p_0) cancel to ~1e-7 of K, so either path's rounding of K,
- * ~1e-16, shows at ~1e-9 in the moments of G: measured up to 1.6e-9), at a
- * smooth point where the bin memo serves most samples (alum-bronze's fit). */
+/* He's full pass with the pass state (its memos, its bin rows and bf_fold,
+ * which sums the vectors a bin's row serves once per bin) against
+ * bf_accumulate sample by sample with none: every moment within 1e-8
+ * relative (the forward differences' K(p_j) - K(p_0) cancel to ~1e-7 of K,
+ * so either path's rounding of K, ~1e-16, shows at ~1e-9 in the moments of
+ * G: measured up to 1.6e-9), at a smooth point where the rows serve most
+ * samples (alum-bronze's fit). */
 START_TEST(fold_equals_plain)
 {
     brdffit_samples *s = load_samples("alum-bronze");
@@ -188,12 +193,16 @@ START_TEST(fold_equals_plain)
     const int np = 3, nmom = bf_nmom(3, np);
     double fold[BF_NMOM_MAX] = { 0 }, plain[BF_NMOM_MAX] = { 0 };
     bf_pass_state ps;
-    bf_pass_state_clear(&ps);
+    bf_pass_bins bins;
+    brdffit_error err;
+    ck_assert_msg(bf_pass_bins_make(s, 1, &bins, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_host_begin(s, &bins, BRDFFIT_HE, np, &pp, &ps);
     for (size_t i = 0; i < s->n; i++) {
-        bf_host_sample(s, i, BRDFFIT_HE, 3, np, &pp, fold, &ps);
-        bf_host_sample(s, i, BRDFFIT_HE, 3, np, &pp, plain, NULL);
+        bf_host_sample(s, &bins, i, BRDFFIT_HE, 3, np, &pp, fold, &ps);
+        bf_host_sample(s, NULL, i, BRDFFIT_HE, 3, np, &pp, plain, NULL);
     }
     bf_accumulate_end(3, np, &pp, fold, &ps);
+    bf_pass_bins_free(&bins);
     for (int i = 0; i < nmom; i++)
         ck_assert_msg(tu_reldiff(fold[i], plain[i]) <= 1e-8, "moment %d: fold %.17g plain %.17g", i,
                       fold[i], plain[i]);

@@ -7,9 +7,34 @@
 #include "registry.h"
 #include "samples.h"
 
+#include "bf_lobe.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The bin table's buffers; a model without bin rows gets one small buffer
+ * for all three kernel arguments (nrows 0: the kernel reads none). */
+static cl_int open_bins(bf_pass_driver *dr)
+{
+    cl_context cl = dr->ctx->cl;
+    cl_int rc = CL_SUCCESS;
+    const bf_pass_bins *b = &dr->bins;
+    if (!b->table) {
+        dr->bhd = clCreateBuffer(cl, CL_MEM_READ_WRITE, 8 * sizeof(double), NULL, &rc);
+        return rc;
+    }
+    dr->bhd = clCreateBuffer(cl, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
+                            dr->samples->npad * sizeof(double), b->hd, &rc);
+    if (dr->bhd)
+        dr->btable = clCreateBuffer(cl, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
+                                   (size_t)BF_BFIELDS * BF_NHD_PAD * sizeof(double), b->table, &rc);
+    if (dr->btable)
+        dr->brows = clCreateBuffer(cl, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR,
+                                   (size_t)BF_BK_FIELDS * (size_t)b->nrows * sizeof(double), b->rows,
+                                   &rc);
+    return rc;
+}
 
 brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
                               const brdffit_samples *samples, brdffit_model model,
@@ -28,8 +53,9 @@ brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
     dr->model = model;
     dr->nk = mi->chromatic ? 3 : 1;
     dr->np = bf_model_ncoords(model);
+    const int with_rows = bf_lobe_has_own_fd((int)model);
     if (ctx->backend != BRDFFIT_BACKEND_OPENCL)
-        return BRDFFIT_OK;
+        return with_rows ? bf_pass_bins_make(samples, 1, &dr->bins, err) : BRDFFIT_OK;
 
     int built = ctx->program[model] != NULL;
     brdffit_status st = bf_context_kernels(ctx, model, &dr->kfull, &dr->kvalue, err);
@@ -46,6 +72,11 @@ brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
     dr->rows = malloc(dr->items * BF_NMOM_MAX * sizeof *dr->rows);
     if (!dr->rows)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "out of memory for the pass");
+    if (with_rows) {
+        st = bf_pass_bins_make(samples, (int)dr->items * ctx->width, &dr->bins, err);
+        if (st != BRDFFIT_OK)
+            return st;
+    }
     cl_int rc;
     dr->data = clCreateBuffer(ctx->cl, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
                               BF_NFIELDS * samples->npad * sizeof(double), samples->data, &rc);
@@ -54,7 +85,9 @@ brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
     if (dr->par)
         dr->out = clCreateBuffer(ctx->cl, CL_MEM_WRITE_ONLY, dr->items * BF_NMOM_MAX * sizeof(double),
                                  NULL, &rc);
-    if (!dr->out) {
+    if (dr->out)
+        rc = open_bins(dr);
+    if (rc != CL_SUCCESS) {
         bf_driver_close(dr);
         return bf_fail(err, BRDFFIT_E_OPENCL, "clCreateBuffer failed (%d)", (int)rc);
     }
@@ -73,6 +106,11 @@ static brdffit_status run_kernel(bf_pass_driver *dr, int full, const bf_pass_par
     rc |= clSetKernelArg(k, 2, sizeof dr->vec_per_item, &dr->vec_per_item);
     rc |= clSetKernelArg(k, 3, sizeof(cl_mem), &dr->par);
     rc |= clSetKernelArg(k, 4, sizeof(cl_mem), &dr->out);
+    cl_int nrows = dr->bins.table ? dr->bins.nrows : 0;
+    rc |= clSetKernelArg(k, 5, sizeof(cl_mem), &dr->bhd);
+    rc |= clSetKernelArg(k, 6, sizeof(cl_mem), dr->btable ? &dr->btable : &dr->bhd);
+    rc |= clSetKernelArg(k, 7, sizeof(cl_mem), dr->brows ? &dr->brows : &dr->bhd);
+    rc |= clSetKernelArg(k, 8, sizeof nrows, &nrows);
     if (rc != CL_SUCCESS)
         return bf_fail(err, BRDFFIT_E_OPENCL, "setting the pass arguments failed (%d)", (int)rc);
     size_t global = dr->items, local = 1;
@@ -101,7 +139,7 @@ brdffit_status bf_driver_run(bf_pass_driver *dr, int full, const bf_pass_par *pp
     if (dr->ctx->backend == BRDFFIT_BACKEND_OPENCL)
         st = run_kernel(dr, full, pp, mom, nmom, err);
     else
-        bf_host_loop(dr->samples, dr->model, dr->nk, np, pp, mom);
+        bf_host_loop(dr->samples, &dr->bins, dr->model, dr->nk, np, pp, mom);
     dr->seconds += bf_now() - t0;
     dr->passes++;
     if (st != BRDFFIT_OK)
@@ -114,6 +152,12 @@ brdffit_status bf_driver_run(bf_pass_driver *dr, int full, const bf_pass_par *pp
 
 void bf_driver_close(bf_pass_driver *dr)
 {
+    cl_mem *bufs[3] = { &dr->bhd, &dr->btable, &dr->brows };
+    for (int i = 0; i < 3; i++)
+        if (*bufs[i])
+            clReleaseMemObject(*bufs[i]);
+    dr->bhd = dr->btable = dr->brows = NULL;
+    bf_pass_bins_free(&dr->bins);
     if (dr->out)
         clReleaseMemObject(dr->out);
     if (dr->par)

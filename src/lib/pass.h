@@ -14,6 +14,21 @@
 
 #include "bf_layout.h"
 
+/* The bin table of a sample set (kernels/bf_layout.h) and room for a pass's
+ * bin rows, for a model whose pass makes them (He); all NULL: none. */
+typedef struct bf_pass_bins {
+    double *hd;     /* npad: each sample's bin hd (padding: the last one's) */
+    double *table;  /* BF_BFIELDS x BF_NHD_PAD                             */
+    double *rows;   /* BF_BK_FIELDS x nrows: the host loop's rows          */
+    int nrows;      /* rows per field: room for row_runs runs of bins      */
+} bf_pass_bins;
+
+/* The bin table of s, with nrows for row_runs runs of bins (the kernel's
+ * work-items; 1 for the host loop). */
+brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass_bins *b,
+                                 brdffit_error *err);
+void bf_pass_bins_free(bf_pass_bins *b);
+
 /* A sample set bound to a context for a series of passes of one model. */
 typedef struct bf_pass_driver {
     brdffit_context *ctx;
@@ -22,6 +37,8 @@ typedef struct bf_pass_driver {
     int nk, np;                       /* lobes (1|3) and lobe coordinates   */
     cl_kernel kfull, kvalue;
     cl_mem data, par, out;
+    bf_pass_bins bins;                /* the bin table (models with bin rows) */
+    cl_mem bhd, btable, brows;        /* its buffers (or one small stand-in) */
     size_t items;                     /* work-items per pass               */
     cl_uint vec_per_item;
     double *rows;                     /* items x BF_NMOM_MAX, host side    */
@@ -43,16 +60,23 @@ brdffit_status bf_driver_run(bf_pass_driver *dr, int full, const bf_pass_par *pp
                              brdffit_error *err);
 void bf_driver_close(bf_pass_driver *dr);
 
-/* Sample i of samples added to mom by bf_accumulate (kernels/bf_pass.h),
- * with the pass state ps (a run's, or NULL: no memos): what bf_host_loop
- * does for each sample. */
+/* What bf_host_loop does: a run's pass state ps cleared and, with bins
+ * (NULL or a table of NULLs: none), the model's bin rows made into it at pp
+ * (bf_host_begin); then each sample i added to mom by bf_accumulate
+ * (kernels/bf_pass.h) with ps (NULL: no memos, no rows) and its bin
+ * (bf_host_sample). */
 struct bf_pass_state;
-void bf_host_sample(const brdffit_samples *samples, size_t i, brdffit_model model, int nk,
-                    int np, const bf_pass_par *pp, double *mom, struct bf_pass_state *ps);
+void bf_host_begin(const brdffit_samples *samples, const bf_pass_bins *bins, brdffit_model model,
+                   int np, const bf_pass_par *pp, struct bf_pass_state *ps);
+void bf_host_sample(const brdffit_samples *samples, const bf_pass_bins *bins, size_t i,
+                    brdffit_model model, int nk, int np, const bf_pass_par *pp, double *mom,
+                    struct bf_pass_state *ps);
 
 /* The plain single-threaded C loop over the samples (the host backend, and
- * the reference the kernel is tested and benchmarked against). */
-void bf_host_loop(const brdffit_samples *samples, brdffit_model model, int nk, int np,
-                  const bf_pass_par *pp, double *mom);
+ * the reference the kernel is tested and benchmarked against); with bins
+ * (NULL or a table of NULLs: none) the model's bin rows, as the kernel
+ * makes them. */
+void bf_host_loop(const brdffit_samples *samples, const bf_pass_bins *bins, brdffit_model model,
+                  int nk, int np, const bf_pass_par *pp, double *mom);
 
 #endif /* BRDFFIT_PASS_H */

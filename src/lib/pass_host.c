@@ -6,8 +6,23 @@
 
 #include "bf_pass.h"
 
-void bf_host_sample(const brdffit_samples *samples, size_t i, brdffit_model model, int nk,
-                    int np, const bf_pass_par *pp, double *mom, struct bf_pass_state *ps)
+static int has_rows(const brdffit_samples *samples, const bf_pass_bins *bins)
+{
+    return bins && bins->table && samples->n > 0;
+}
+
+void bf_host_begin(const brdffit_samples *samples, const bf_pass_bins *bins, brdffit_model model,
+                   int np, const bf_pass_par *pp, struct bf_pass_state *ps)
+{
+    bf_pass_state_clear(ps);
+    if (has_rows(samples, bins))
+        bf_lobe_rows((int)model, bins->table, (int)bins->hd[0], (int)bins->hd[samples->n - 1],
+                     pp->p, np, pp->lam, bins->rows, bins->nrows, &ps->lobe);
+}
+
+void bf_host_sample(const brdffit_samples *samples, const bf_pass_bins *bins, size_t i,
+                    brdffit_model model, int nk, int np, const bf_pass_par *pp, double *mom,
+                    struct bf_pass_state *ps)
 {
     const size_t npad = samples->npad;
     const double *f = samples->data;
@@ -15,18 +30,20 @@ void bf_host_sample(const brdffit_samples *samples, size_t i, brdffit_model mode
                   f[BF_F_OX * npad + i], f[BF_F_OY * npad + i], f[BF_F_OZ * npad + i],
                   f[BF_F_NH * npad + i], f[BF_F_VH * npad + i] };
     double rho[3] = { f[BF_F_R * npad + i], f[BF_F_G * npad + i], f[BF_F_B * npad + i] };
+    if (ps && has_rows(samples, bins))
+        bf_lobe_bins(&ps->lobe, bins->hd[i]);
     bf_accumulate((int)model, nk, np, pp, &g, rho, f[BF_F_A2 * npad + i], mom, ps);
 }
 
-void bf_host_loop(const brdffit_samples *samples, brdffit_model model, int nk, int np,
-                  const bf_pass_par *pp, double *mom)
+void bf_host_loop(const brdffit_samples *samples, const bf_pass_bins *bins, brdffit_model model,
+                  int nk, int np, const bf_pass_par *pp, double *mom)
 {
     int nmom = bf_nmom(nk, np);
     for (int m = 0; m < nmom; m++)
         mom[m] = 0.0;
     bf_pass_state state;
-    bf_pass_state_clear(&state);
+    bf_host_begin(samples, bins, model, np, pp, &state);
     for (size_t i = 0; i < samples->n; i++)
-        bf_host_sample(samples, i, model, nk, np, pp, mom, &state);
+        bf_host_sample(samples, bins, i, model, nk, np, pp, mom, &state);
     bf_accumulate_end(nk, np, pp, mom, &state);
 }

@@ -1,0 +1,82 @@
+/* SPDX-License-Identifier: MIT */
+/* pass_bins.c -- the bin table of a sample set (kernels/bf_layout.h) for a
+ * model whose pass makes bin rows (He: bf_he_bin_rows in kernels/bf_he.h):
+ * each sample's (theta_h, theta_d) bin, one geometry per bin and its
+ * flatness bound, and room for the host loop's rows. */
+#include "pass.h"
+#include "grid.h"
+#include "samples.h"
+
+#include "bf_lobe.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void bf_pass_bins_free(bf_pass_bins *b)
+{
+    free(b->hd);
+    free(b->table);
+    free(b->rows);
+    memset(b, 0, sizeof *b);
+}
+
+/* Every bin the pad geometry (wi = wo = the normal: finite everywhere) and
+ * COT 0 (never flat), until a sample says otherwise. */
+static void table_clear(double *t)
+{
+    bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
+    bf_geom_derive(&pg);
+    const double pad[BF_BFIELDS] = {
+        [BF_B_IZ] = 1, [BF_B_OZ] = 1, [BF_B_NH] = pg.nh, [BF_B_VH] = pg.vh,
+    };
+    for (int f = 0; f < BF_BFIELDS; f++)
+        for (int h = 0; h < BF_NHD_PAD; h++)
+            t[f * BF_NHD_PAD + h] = pad[f];
+}
+
+brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass_bins *b,
+                                 brdffit_error *err)
+{
+    memset(b, 0, sizeof b[0]);
+    b->nrows = BF_NHD_PAD + 8 * (row_runs > 0 ? row_runs : 1);
+    b->hd = malloc(s->npad * sizeof *b->hd);
+    b->table = malloc((size_t)BF_BFIELDS * BF_NHD_PAD * sizeof *b->table);
+    b->rows = calloc((size_t)BF_BK_FIELDS * (size_t)b->nrows, sizeof *b->rows);
+    if (!b->hd || !b->table || !b->rows) {
+        bf_pass_bins_free(b);
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "out of memory for the bin table");
+    }
+    table_clear(b->table);
+    const double *F = s->data;
+    const size_t np = s->npad;
+    char seen[BF_NHD] = { 0 };
+    for (size_t i = 0; i < s->n; i++) {
+        int hd = s->bin[i] / BF_NPD;
+        bf_geom g = { F[BF_F_IX * np + i], F[BF_F_IY * np + i], F[BF_F_IZ * np + i],
+                      F[BF_F_OX * np + i], F[BF_F_OY * np + i], F[BF_F_OZ * np + i],
+                      F[BF_F_NH * np + i], F[BF_F_VH * np + i] };
+        double *t = b->table;
+        if (!seen[hd]) { /* the bin's first sample */
+            const double geo[8] = { g.ix, g.iy, g.iz, g.ox, g.oy, g.oz, g.nh, g.vh };
+            for (int f = 0; f < 8; f++)
+                t[(BF_B_IX + f) * BF_NHD_PAD + hd] = geo[f];
+            seen[hd] = 1;
+        }
+        double cot = bf_he_cot_min(&g);
+        if (cot > t[BF_B_COT * BF_NHD_PAD + hd])
+            t[BF_B_COT * BF_NHD_PAD + hd] = cot;
+        b->hd[i] = (double)hd;
+    }
+    /* padding: the last sample's bin, which then always has its row (the
+     * padding's wi = wo = N is flat at any point) */
+    if (np > s->n) {
+        const double hl = s->n ? b->hd[s->n - 1] : 0.0;
+        for (size_t i = s->n; i < np; i++)
+            b->hd[i] = hl;
+        const bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
+        double *cot = b->table + BF_B_COT * BF_NHD_PAD + (int)hl;
+        *cot = fmax(*cot, bf_he_cot_min(&pg));
+    }
+    return BRDFFIT_OK;
+}

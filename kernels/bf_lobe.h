@@ -32,10 +32,11 @@ BF_FN void bf_lobe(int model, const bf_geom *g, const double *p, const double *l
 
 /* What a lobe may carry from one vector of samples to the next within a
  * data pass, which walks the samples in table order: each lobe that keeps
- * something has its member (He: the memos of its series and of a flat
- * bin's value, bf_he_fd); the other
- * lobes keep nothing.  A pass zeroes it (bf_lobe_state_clear) at the start of
- * each run of samples and hands it to bf_lobe_fd vector after vector. */
+ * something has its member (He: the memos of its series and the pass's bin
+ * rows, bf_he_fd); the other lobes keep nothing.  A pass zeroes it
+ * (bf_lobe_state_clear) at the start of each run of samples, hands it the
+ * rows (bf_lobe_rows) and then each vector's bins (bf_lobe_bins), and hands
+ * it to bf_lobe_fd vector after vector. */
 typedef struct bf_lobe_state {
     bf_he_memo he;
 } bf_lobe_state;
@@ -79,8 +80,9 @@ BF_FN void bf_lobe_fd_he(const bf_geom *g, const double (*p)[3], int np, const d
  * the points that differ only in F0; He
  * (BF_FD_OWN) sums its series once and carries it to the neighbours to first
  * order in its log, and with a state (NULL: none) reuses the previous
- * vector's series where g and a are unchanged, and a flat bin's whole value
- * (bf_he_fd; K0 is then bf_he's to ~1e-12). */
+ * vector's series where g and a are unchanged, and with the pass's bin rows
+ * (bf_lobe_rows) takes a flat vector's whole value from them (bf_he_fd; K0
+ * is then bf_he's to ~1e-12). */
 BF_FN void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
                       const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3], bf_lobe_state *st)
 {

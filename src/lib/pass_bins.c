@@ -53,6 +53,11 @@ brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass
     char seen[BF_NHD] = { 0 };
     for (size_t i = 0; i < s->n; i++) {
         int hd = s->bin[i] / BF_NPD;
+        if (s->bin[i] < 0 || hd >= BF_NHD) { /* every set comes from a table: cannot happen */
+            bf_pass_bins_free(b);
+            return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "sample %zu has no MERL bin (%d)", i,
+                           s->bin[i]);
+        }
         bf_geom g = { F[BF_F_IX * np + i], F[BF_F_IY * np + i], F[BF_F_IZ * np + i],
                       F[BF_F_OX * np + i], F[BF_F_OY * np + i], F[BF_F_OZ * np + i],
                       F[BF_F_NH * np + i], F[BF_F_VH * np + i] };

@@ -1294,7 +1294,7 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
  * MERL bin index / 180 (0 .. BF_NHD - 1); field f of bin hd at
  * bins[f * BF_NHD_PAD + hd]: the geometry of the set's first sample in the
  * bin, and BF_B_COT, the largest over the bin's samples of
- * min(cot ti, cot to) (0 for a bin with no sample).  A pass's bin rows hold
+ * min(cot ti, cot to) (bf_he_cot_of_cos; 0 for a bin with no sample).  A pass's bin rows hold
  * BF_BK_FIELDS fields per bin (bf_he_bin_rows). */
 enum {
     BF_B_IX, BF_B_IY, BF_B_IZ, BF_B_OX, BF_B_OY, BF_B_OZ, BF_B_NH, BF_B_VH,
@@ -1341,16 +1341,16 @@ BF_FN BF_REAL bf_he_bin_q(const bf_he_flat *f)
     return 1.0 / (f->ci * f->co);
 }
 
-/* min(cot ti, cot to) of a direction pair, with bf_he_u's floors: a lane is
- * flat at (tau, sigma0) where this is at least 2 BF_HE_U_FLAT sigma0 / tau
- * (to rounding).  The sample set's bin table keeps its largest over a bin
- * (BF_B_COT). */
-BF_FN BF_REAL bf_he_cot_min(const bf_geom *g)
+/* The cotangent of the angle whose cosine is c, with bf_he_u's floors: a
+ * lane is flat at (tau, sigma0) where min(cot ti, cot to) is at least
+ * 2 BF_HE_U_FLAT sigma0 / tau (to rounding), and min(cot ti, cot to) is this
+ * of min(cos ti, cos to) (to rounding: sin t = sqrt(1 - cos^2 t) for unit
+ * directions).  The sample set's bin table keeps it of the largest
+ * min(cos ti, cos to) over a bin (BF_B_COT). */
+BF_FN BF_REAL bf_he_cot_of_cos(BF_REAL c)
 {
-    BF_REAL ci = fmax(g->iz, BF_HE_COS_MIN), co = fmax(g->oz, BF_HE_COS_MIN);
-    BF_REAL si = fmax(sqrt(g->ix * g->ix + g->iy * g->iy), 1e-300);
-    BF_REAL so = fmax(sqrt(g->ox * g->ox + g->oy * g->oy), 1e-300);
-    return fmin(ci / si, co / so);
+    BF_REAL cf = fmax(c, BF_HE_COS_MIN);
+    return cf / fmax(sqrt(fmax(1.0 - c * c, 0.0)), 1e-300);
 }
 
 /* K0 and Kj of a vector the rows serve whole (every lane in the bin of bk),

@@ -13,6 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+_Static_assert(BF_F_VH - BF_F_IX == 7 && BF_B_VH - BF_B_IX == 7 && BF_F_OZ - BF_F_IX == BF_B_OZ - BF_B_IX,
+               "a sample's geometry fields and a bin's are in the same order");
+
 void bf_pass_bins_free(bf_pass_bins *b)
 {
     free(b->hd);
@@ -58,30 +61,28 @@ brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass
             return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "sample %zu has no MERL bin (%d)", i,
                            s->bin[i]);
         }
-        bf_geom g = { F[BF_F_IX * np + i], F[BF_F_IY * np + i], F[BF_F_IZ * np + i],
-                      F[BF_F_OX * np + i], F[BF_F_OY * np + i], F[BF_F_OZ * np + i],
-                      F[BF_F_NH * np + i], F[BF_F_VH * np + i] };
         double *t = b->table;
         if (!seen[hd]) { /* the bin's first sample */
-            const double geo[8] = { g.ix, g.iy, g.iz, g.ox, g.oy, g.oz, g.nh, g.vh };
             for (int f = 0; f < 8; f++)
-                t[(BF_B_IX + f) * BF_NHD_PAD + hd] = geo[f];
+                t[(BF_B_IX + f) * BF_NHD_PAD + hd] = F[(BF_F_IX + f) * np + i];
             seen[hd] = 1;
         }
-        double cot = bf_he_cot_min(&g);
-        if (cot > t[BF_B_COT * BF_NHD_PAD + hd])
-            t[BF_B_COT * BF_NHD_PAD + hd] = cot;
+        /* the largest min(cos ti, cos to) for now: its cotangent below */
+        double c = fmin(F[BF_F_IZ * np + i], F[BF_F_OZ * np + i]);
+        t[BF_B_COT * BF_NHD_PAD + hd] = fmax(t[BF_B_COT * BF_NHD_PAD + hd], c);
         b->hd[i] = (double)hd;
     }
+    for (int h = 0; h < BF_NHD; h++)
+        if (seen[h])
+            b->table[BF_B_COT * BF_NHD_PAD + h] = bf_he_cot_of_cos(b->table[BF_B_COT * BF_NHD_PAD + h]);
     /* padding: the last sample's bin, which then always has its row (the
      * padding's wi = wo = N is flat at any point) */
     if (np > s->n) {
         const double hl = s->n ? b->hd[s->n - 1] : 0.0;
         for (size_t i = s->n; i < np; i++)
             b->hd[i] = hl;
-        const bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
         double *cot = b->table + BF_B_COT * BF_NHD_PAD + (int)hl;
-        *cot = fmax(*cot, bf_he_cot_min(&pg));
+        *cot = fmax(*cot, bf_he_cot_of_cos(1.0));
     }
     return BRDFFIT_OK;
 }

@@ -1408,7 +1408,7 @@ BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const 
 }
 
 /* A pass's rows (see above) of the bins h0 .. h1 of the bin table `bins`
- * (bf_layout.h) at p[0..np]: field f = 3 j + c (K cos ti cos to at p[j] in
+ * (BF_B_* above) at p[0..np]: field f = 3 j + c (K cos ti cos to at p[j] in
  * channel c) of bin hd into rows[f * nrows + hd], BF_NLANES bins at a time
  * (so also bins up to h1 + BF_NLANES - 1).  A run of bins where no sample
  * can be flat at p[0] (BF_B_COT, with a margin for rounding) is skipped:

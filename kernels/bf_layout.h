@@ -17,6 +17,7 @@
  *     BF_MC_SE, BF_MC_SKE, BF_MC_SEE   sum a^2 e, a^2 K e, a^2 e^2
  *     bf_mc_sge(j)                 sum a^2 G_j e
  * The offsets inside a block are relative to the block's start.
+ * (The bin table a He pass also reads is He's own: BF_B_* in bf_he.h.)
  */
 #ifndef BF_LAYOUT_H
 #define BF_LAYOUT_H
@@ -37,9 +38,6 @@ enum {
 
 /* Lobe coordinates a pass differentiates in, at most. */
 #define BF_MAX_NP 3
-
-/* The bin table of a sample set that a pass with bin rows reads (He): see
- * bf_he.h (BF_B_*). */
 
 /* The point of a pass.  Only doubles: the same bytes in C and OpenCL C
  * (the kernel reads it as BF_PASS_PAR_DOUBLES doubles). */

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* pass_bins.c -- the bin table of a sample set (kernels/bf_layout.h) for a
+/* pass_bins.c -- the bin table of a sample set (BF_B_* in kernels/bf_he.h) for a
  * model whose pass makes bin rows (He: bf_he_bin_rows in kernels/bf_he.h):
  * each sample's (theta_h, theta_d) bin, one geometry per bin and its
  * flatness bound, and room for the host loop's rows. */
@@ -28,8 +28,8 @@ void bf_pass_bins_free(bf_pass_bins *b)
  * COT 0 (never flat), until a sample says otherwise. */
 static void table_clear(double *t)
 {
-    bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
-    bf_geom_derive(&pg);
+    bf_geom pg;
+    bf_samples_pad_geom(&pg);
     const double pad[BF_BFIELDS] = {
         [BF_B_IZ] = 1, [BF_B_OZ] = 1, [BF_B_NH] = pg.nh, [BF_B_VH] = pg.vh,
     };

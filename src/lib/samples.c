@@ -171,12 +171,19 @@ static void take_bins(brdffit_samples *samples, const double *v, double cosc, co
 }
 
 /* The padding: harmless samples (n .. npad-1) that add exactly 0 to every sum. */
+void bf_samples_pad_geom(bf_geom *g)
+{
+    const bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
+    *g = pg;
+    bf_geom_derive(g);
+}
+
 static void pad_fields(brdffit_samples *samples)
 {
     const size_t stride = samples->npad;
     double *F = samples->data;
-    bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
-    bf_geom_derive(&pg);
+    bf_geom pg;
+    bf_samples_pad_geom(&pg);
     const double pad[BF_NFIELDS] = {
         [BF_F_IZ] = 1, [BF_F_OZ] = 1, [BF_F_NH] = pg.nh, [BF_F_VH] = pg.vh,
     };

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "bf_layout.h"
+#include "bf_models.h"
 
 /* A sample set: one 64-byte-aligned block of BF_NFIELDS x npad doubles, field f at
  * data + f * npad (structure of arrays, so the kernel loads vectors); the
@@ -29,6 +30,10 @@ struct brdffit_samples {
     double *w;                   /* n solid-angle weights */
     int *bin;                    /* n bin indices k + 180*(j + 90*i) */
 };
+
+/* The geometry of a padding sample: wi = wo = N, derived (bf_geom_derive).
+ * Finite in every model; the bin table gives it to bins with no sample. */
+void bf_samples_pad_geom(bf_geom *g);
 
 /* How many distinct geometries the samples hold, counted up to need (at
  * most BF_GEOM_NEED_MAX): directions that differ only by a rotation about

@@ -1448,6 +1448,44 @@ BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc
     }
 }
 
+/* 1 when no lane of g (BF_NLANES bins' geometry) needs its row made at p0:
+ * each is either not read (live 0: no sample of its bin is flat) or dead in
+ * every channel at every point for certain (0 in the rows, as
+ * bf_he_fd_lanes would make it), from a bound that takes a few logarithms
+ * instead of the series' search for its peak.  With F <= 1 and S = 1 (flat),
+ * K's scale e^lk is at most kt^2 G / (pi cos ti cos to), and with P the
+ * Poisson weights of g, V = sum_m P(m) e^(-a/m) / m is at most
+ * e^(-a/M) + P(m >= M) <= e^(-a/M) + e^(M (1 + ln(g/M)) - g) for any M > g
+ * (Chernoff).  With M = a / w, w = 2 + ln(kt^2 G / (pi ci co)) - ldead,
+ * both are at most e^-w, so lpk + lk <= ln V + lk <= ln 2 - 2 + ldead < ldead:
+ * bf_he_series_x leaves the lane dead.  Only where g < 18 / BF_HE_FD_MARGIN, so that no
+ * rough limit enters the value or a neighbour. */
+BF_FN int bf_he_rows_dead(const bf_geom *g, BF_REAL live, const double *p0, const double *lam,
+                          const bf_he_pconst *pc)
+{
+    const double sigma0 = p0[1];
+    BF_REAL ci = fmax(g->iz, BF_HE_COS_MIN), co = fmax(g->oz, BF_HE_COS_MIN);
+    BF_REAL vx = g->ix + g->ox, vy = g->iy + g->oy, vz = ci + co;
+    BF_REAL vxy2 = vx * vx + vy * vy, vv = vxy2 + vz * vz;
+    BF_REAL lscale = 2.0 * log(vv / vz) - log(BF_PI * (ci * co)); /* ln G / (pi ci co) */
+    BF_REAL s0v = sigma0 * vz, lns0v2 = 2.0 * log(s0v), lnv2 = log(fmax(vxy2, BF_R(1e-300)));
+    BF_REAL dead = BF_SEL(BF_R(1.0), BF_R(0.0), live > 0.0);
+    BF_REAL all = BF_R(1.0);
+    for (int ch = 0; ch < 3; ch++) {
+        const double kl = 2.0 * BF_PI / lam[ch], kt = BF_PI * p0[0] / (2.0 * lam[ch]);
+        BF_REAL gg = (kl * kl) * (s0v * s0v), lng = pc->lkl2[ch] + lns0v2;
+        BF_REAL aa = (4.0 * (kt * kt)) * vxy2, la = pc->l4kt2[ch] + lnv2;
+        BF_REAL w = 2.0 + (lscale + pc->lkt2[ch]) - pc->ldead[ch];
+        BF_REAL lw = log(fmax(w, BF_R(1.0)));
+        BF_REAL M = aa / fmax(w, BF_R(1.0)), lnM = la - lw;
+        BF_REAL tail = M * (1.0 + lng - lnM) - gg;
+        all = BF_SEL(BF_R(0.0), all,
+                     (w >= 1.0) && (gg < BF_HE_G_LO / BF_HE_FD_MARGIN) && (M > gg) && (tail <= -w));
+    }
+    dead = BF_SEL(dead, BF_R(1.0), all > 0.0);
+    return !BF_ANY(dead <= 0.0);
+}
+
 /* A pass's rows (see above) of the bins h0 .. h1 of the bin table `bins`
  * (BF_B_* above) at p[0..np]: field f = 3 j + c (K cos ti cos to at p[j] in
  * channel c) of bin hd into rows[f * nrows + hd], BF_NLANES bins at a time
@@ -1463,7 +1501,8 @@ BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const do
     bf_he_pconst_make(p[0][0], lam, &pc);
     bf_he_row_floor(p[0], lam, &pc);
     for (int h = h0; h <= h1; h += BF_NLANES) {
-        if (!BF_ANY(BF_LOADG(bins + BF_B_COT * BF_NHD_PAD + h) >= cot_flat))
+        BF_REAL live = BF_SEL(BF_R(0.0), BF_R(1.0), BF_LOADG(bins + BF_B_COT * BF_NHD_PAD + h) >= cot_flat);
+        if (!BF_ANY(live > 0.0))
             continue;
         bf_geom g;
         g.ix = BF_LOADG(bins + BF_B_IX * BF_NHD_PAD + h);
@@ -1475,6 +1514,11 @@ BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const do
         g.nh = BF_LOADG(bins + BF_B_NH * BF_NHD_PAD + h);
         g.vh = BF_LOADG(bins + BF_B_VH * BF_NHD_PAD + h);
         BF_REAL K0[3], Kj[BF_HE_NP][3];
+        if (bf_he_rows_dead(&g, live, p[0], lam, &pc)) {
+            for (int f = 0; f < 3 * (1 + np); f++)
+                BF_STORE(BF_R(0.0), rows + f * nrows + h);
+            continue;
+        }
         bf_he_fd_lanes(&g, p, np, lam, &pc, 1, K0, Kj, (bf_he_memo *)0);
         BF_REAL cc = fmax(g.iz, BF_HE_COS_MIN) * fmax(g.oz, BF_HE_COS_MIN);
         for (int c = 0; c < 3; c++)

@@ -1076,6 +1076,52 @@ START_TEST(pass_memo)
 }
 END_TEST
 
+/* bf_he_rows_dead's bound: wherever it finds a bin's row dead, the rows'
+ * own evaluation (bf_he_fd_lanes, flat, under the floor) is 0 at every
+ * point and channel; on a smooth set it finds most of the rows that are 0
+ * (measured 71%, 76% and 93% at sigma0 = 0.063, 0.01 and 0.001; rougher
+ * sets' rows are mostly 0 where the rough limit underflows, which the
+ * bound leaves to the rows). */
+START_TEST(rows_dead_bound)
+{
+    const double *P = fd_sets[_i];
+    double p[4][3];
+    for (int j = 0; j < 4; j++) {
+        memcpy(p[j], P, sizeof p[j]);
+        if (j > 0)
+            p[j][j - 1] *= 1 + 1e-7;
+    }
+    bf_he_pconst pc;
+    bf_he_pconst_make(P[0], default_lam, &pc);
+    bf_he_row_floor(P, default_lam, &pc);
+    long found = 0, zero = 0;
+    for (int i = 0; i < 90; i += 3)
+        for (int j = 0; j < 90; j += 3) {
+            double wi[3], wo[3];
+            if (brdffit_bin_directions(i, j, 0, wi, wo, NULL) != BRDFFIT_OK || wi[2] <= 0.0 ||
+                wo[2] <= 0.0)
+                continue;
+            bf_geom g = geom(wi, wo);
+            double K0[3], Kj[3][3];
+            bf_he_fd_lanes(&g, (const double(*)[3])p, 3, default_lam, &pc, 1, K0, Kj, NULL);
+            int allzero = 1;
+            for (int c = 0; c < 3; c++)
+                allzero &= K0[c] == 0.0 && Kj[0][c] == 0.0 && Kj[1][c] == 0.0 && Kj[2][c] == 0.0;
+            zero += allzero;
+            if (!bf_he_rows_dead(&g, 1.0, P, default_lam, &pc))
+                continue;
+            found++;
+            ck_assert_msg(allzero, "set %d bin (%d, %d): dead by the bound, K0 %g %g %g", _i, i, j,
+                          K0[0], K0[1], K0[2]);
+        }
+    /* a lane that no sample reads is always skipped */
+    bf_geom n = { 0, 0, 1, 0, 0, 1, 1, 1 };
+    ck_assert(bf_he_rows_dead(&n, 0.0, P, default_lam, &pc));
+    if (P[1] <= 0.1 && P[2] > 1.0 && zero > 0) /* a smooth set with a Fresnel term */
+        ck_assert_msg(found >= 0.5 * zero, "set %d: the bound found %ld of %ld", _i, found, zero);
+}
+END_TEST
+
 /* bf_lobe_fd: with np = 0 it is bf_lobe (for He, bf_he); for a lobe without
  * forward differences of its own it is bf_lobe at each point, bit for bit. */
 START_TEST(fd_lobe_dispatch)
@@ -1148,6 +1194,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, erfc_cody);
     tcase_add_test(tc, newton_x);
     tcase_add_loop_test(tc, pass_memo, 0, NFD);
+    tcase_add_loop_test(tc, rows_dead_bound, 0, NFD);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -54,8 +54,13 @@ brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass
     const double *F = s->data;
     const size_t np = s->npad;
     char seen[BF_NHD] = { 0 };
+    int hd = 0, lo = 0; /* the bin of the samples lo .. lo + BF_NPD - 1 (a set in table order
+                         * walks one bin's samples in a row: no division for most) */
     for (size_t i = 0; i < s->n; i++) {
-        int hd = s->bin[i] / BF_NPD;
+        if (s->bin[i] < lo || s->bin[i] >= lo + BF_NPD) {
+            hd = s->bin[i] / BF_NPD;
+            lo = hd * BF_NPD;
+        }
         if (s->bin[i] < 0 || hd >= BF_NHD) { /* every set comes from a table: cannot happen */
             bf_pass_bins_free(b);
             return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "sample %zu has no MERL bin (%d)", i,
@@ -68,8 +73,9 @@ brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass
             seen[hd] = 1;
         }
         /* the largest min(cos ti, cos to) for now: its cotangent below */
-        double c = fmin(F[BF_F_IZ * np + i], F[BF_F_OZ * np + i]);
-        t[BF_B_COT * BF_NHD_PAD + hd] = fmax(t[BF_B_COT * BF_NHD_PAD + hd], c);
+        double ci = F[BF_F_IZ * np + i], co = F[BF_F_OZ * np + i], c = ci < co ? ci : co;
+        if (c > t[BF_B_COT * BF_NHD_PAD + hd])
+            t[BF_B_COT * BF_NHD_PAD + hd] = c;
         b->hd[i] = (double)hd;
     }
     for (int h = 0; h < BF_NHD; h++)

@@ -343,17 +343,15 @@ size_t bf_samples_geometries(const brdffit_samples *samples, size_t need)
     return found;
 }
 
-/* A sample set of src's samples i where keep(src, i, arg), in table order,
- * with src's metric weights a2 (its sums are a sample of src's). */
-typedef int bf_sample_keep(const brdffit_samples *src, size_t i, const void *arg);
-
-static brdffit_status samples_pick(const brdffit_samples *src, bf_sample_keep *keep,
-                                   const void *arg, brdffit_samples **out, brdffit_error *err)
+/* A sample set of src's samples idx[0..n-1] (increasing: table order), with
+ * src's metric weights a2 (its sums are a sample of src's).  Field by field,
+ * one of src's arrays at a time.  A strided subset still reads most of
+ * src's cache lines: every 12th sample of a full table takes ~11 ms (sample
+ * by sample, with the keep test made twice a sample, ~17 ms). */
+static brdffit_status samples_take(const brdffit_samples *src, const size_t *idx, size_t n,
+                                   brdffit_samples **out, brdffit_error *err)
 {
     *out = NULL;
-    size_t n = 0;
-    for (size_t i = 0; i < src->n; i++)
-        n += keep(src, i, arg) != 0;
     brdffit_samples *sub = calloc(1, sizeof *sub);
     if (!sub)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
@@ -364,45 +362,64 @@ static brdffit_status samples_pick(const brdffit_samples *src, bf_sample_keep *k
     }
     sub->opt = src->opt;
     sub->n = n;
-    size_t m = 0;
-    for (size_t i = 0; i < src->n && m < n; i++) {
-        if (!keep(src, i, arg))
-            continue;
-        for (int q = 0; q < BF_NFIELDS; q++)
-            sub->data[q * sub->npad + m] = src->data[q * src->npad + i];
-        sub->w[m] = src->w[i];
-        sub->bin[m] = src->bin[i];
+    for (int q = 0; q < BF_NFIELDS; q++) {
+        const double *from = src->data + (size_t)q * src->npad;
+        double *to = sub->data + (size_t)q * sub->npad;
+        for (size_t m = 0; m < n; m++)
+            to[m] = from[idx[m]];
+    }
+    for (size_t m = 0; m < n; m++) {
+        sub->w[m] = src->w[idx[m]];
+        sub->bin[m] = src->bin[idx[m]];
         sub->sum_w += sub->w[m];
         sub->sum_a2 += sub->data[BF_F_A2 * sub->npad + m];
-        m++;
     }
     pad_fields(sub); /* a2 stays the full set's */
     *out = sub;
     return BRDFFIT_OK;
 }
 
-static int keep_every(const brdffit_samples *src, size_t i, const void *arg)
+/* Room for the indices of a subset of up to n samples. */
+static size_t *index_alloc(size_t n, brdffit_error *err)
 {
-    (void)src;
-    return i % *(const size_t *)arg == 0;
+    size_t *idx = malloc((n ? n : 1) * sizeof *idx);
+    if (!idx)
+        bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
+    return idx;
 }
 
 brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdffit_samples **out,
                                 brdffit_error *err)
 {
-    return samples_pick(src, keep_every, &stride, out, err);
-}
-
-static int keep_bins(const brdffit_samples *src, size_t i, const void *arg)
-{
-    const int *step = arg;
-    int h, j, k; /* theta_h, theta_d, phi_d */
-    bf_bin_ijk((size_t)src->bin[i], &h, &j, &k);
-    return h % step[0] == 0 && j % step[1] == 0 && k % step[2] == 0;
+    *out = NULL;
+    if (stride < 1)
+        stride = 1;
+    const size_t n = (src->n + stride - 1) / stride;
+    size_t *idx = index_alloc(n, err);
+    if (!idx)
+        return BRDFFIT_E_NO_MEMORY;
+    for (size_t m = 0; m < n; m++)
+        idx[m] = m * stride;
+    brdffit_status st = samples_take(src, idx, n, out, err);
+    free(idx);
+    return st;
 }
 
 brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
                                brdffit_samples **out, brdffit_error *err)
 {
-    return samples_pick(src, keep_bins, step, out, err);
+    *out = NULL;
+    size_t *idx = index_alloc(src->n, err);
+    if (!idx)
+        return BRDFFIT_E_NO_MEMORY;
+    size_t n = 0;
+    for (size_t i = 0; i < src->n; i++) {
+        int h, j, k; /* theta_h, theta_d, phi_d */
+        bf_bin_ijk((size_t)src->bin[i], &h, &j, &k);
+        if (h % step[0] == 0 && j % step[1] == 0 && k % step[2] == 0)
+            idx[n++] = i;
+    }
+    brdffit_status st = samples_take(src, idx, n, out, err);
+    free(idx);
+    return st;
 }

@@ -816,9 +816,14 @@ typedef struct bf_he_memo {
      * K cos ti cos to per bin, field f of bin hd at rows[f * nrows + hd] */
     BF_GLOBAL const double *rows;
     int nrows;
+    /* the bin table the rows were made from, and the least BF_B_COTLO of a
+     * bin whose samples are all flat at p0 for certain (bf_he_flat_sure) */
+    BF_GLOBAL const double *bins;
+    double cot_sure;
     BF_REAL vhd;                /* the bins hd of the vector's lanes         */
     double bk[1 + BF_HE_NP][3]; /* the row of the last bin served whole      */
     double bhits;               /* vectors served by the rows                */
+    double bsure;               /* of them, found flat by the bin table      */
     double bgen;                /* 1 + the bin of bk (0: none)               */
     /* the series tables (bf_he_tab), one per channel */
     bf_he_tab tab[3];
@@ -839,11 +844,14 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
     m->hits = 0.0;
     m->rows = 0;
     m->nrows = 0;
+    m->bins = 0;
+    m->cot_sure = 0.0;
     m->vhd = BF_R(0.0);
     for (int j = 0; j <= BF_HE_NP; j++)
         for (int c = 0; c < 3; c++)
             m->bk[j][c] = 0.0;
     m->bhits = 0.0;
+    m->bsure = 0.0;
     m->bgen = 0.0;
     for (int c = 0; c < 3; c++) /* the coefficients are read only up to n */
         m->tab[c].a = m->tab[c].gref = m->tab[c].lngref = m->tab[c].igref = m->tab[c].L =
@@ -1303,12 +1311,13 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
  * on a bin (He where the shadowing is flat: bf_he_bin_rows).  Bin hd = the
  * MERL bin index / 180 (0 .. BF_NHD - 1); field f of bin hd at
  * bins[f * BF_NHD_PAD + hd]: the geometry of the set's first sample in the
- * bin, and BF_B_COT, the largest over the bin's samples of
- * min(cot ti, cot to) (bf_he_cot_of_cos; 0 for a bin with no sample).  A pass's bin rows hold
+ * bin, BF_B_COT, the largest over the bin's samples of
+ * min(cot ti, cot to) (bf_he_cot_of_cos; 0 for a bin with no sample), and
+ * BF_B_COTLO, the smallest (0 for a bin with no sample).  A pass's bin rows hold
  * BF_BK_FIELDS fields per bin (bf_he_bin_rows). */
 enum {
     BF_B_IX, BF_B_IY, BF_B_IZ, BF_B_OX, BF_B_OY, BF_B_OZ, BF_B_NH, BF_B_VH,
-    BF_B_COT,
+    BF_B_COT, BF_B_COTLO,
     BF_BFIELDS
 };
 #define BF_NHD (90 * 90)
@@ -1342,6 +1351,32 @@ BF_FN void bf_he_flat_make(const bf_geom *g, double tau, double sigma0, bf_he_fl
     BF_REAL ui = bf_he_u(f->ci, sqrt(g->ix * g->ix + g->iy * g->iy), tau, sigma0);
     BF_REAL uo = bf_he_u(f->co, sqrt(g->ox * g->ox + g->oy * g->oy), tau, sigma0);
     f->lanes = BF_SEL(BF_R(0.0), BF_R(1.0), (ui >= BF_HE_U_FLAT) && (uo >= BF_HE_U_FLAT));
+}
+
+/* bf_he_flat_make's flags for a vector whose lanes all lie in one bin hd
+ * whose every sample is flat at p0 = (tau, sigma0) for certain (its
+ * smallest min(cot ti, cot to), BF_B_COTLO, at least BF_HE_SURE_MARGIN above
+ * the threshold 2 BF_HE_U_FLAT sigma0 / tau: the samples' own u, computed
+ * from other roundings of the same cotangent, are then >= BF_HE_U_FLAT): the
+ * cosines alone, with no square root or division.  0 when it cannot say (f
+ * left); the lanes are then bf_he_flat_make's. */
+#define BF_HE_SURE_MARGIN 1e-6
+
+BF_FN double bf_he_cot_sure(double tau, double sigma0)
+{
+    return (2.0 * BF_HE_U_FLAT) * sigma0 / tau * (1.0 + BF_HE_SURE_MARGIN);
+}
+
+BF_FN int bf_he_flat_sure(const bf_geom *g, BF_GLOBAL const double *bins, BF_REAL vhd,
+                          double cot_sure, bf_he_flat *f)
+{
+    const double hd = BF_LAST(vhd);
+    if (!bins || BF_ANY(vhd != hd) || !(bins[BF_B_COTLO * BF_NHD_PAD + (int)hd] >= cot_sure))
+        return 0;
+    f->ci = fmax(g->iz, BF_HE_COS_MIN);
+    f->co = fmax(g->oz, BF_HE_COS_MIN);
+    f->lanes = BF_R(1.0);
+    return 1;
 }
 
 /* The factor q = 1 / (cos ti cos to) of a vector the rows serve: its K at
@@ -1575,7 +1610,10 @@ BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, cons
         bf_he_pconst_make(p[0][0], lam, pc);
     if (memo && memo->rows) {
         bf_he_flat fl;
-        bf_he_flat_make(g, p[0][0], p[0][1], &fl);
+        if (bf_he_flat_sure(g, memo->bins, memo->vhd, memo->cot_sure, &fl))
+            memo->bsure += 1.0;
+        else
+            bf_he_flat_make(g, p[0][0], p[0][1], &fl);
         if (!BF_ANY(fl.lanes <= 0.0)) {
             BF_REAL qv = bf_he_bin_q(&fl);
             const double hd = BF_LAST(memo->vhd);

@@ -145,6 +145,8 @@ BF_FN void bf_lobe_rows_he(BF_GLOBAL const double *bins, int h0, int h1, const d
     bf_he_bin_rows(bins, h0, h1, p, np, lam, rows, nrows);
     st->he.rows = rows;
     st->he.nrows = nrows;
+    st->he.bins = bins;
+    st->he.cot_sure = bf_he_cot_sure(p[0][0], p[0][1]);
 }
 
 #define BF_ROWS_BF_FD_POINTWISE(name)

@@ -2,7 +2,7 @@
 /* pass_bins.c -- the bin table of a sample set (BF_B_* in kernels/bf_he.h) for a
  * model whose pass makes bin rows (He: bf_he_bin_rows in kernels/bf_he.h):
  * each sample's (theta_h, theta_d) bin, one geometry per bin and its
- * flatness bound, and room for the host loop's rows. */
+ * flatness bounds, and room for the host loop's rows. */
 #include "pass.h"
 #include "grid.h"
 #include "samples.h"
@@ -67,20 +67,27 @@ brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass
                            s->bin[i]);
         }
         double *t = b->table;
+        /* the largest and smallest min(cos ti, cos to) for now: their
+         * cotangents below */
+        double ci = F[BF_F_IZ * np + i], co = F[BF_F_OZ * np + i], c = ci < co ? ci : co;
         if (!seen[hd]) { /* the bin's first sample */
             for (int f = 0; f < 8; f++)
                 t[(BF_B_IX + f) * BF_NHD_PAD + hd] = F[(BF_F_IX + f) * np + i];
+            t[BF_B_COTLO * BF_NHD_PAD + hd] = c;
             seen[hd] = 1;
         }
-        /* the largest min(cos ti, cos to) for now: its cotangent below */
-        double ci = F[BF_F_IZ * np + i], co = F[BF_F_OZ * np + i], c = ci < co ? ci : co;
         if (c > t[BF_B_COT * BF_NHD_PAD + hd])
             t[BF_B_COT * BF_NHD_PAD + hd] = c;
+        if (c < t[BF_B_COTLO * BF_NHD_PAD + hd])
+            t[BF_B_COTLO * BF_NHD_PAD + hd] = c;
         b->hd[i] = (double)hd;
     }
     for (int h = 0; h < BF_NHD; h++)
-        if (seen[h])
-            b->table[BF_B_COT * BF_NHD_PAD + h] = bf_he_cot_of_cos(b->table[BF_B_COT * BF_NHD_PAD + h]);
+        if (seen[h]) {
+            double *t = b->table;
+            t[BF_B_COT * BF_NHD_PAD + h] = bf_he_cot_of_cos(t[BF_B_COT * BF_NHD_PAD + h]);
+            t[BF_B_COTLO * BF_NHD_PAD + h] = bf_he_cot_of_cos(t[BF_B_COTLO * BF_NHD_PAD + h]);
+        }
     /* padding: the last sample's bin, which then always has its row (the
      * padding's wi = wo = N is flat at any point) */
     if (np > s->n) {

@@ -53,7 +53,7 @@
 #define BF_HE_G_HI 19.0      /* above: the rough-surface limit      */
 #define BF_HE_MMAX 400       /* last term of the series             */
 #define BF_HE_COS_MIN 1e-100 /* floor of cos ti, cos to, cos theta_b */
-#define BF_HE_LN_DEAD (-760.0) /* a lane below e^this is 0 (the rows: see bf_he_bin_rows) */
+#define BF_HE_LN_DEAD (-760.0) /* a lane below e^this is 0 (the rows: bf_he_row_floor) */
 #define BF_HE_U_FLAT 6.0     /* u >= 6: erfc(u) and e^(-u^2) taken as 0 */
 #define BF_HE_LN_SQRT_2PI 0.91893853320467274178
 /* ln 18, ln 19, ln 400 (BF_HE_G_LO, BF_HE_G_HI, BF_HE_MMAX), correctly rounded:
@@ -340,7 +340,7 @@ BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
  * starting point depends on la).  See the header comment; a lane whose peak
  * term puts less than e^ldead into the value (lpk + lk < ldead) is dead: 0,
  * not summed.  ldead is BF_HE_LN_DEAD (where the value underflows) but in a
- * pass's bin rows (bf_he_bin_rows).
+ * pass's bin rows (bf_he_row_floor).
  *
  * With deriv != 0 (a constant at every call) it also returns the partials of
  * ln V, V = e^(lpk + lk) sum_m t_m (t_m = T_m / T_m*, the terms it sums):
@@ -717,7 +717,8 @@ BF_FN BF_REAL bf_he_tab_lanes(const bf_he_tab *t, BF_REAL gs, BF_REAL aa, BF_REA
  * lanes with lpk + lk < ldead are dead, as in bf_he_series_x (sum,
  * partials and value 0), and t is filled when another lane needs it. */
 BF_FN void bf_he_tab_serve(bf_he_tab *t, BF_REAL tl, BF_REAL gs, BF_REAL lngs, BF_REAL aa,
-                           BF_REAL lk, double ldead, BF_REAL *lpk, BF_REAL *sum, BF_REAL *vg, BF_REAL *va,
+                           BF_REAL lk, double ldead, BF_REAL *lpk, BF_REAL *sum, BF_REAL *vg,
+                           BF_REAL *va,
                            BF_REAL *ser)
 {
     BF_REAL dlpk = bf_he_tab_lpk(t, gs, lngs);
@@ -789,11 +790,13 @@ BF_FN void bf_he_series_point(double a, double g, double lkmax, double ldead, do
  * first order in ln V as the memo carries its lanes, into *lpk, *sum, *vg,
  * *va and *ser (bf_he_series_x's outputs); the other lanes left. */
 BF_FN void bf_he_point_serve(BF_REAL one, double gl, double al, BF_REAL gs, BF_REAL aa,
-                             BF_REAL lk, double ldead, BF_REAL *lpk, BF_REAL *sum, BF_REAL *vg, BF_REAL *va,
+                             BF_REAL lk, double ldead, BF_REAL *lpk, BF_REAL *sum, BF_REAL *vg,
+                             BF_REAL *va,
                              BF_REAL *ser)
 {
     double plpk, psum, pvg, pva;
-    bf_he_series_point(al, gl, bf_max_where(lk, one, -INFINITY), ldead, &plpk, &psum, &pvg, &pva);
+    bf_he_series_point(al, gl, bf_max_where(lk, one, -INFINITY), ldead, &plpk, &psum, &pvg,
+                       &pva);
     BF_REAL l = plpk + (pvg * (gs - gl) + pva * (aa - al));
     *lpk = BF_SEL(*lpk, l, one > 0.0);
     *sum = BF_SEL(*sum, BF_R(psum), one > 0.0);
@@ -867,8 +870,8 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
  * its (g, a) from that one series (bf_he_series_point), else those of its
  * bin from a table made for it. */
 BF_FN BF_REAL bf_he_memo_tables(bf_he_tab *t, BF_REAL need, BF_REAL gs, BF_REAL lngs, BF_REAL aa,
-                                BF_REAL lk, double ldead, BF_REAL gtop, BF_REAL *lpk, BF_REAL *sum,
-                                BF_REAL *vg, BF_REAL *va, BF_REAL *ser)
+                                BF_REAL lk, double ldead, BF_REAL gtop, BF_REAL *lpk,
+                                BF_REAL *sum, BF_REAL *vg, BF_REAL *va, BF_REAL *ser)
 {
     BF_REAL tl = bf_he_tab_lanes(t, gs, aa, need);
     if (BF_ANY(tl > 0.0))
@@ -1493,8 +1496,8 @@ BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc
  * e^(-a/M) + P(m >= M) <= e^(-a/M) + e^(M (1 + ln(g/M)) - g) for any M > g
  * (Chernoff).  With M = a / w, w = 2 + ln(kt^2 G / (pi ci co)) - ldead,
  * both are at most e^-w, so lpk + lk <= ln V + lk <= ln 2 - 2 + ldead < ldead:
- * bf_he_series_x leaves the lane dead.  Only where g < 18 / BF_HE_FD_MARGIN, so that no
- * rough limit enters the value or a neighbour. */
+ * bf_he_series_x leaves the lane dead.  Only where g < 18 / BF_HE_FD_MARGIN,
+ * so that no rough limit enters the value or a neighbour. */
 BF_FN int bf_he_rows_dead(const bf_geom *g, BF_REAL live, const double *p0, const double *lam,
                           const bf_he_pconst *pc)
 {
@@ -1536,7 +1539,8 @@ BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const do
     bf_he_pconst_make(p[0][0], lam, &pc);
     bf_he_row_floor(p[0], lam, &pc);
     for (int h = h0; h <= h1; h += BF_NLANES) {
-        BF_REAL live = BF_SEL(BF_R(0.0), BF_R(1.0), BF_LOADG(bins + BF_B_COT * BF_NHD_PAD + h) >= cot_flat);
+        BF_REAL cot = BF_LOADG(bins + BF_B_COT * BF_NHD_PAD + h);
+        BF_REAL live = BF_SEL(BF_R(0.0), BF_R(1.0), cot >= cot_flat);
         if (!BF_ANY(live > 0.0))
             continue;
         bf_geom g;

@@ -1501,12 +1501,11 @@ BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc
 BF_FN int bf_he_rows_dead(const bf_geom *g, BF_REAL live, const double *p0, const double *lam,
                           const bf_he_pconst *pc)
 {
-    const double sigma0 = p0[1];
-    BF_REAL ci = fmax(g->iz, BF_HE_COS_MIN), co = fmax(g->oz, BF_HE_COS_MIN);
-    BF_REAL vx = g->ix + g->ox, vy = g->iy + g->oy, vz = ci + co;
-    BF_REAL vxy2 = vx * vx + vy * vy, vv = vxy2 + vz * vz;
-    BF_REAL lscale = 2.0 * log(vv / vz) - log(BF_PI * (ci * co)); /* ln G / (pi ci co) */
-    BF_REAL s0v = sigma0 * vz, lns0v2 = 2.0 * log(s0v), lnv2 = log(fmax(vxy2, BF_R(1e-300)));
+    bf_he_dir d;
+    bf_he_dir_make(g, &d);
+    BF_REAL lscale = d.lg2 - log(BF_PI * (d.ci * d.co)); /* ln G / (pi ci co) */
+    BF_REAL vxy2 = d.vxy2, lnv2 = d.lvxy2;
+    BF_REAL s0v = p0[1] * d.vz, lns0v2 = 2.0 * log(s0v);
     BF_REAL dead = BF_SEL(BF_R(1.0), BF_R(0.0), live > 0.0);
     BF_REAL all = BF_R(1.0);
     for (int ch = 0; ch < 3; ch++) {

@@ -170,7 +170,6 @@ static void take_bins(brdffit_samples *samples, const double *v, double cosc, co
     samples->sum_w = sum_w;
 }
 
-/* The padding: harmless samples (n .. npad-1) that add exactly 0 to every sum. */
 void bf_samples_pad_geom(bf_geom *g)
 {
     const bf_geom pg = { 0, 0, 1, 0, 0, 1, 0, 0 };
@@ -178,6 +177,7 @@ void bf_samples_pad_geom(bf_geom *g)
     bf_geom_derive(g);
 }
 
+/* The padding: harmless samples (n .. npad-1) that add exactly 0 to every sum. */
 static void pad_fields(brdffit_samples *samples)
 {
     const size_t stride = samples->npad;

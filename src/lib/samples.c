@@ -412,11 +412,25 @@ brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
     size_t *idx = index_alloc(src->n, err);
     if (!idx)
         return BRDFFIT_E_NO_MEMORY;
+    /* phi_d's test once per index; theta_h's and theta_d's once per run of
+     * samples in one (theta_h, theta_d) bin (a set in table order walks
+     * each bin's samples in a row): no division for most samples (with
+     * three divisions a sample, the subset of a full table took 7-8.6 ms;
+     * so, 4.2-5.5 ms) */
+    char keep_k[BF_NPD];
+    for (int k = 0; k < BF_NPD; k++)
+        keep_k[k] = k % step[2] == 0;
     size_t n = 0;
+    int lo = 0, keep_hd = 0; /* the bin lo .. lo + BF_NPD - 1 of the last sample, kept or not */
     for (size_t i = 0; i < src->n; i++) {
-        int h, j, k; /* theta_h, theta_d, phi_d */
-        bf_bin_ijk((size_t)src->bin[i], &h, &j, &k);
-        if (h % step[0] == 0 && j % step[1] == 0 && k % step[2] == 0)
+        int b = src->bin[i];
+        if (i == 0 || b < lo || b >= lo + BF_NPD) {
+            int h, j, k; /* theta_h, theta_d, phi_d */
+            bf_bin_ijk((size_t)b, &h, &j, &k);
+            lo = b - k;
+            keep_hd = h % step[0] == 0 && j % step[1] == 0;
+        }
+        if (keep_hd && keep_k[b - lo])
             idx[n++] = i;
     }
     brdffit_status st = samples_take(src, idx, n, out, err);

@@ -139,7 +139,8 @@ typedef struct lmstate {
     const struct lmrun *ends;      /* the subset runs refined before this one */
     int nends;                     /* (0: it joins none; see join_end)     */
     int joined;                    /* the one of ends it came to (-1: none) */
-    double join_x[NX_MAX];         /* the point where it did, its r^T r    */
+    double join_x[NX_MAX];         /* the point where it did, its best d, s */
+    bf_linear join_lin;            /* and r^T r there                       */
     double join_rr;
     brdffit_status st;
     brdffit_error *err;
@@ -358,6 +359,7 @@ static int lm_callback(void *user, int m, int n, const double *x, double *fvec, 
     }
     if (S->nends > 0 && S->joined < 0 && (S->joined = join_end(S, pt)) >= 0) {
         memcpy(S->join_x, pt->x, sizeof S->join_x);
+        S->join_lin = pt->lin;
         S->join_rr = pt->rr;
         S->seconds_cb += bf_now() - t0;
         return -1; /* lmder stops (info -1); lm_once takes the point */
@@ -692,6 +694,7 @@ static brdffit_status lm_once(lmstate *S, const brdffit_fit_options *o, lmrun *r
         return S->st;
     if (S->joined >= 0) { /* stopped where an earlier run ended */
         memcpy(run->x, S->join_x, sizeof run->x);
+        run->lin = S->join_lin;
         run->rr = S->join_rr;
         return BRDFFIT_OK;
     }

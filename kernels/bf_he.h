@@ -1347,10 +1347,16 @@ typedef struct bf_he_flat {
     BF_REAL lanes;    /* 1 in a lane whose shadowing is flat at p[0]            */
 } bf_he_flat;
 
-BF_FN void bf_he_flat_make(const bf_geom *g, double tau, double sigma0, bf_he_flat *f)
+/* f's cosines, floored as bf_he_dir_make floors them. */
+BF_FN void bf_he_flat_cos(const bf_geom *g, bf_he_flat *f)
 {
     f->ci = fmax(g->iz, BF_HE_COS_MIN);
     f->co = fmax(g->oz, BF_HE_COS_MIN);
+}
+
+BF_FN void bf_he_flat_make(const bf_geom *g, double tau, double sigma0, bf_he_flat *f)
+{
+    bf_he_flat_cos(g, f);
     BF_REAL ui = bf_he_u(f->ci, sqrt(g->ix * g->ix + g->iy * g->iy), tau, sigma0);
     BF_REAL uo = bf_he_u(f->co, sqrt(g->ox * g->ox + g->oy * g->oy), tau, sigma0);
     f->lanes = BF_SEL(BF_R(0.0), BF_R(1.0), (ui >= BF_HE_U_FLAT) && (uo >= BF_HE_U_FLAT));
@@ -1376,8 +1382,7 @@ BF_FN int bf_he_flat_sure(const bf_geom *g, BF_GLOBAL const double *bins, BF_REA
     const double hd = BF_LAST(vhd);
     if (!bins || BF_ANY(vhd != hd) || !(bins[BF_B_COTLO * BF_NHD_PAD + (int)hd] >= cot_sure))
         return 0;
-    f->ci = fmax(g->iz, BF_HE_COS_MIN);
-    f->co = fmax(g->oz, BF_HE_COS_MIN);
+    bf_he_flat_cos(g, f);
     f->lanes = BF_R(1.0);
     return 1;
 }

@@ -139,9 +139,7 @@ typedef struct lmstate {
     const struct lmrun *ends;      /* the subset runs refined before this one */
     int nends;                     /* (0: it joins none; see join_end)     */
     int joined;                    /* the one of ends it came to (-1: none) */
-    double join_x[NX_MAX];         /* the point where it did, its best d, s */
-    bf_linear join_lin;            /* and r^T r there                       */
-    double join_rr;
+    point join;                    /* the point where it did               */
     brdffit_status st;
     brdffit_error *err;
 } lmstate;
@@ -358,9 +356,7 @@ static int lm_callback(void *user, int m, int n, const double *x, double *fvec, 
         return -1;
     }
     if (S->nends > 0 && S->joined < 0 && (S->joined = join_end(S, pt)) >= 0) {
-        memcpy(S->join_x, pt->x, sizeof S->join_x);
-        S->join_lin = pt->lin;
-        S->join_rr = pt->rr;
+        S->join = *pt;
         S->seconds_cb += bf_now() - t0;
         return -1; /* lmder stops (info -1); lm_once takes the point */
     }
@@ -693,9 +689,9 @@ static brdffit_status lm_once(lmstate *S, const brdffit_fit_options *o, lmrun *r
     if (S->st != BRDFFIT_OK) /* a pass failed: lmder was stopped (info < 0) */
         return S->st;
     if (S->joined >= 0) { /* stopped where an earlier run ended */
-        memcpy(run->x, S->join_x, sizeof run->x);
-        run->lin = S->join_lin;
-        run->rr = S->join_rr;
+        memcpy(run->x, S->join.x, sizeof run->x);
+        run->lin = S->join.lin;
+        run->rr = S->join.rr;
         return BRDFFIT_OK;
     }
     const point *pt = evaluate(S, run->x); /* cached: the point lmder returned */

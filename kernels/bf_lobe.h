@@ -53,31 +53,57 @@ BF_FN void bf_lobe_fd_he(const bf_geom *g, const double (*p)[3], int np, const d
     bf_he_fd(g, p, np, lam, K0, Kj, st ? &st->he : (bf_he_memo *)0);
 }
 
+/* sum_i dK[i] (q[i] - p[i]): the first-order change of a lobe from p to q. */
+BF_FN BF_REAL bf_dk_step(const BF_REAL *dK, const double *p, const double *q)
+{
+    return (dK[0] * (q[0] - p[0]) + dK[1] * (q[1] - p[1])) + dK[2] * (q[2] - p[2]);
+}
+
 /* The kinds of forward differences a BF_MODEL_LOBES entry names. */
 #define BF_FD_POINTWISE(name)                                   \
     bf_lobe_##name(g, p[0], lam, K0);                           \
     for (int j = 0; j < np; j++)                                \
         bf_lobe_##name(g, p[1 + j], lam, Kj[j]);
+#define BF_FD_GRAD(name)                                        \
+    if (np == 0)                                                \
+        bf_lobe_##name(g, p[0], lam, K0);                       \
+    else {                                                      \
+        BF_REAL dk[3] = { BF_R(0.0), BF_R(0.0), BF_R(0.0) };    \
+        K0[0] = K0[1] = K0[2] = bf_##name##_vdk(g, p[0], dk);   \
+        for (int j = 0; j < np; j++)                            \
+            Kj[j][0] = Kj[j][1] = Kj[j][2] =                    \
+                K0[0] + bf_dk_step(dk, p[0], p[1 + j]);         \
+    }
 #define BF_FD_SCHLICK(name)                                     \
     {                                                           \
-        BF_REAL r0 = bf_##name##_rest(g, p[0][1]);              \
-        BF_REAL k0 = bf_schlick(p[0][0], g->vh) * r0;           \
+        BF_REAL dr = BF_R(0.0), r0;                             \
+        if (np == 0)                                            \
+            r0 = bf_##name##_rest(g, p[0][1]);                  \
+        else                                                    \
+            r0 = bf_##name##_rest_vdk(g, p[0][1], &dr);         \
+        BF_REAL f0 = bf_schlick(p[0][0], g->vh);                \
+        BF_REAL k0 = f0 * r0;                                   \
         K0[0] = K0[1] = K0[2] = k0;                             \
-        for (int j = 0; j < np; j++) {                          \
-            BF_REAL rj = r0;                                    \
-            if (p[1 + j][1] != p[0][1])                         \
-                rj = bf_##name##_rest(g, p[1 + j][1]);          \
-            BF_REAL kj = bf_schlick(p[1 + j][0], g->vh) * rj;   \
-            Kj[j][0] = Kj[j][1] = Kj[j][2] = kj;                \
+        if (np > 0) {                                           \
+            BF_REAL dk[3];                                      \
+            dk[0] = (1.0 - bf_schlick(0.0, g->vh)) * r0;        \
+            dk[1] = f0 * dr;                                    \
+            dk[2] = BF_R(0.0);                                  \
+            for (int j = 0; j < np; j++)                        \
+                Kj[j][0] = Kj[j][1] = Kj[j][2] =                \
+                    k0 + bf_dk_step(dk, p[0], p[1 + j]);        \
         }                                                       \
     }
 #define BF_FD_OWN(name) bf_lobe_fd_##name(g, p, np, lam, K0, Kj, st);
 
 /* K at p[0] and at the np forward-difference neighbours p[1..np] of a data
- * pass (see bf_pass.h): K0[c] = K(p[0]) as bf_lobe gives it, Kj[j][c] ~
- * K(p[1 + j]).  A BF_FD_POINTWISE lobe is evaluated at each point, a
- * BF_FD_SCHLICK one gives the same values with its rest evaluated once for
- * the points that differ only in F0; He
+ * pass (see bf_pass.h): K0[c] = K(p[0]) as bf_lobe gives it, bit for bit,
+ * Kj[j][c] ~ K(p[1 + j]).  A BF_FD_POINTWISE lobe is evaluated at each
+ * point; a BF_FD_GRAD lobe gives K(p[0]) plus its partials
+ * (bf_<model>_vdk, bf_models.h) times p[1 + j] - p[0], and a BF_FD_SCHLICK
+ * one (K = F(F0, V.H) R(p[1])) the same from Schlick's partial in F0 and
+ * its rest's in p[1] (bf_<model>_rest_vdk): a full pass then costs a value
+ * pass and a few products a sample instead of 1 + np lobes.  He
  * (BF_FD_OWN) sums its series once and carries it to the neighbours to first
  * order in its log, and with a state (NULL: none) reuses the previous
  * vector's series where g and a are unchanged, and with the pass's bin rows
@@ -114,6 +140,7 @@ BF_FN int bf_lobe_fdf_he(const bf_geom *g, const double (*p)[3], int np, const d
 }
 
 #define BF_FDF_BF_FD_POINTWISE(name)
+#define BF_FDF_BF_FD_GRAD(name)
 #define BF_FDF_BF_FD_SCHLICK(name)
 #define BF_FDF_BF_FD_OWN(name) return bf_lobe_fdf_##name(g, p, np, lam, K0, Kj, st, q);
 
@@ -150,6 +177,7 @@ BF_FN void bf_lobe_rows_he(BF_GLOBAL const double *bins, int h0, int h1, const d
 }
 
 #define BF_ROWS_BF_FD_POINTWISE(name)
+#define BF_ROWS_BF_FD_GRAD(name)
 #define BF_ROWS_BF_FD_SCHLICK(name)
 #define BF_ROWS_BF_FD_OWN(name) bf_lobe_rows_##name(bins, h0, h1, p, np, lam, rows, nrows, st);
 
@@ -182,19 +210,29 @@ BF_FN double bf_lobe_factor(const bf_lobe_state *st, int j, int c)
     return st->he.bk[j][c];
 }
 
-/* 1 when a model's lobe has forward differences of its own (BF_FD_OWN);
- * 0 when they are the lobe's values at each point, bit for bit
- * (BF_FD_POINTWISE, BF_FD_SCHLICK). */
-BF_FN int bf_lobe_has_own_fd(int model)
+/* How a model's lobe takes a data pass's forward differences (the fd of its
+ * BF_MODEL_LOBES entry): BF_FD_KIND_POINTWISE (the lobe's values at each
+ * point, bit for bit), BF_FD_KIND_PARTIALS (BF_FD_GRAD, BF_FD_SCHLICK: its
+ * value and partials) or BF_FD_KIND_OWN (BF_FD_OWN: He, with bin rows). */
+enum { BF_FD_KIND_POINTWISE, BF_FD_KIND_PARTIALS, BF_FD_KIND_OWN };
+BF_FN int bf_lobe_fd_kind(int model)
 {
-#define BF_FD_KIND_BF_FD_POINTWISE 0
-#define BF_FD_KIND_BF_FD_SCHLICK 0
-#define BF_FD_KIND_BF_FD_OWN 1
+#define BF_FD_KIND_BF_FD_POINTWISE BF_FD_KIND_POINTWISE
+#define BF_FD_KIND_BF_FD_GRAD BF_FD_KIND_PARTIALS
+#define BF_FD_KIND_BF_FD_SCHLICK BF_FD_KIND_PARTIALS
+#define BF_FD_KIND_BF_FD_OWN BF_FD_KIND_OWN
 #define BF_LOBE_KIND_CASE(id, name, fd) \
     if (model == id) return BF_FD_KIND_##fd;
     BF_MODEL_LOBES(BF_LOBE_KIND_CASE)
 #undef BF_LOBE_KIND_CASE
-    return 0;
+    return BF_FD_KIND_POINTWISE;
+}
+
+/* 1 when a model's lobe has forward differences of its own (BF_FD_OWN: it
+ * has bin rows). */
+BF_FN int bf_lobe_has_own_fd(int model)
+{
+    return bf_lobe_fd_kind(model) == BF_FD_KIND_OWN;
 }
 
 #endif /* BF_LOBE_H */

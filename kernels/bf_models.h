@@ -54,10 +54,44 @@ BF_FN BF_REAL bf_schlick(double f0, BF_REAL c)
 
 /* x^n for x >= 0 (at most 1 + rounding) and real n > 0: exp(n log x), 0 where
  * x <= 0.  Not clamped at 1: the reference values are not either. */
+BF_FN BF_REAL bf_powu(BF_REAL x, double n);
+
+/* ln x as bf_powu takes it (x floored at BF_TINY): also d ln x^n / d n. */
+BF_FN BF_REAL bf_powu_log(BF_REAL x)
+{
+    return log(fmax(x, BF_TINY));
+}
+
+/* bf_powu from lx = bf_powu_log(x), for a lobe that needs lx again. */
+BF_FN BF_REAL bf_powu_l(BF_REAL x, BF_REAL lx, double n)
+{
+    return BF_SEL(exp(n * lx), BF_R(0.0), x <= 0.0);
+}
+
 BF_FN BF_REAL bf_powu(BF_REAL x, double n)
 {
-    BF_REAL xs = fmax(x, BF_TINY);
-    return BF_SEL(exp(n * log(xs)), BF_R(0.0), x <= 0.0);
+    return bf_powu_l(x, bf_powu_log(x), n);
+}
+
+/* The partials of the lobes, for a data pass's derivatives (BF_FD_GRAD and
+ * BF_FD_SCHLICK in bf_lobe.h): K = bf_<model>_vdk(g, p, dK) is the lobe's
+ * value at p, bit for bit what bf_<model> gives (the same operations), and
+ * sets dK[i] = dK / dp_i for its parameters p[i]; r = bf_<model>_rest_vdk(g,
+ * p1, &dr) the same for a Schlick lobe's rest (below) and its partial in p1.
+ * Where K = 0 (underflowed, or cut off) the partials are 0.  The helpers: */
+
+/* d ln K / d alpha of a lobe exp(-tan^2 delta / alpha^2) / alpha^2 times
+ * what does not depend on alpha (Ward, Ward-Duer, Cook-Torrance's m). */
+BF_FN BF_REAL bf_beckmann_dlog(const bf_geom *g, double alpha)
+{
+    return (2.0 * bf_tan2(g->nh) / (alpha * alpha) - 2.0) / alpha;
+}
+
+/* K dlog where K > 0, else 0: a lobe that has underflowed (or is cut off)
+ * has partials 0, and its dlog may be infinite there. */
+BF_FN BF_REAL bf_dk_where(BF_REAL K, BF_REAL dlog)
+{
+    return BF_SEL(K * dlog, BF_R(0.0), K <= 0.0);
 }
 
 /* Ward [alpha] */
@@ -74,24 +108,79 @@ BF_FN BF_REAL bf_ward_duer(const bf_geom *g, double alpha)
     return exp(-bf_tan2(g->nh) / a2) / ((4.0 * BF_PI * a2) * (g->iz * g->oz));
 }
 
+BF_FN BF_REAL bf_ward_vdk(const bf_geom *g, const double *p, BF_REAL *dK)
+{
+    BF_REAL K = bf_ward(g, p[0]);
+    dK[0] = bf_dk_where(K, bf_beckmann_dlog(g, p[0]));
+    return K;
+}
+
+BF_FN BF_REAL bf_ward_duer_vdk(const bf_geom *g, const double *p, BF_REAL *dK)
+{
+    BF_REAL K = bf_ward_duer(g, p[0]);
+    dK[0] = bf_dk_where(K, bf_beckmann_dlog(g, p[0]));
+    return K;
+}
+
 /* Blinn-Phong [n] */
+BF_FN BF_REAL bf_blinn_phong_l(const bf_geom *g, double n, BF_REAL lx)
+{
+    return ((n + 2.0) / (2.0 * BF_PI)) * bf_powu_l(g->nh, lx, n);
+}
+
 BF_FN BF_REAL bf_blinn_phong(const bf_geom *g, double n)
 {
-    return ((n + 2.0) / (2.0 * BF_PI)) * bf_powu(g->nh, n);
+    return bf_blinn_phong_l(g, n, bf_powu_log(g->nh));
+}
+
+BF_FN BF_REAL bf_blinn_phong_vdk(const bf_geom *g, const double *p, BF_REAL *dK)
+{
+    BF_REAL lx = bf_powu_log(g->nh);
+    BF_REAL K = bf_blinn_phong_l(g, p[0], lx);
+    dK[0] = bf_dk_where(K, 1.0 / (p[0] + 2.0) + lx);
+    return K;
 }
 
 /* Lafortune [Cxy, Cz, n]: the base is normalised by max(|Cxy|, |Cz|) before
  * the power, so that large n cannot underflow the normalisation. */
-BF_FN BF_REAL bf_lafortune(const bf_geom *g, double cxy, double cz, double n)
+BF_FN BF_REAL bf_lafortune_x(const bf_geom *g, double cxy, double cz)
 {
     double m = fmax(fabs(cxy), fabs(cz));
-    BF_REAL x = (cxy * (g->ix * g->ox + g->iy * g->oy) + cz * (g->iz * g->oz)) / m;
+    return (cxy * (g->ix * g->ox + g->iy * g->oy) + cz * (g->iz * g->oz)) / m;
+}
+
+BF_FN BF_REAL bf_lafortune(const bf_geom *g, double cxy, double cz, double n)
+{
+    BF_REAL x = bf_lafortune_x(g, cxy, cz);
     return ((n + 2.0) / (2.0 * BF_PI)) * bf_powu(x, n);
 }
 
+/* Lafortune's partials.  With m = max(|Cxy|, |Cz|) (taken from Cxy on a tie,
+ * as one-sided as a forward difference is) and w = wi.wo's tangential or
+ * normal part, d x / d C = (w - [m is |C|] x sgn C) / m and
+ * d K / d C = K n (d x / d C) / x, x floored at BF_LAF_X_MIN: below it the
+ * lobe is at most (n + 2) / (2 pi) 1e-12^n, and for n < 1 its partial would
+ * grow without bound (K = 0 where x <= 0: its partials 0). */
+#define BF_LAF_X_MIN 1e-12
+BF_FN BF_REAL bf_lafortune_vdk(const bf_geom *g, const double *p, BF_REAL *dK)
+{
+    const double cxy = p[0], cz = p[1], n = p[2];
+    const double m = fmax(fabs(cxy), fabs(cz));
+    const double sxy = fabs(cxy) >= fabs(cz) ? copysign(1.0, cxy) : 0.0;
+    const double sz = fabs(cxy) >= fabs(cz) ? 0.0 : copysign(1.0, cz);
+    BF_REAL x = bf_lafortune_x(g, cxy, cz), lx = bf_powu_log(x);
+    BF_REAL K = ((n + 2.0) / (2.0 * BF_PI)) * bf_powu_l(x, lx, n);
+    BF_REAL kx = K * (n / fmax(x, BF_LAF_X_MIN));
+    dK[0] = kx * ((g->ix * g->ox + g->iy * g->oy - x * sxy) / m);
+    dK[1] = kx * ((g->iz * g->oz - x * sz) / m);
+    dK[2] = bf_dk_where(K, 1.0 / (n + 2.0) + lx);
+    return K;
+}
+
 /* The lobes whose F0 enters only through Schlick's factor at V.H are
- * written K = F(F0, V.H) R(g, p1), R their _rest: a data pass reuses R for
- * F0's forward difference (BF_FD_SCHLICK in bf_lobe.h), bit for bit. */
+ * written K = F(F0, V.H) R(g, p1), R their _rest: a full data pass takes
+ * F0's partial from R and p1's from bf_<model>_rest_vdk (BF_FD_SCHLICK in
+ * bf_lobe.h). */
 
 /* Cook-Torrance [F0, m], with the constant 1/(4 pi m^2) of the published fits */
 BF_FN BF_REAL bf_cook_torrance_rest(const bf_geom *g, double m)
@@ -104,15 +193,35 @@ BF_FN BF_REAL bf_cook_torrance_rest(const bf_geom *g, double m)
     return gg * d / (g->iz * g->oz);
 }
 
+BF_FN BF_REAL bf_cook_torrance_rest_vdk(const bf_geom *g, double m, BF_REAL *dr)
+{
+    BF_REAL r = bf_cook_torrance_rest(g, m);
+    *dr = bf_dk_where(r, bf_beckmann_dlog(g, m));
+    return r;
+}
+
 BF_FN BF_REAL bf_cook_torrance(const bf_geom *g, double f0, double m)
 {
     return bf_schlick(f0, g->vh) * bf_cook_torrance_rest(g, m);
 }
 
 /* Ashikhmin-Shirley [F0, n] */
+BF_FN BF_REAL bf_ashikhmin_shirley_rest_l(const bf_geom *g, double n, BF_REAL lx)
+{
+    return ((n + 1.0) / (8.0 * BF_PI)) * bf_powu_l(g->nh, lx, n) / (g->vh * fmax(g->iz, g->oz));
+}
+
 BF_FN BF_REAL bf_ashikhmin_shirley_rest(const bf_geom *g, double n)
 {
-    return ((n + 1.0) / (8.0 * BF_PI)) * bf_powu(g->nh, n) / (g->vh * fmax(g->iz, g->oz));
+    return bf_ashikhmin_shirley_rest_l(g, n, bf_powu_log(g->nh));
+}
+
+BF_FN BF_REAL bf_ashikhmin_shirley_rest_vdk(const bf_geom *g, double n, BF_REAL *dr)
+{
+    BF_REAL lx = bf_powu_log(g->nh);
+    BF_REAL r = bf_ashikhmin_shirley_rest_l(g, n, lx);
+    *dr = bf_dk_where(r, 1.0 / (n + 1.0) + lx);
+    return r;
 }
 
 BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
@@ -128,16 +237,36 @@ BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
  * (not normalised) D = a^2 |H|^4 / (pi (a^2 Hz^2 + Hx^2 + Hy^2)^2), and with
  * q(w) = sqrt(z^2 + a^2 (x^2 + y^2)) = z (1 + 2 L(w)),
  * G2 / (4 cos ti cos to) = 1 / (2 (q(wi) oz + q(wo) iz)). */
-BF_FN BF_REAL bf_ggx_rest(const bf_geom *g, double alpha)
+/* With deriv, *dr = d R / d alpha = R 2 alpha d ln R / d a^2,
+ * d ln R / d a^2 = 1 / a^2 - 2 Hz^2 / den - (oz dqi + iz dqo) / (qi oz + qo iz),
+ * dq(w) = d q(w) / d a^2 = (x^2 + y^2) / (2 q(w)). */
+BF_FN BF_REAL bf_ggx_rest_d(const bf_geom *g, double alpha, int deriv, BF_REAL *dr)
 {
     double a2 = alpha * alpha;
     BF_REAL hx = g->ix + g->ox, hy = g->iy + g->oy, hz = g->iz + g->oz;
     BF_REAL s2 = hx * hx + hy * hy, h2 = s2 + hz * hz;
     BF_REAL den = a2 * (hz * hz) + s2;
     BF_REAL d = (a2 * (h2 * h2)) / (BF_PI * (den * den));
-    BF_REAL qi = sqrt(g->iz * g->iz + a2 * (g->ix * g->ix + g->iy * g->iy));
-    BF_REAL qo = sqrt(g->oz * g->oz + a2 * (g->ox * g->ox + g->oy * g->oy));
-    return d / (2.0 * (qi * g->oz + qo * g->iz));
+    BF_REAL ti2 = g->ix * g->ix + g->iy * g->iy, to2 = g->ox * g->ox + g->oy * g->oy;
+    BF_REAL qi = sqrt(g->iz * g->iz + a2 * ti2);
+    BF_REAL qo = sqrt(g->oz * g->oz + a2 * to2);
+    BF_REAL qq = qi * g->oz + qo * g->iz;
+    BF_REAL r = d / (2.0 * qq);
+    if (deriv) {
+        BF_REAL dq = (g->oz * (ti2 / qi) + g->iz * (to2 / qo)) / (2.0 * qq);
+        *dr = bf_dk_where(r, (2.0 * alpha) * (1.0 / a2 - 2.0 * (hz * hz) / den - dq));
+    }
+    return r;
+}
+
+BF_FN BF_REAL bf_ggx_rest(const bf_geom *g, double alpha)
+{
+    return bf_ggx_rest_d(g, alpha, 0, (BF_REAL *)0);
+}
+
+BF_FN BF_REAL bf_ggx_rest_vdk(const bf_geom *g, double alpha, BF_REAL *dr)
+{
+    return bf_ggx_rest_d(g, alpha, 1, dr);
 }
 
 BF_FN BF_REAL bf_ggx(const bf_geom *g, double f0, double alpha)
@@ -167,16 +296,18 @@ BF_GREY_LOBE(ggx, bf_ggx(g, p[0], p[1]))
 
 /* The lobe of each model, by id (the values of brdffit_model in brdffit.h;
  * src/lib/registry.c checks that it has an entry for each): X(id, model, fd)
- * with bf_lobe_<model> its entry point and fd how a data pass takes its
- * forward differences, BF_FD_POINTWISE (the lobe at each point), BF_FD_SCHLICK
- * (K = F(p[0], V.H) bf_<model>_rest(g, p[1]): the rest once per distinct p[1])
+ * with bf_lobe_<model> its entry point and fd how a full data pass takes its
+ * derivatives: BF_FD_GRAD (the partials of bf_<model>_vdk), BF_FD_SCHLICK
+ * (K = F(p[0], V.H) bf_<model>_rest(g, p[1]): Schlick's partial and
+ * bf_<model>_rest_vdk's), BF_FD_POINTWISE (the lobe again at each forward-
+ * difference neighbour: a new model's lobe needs no partials to be fitted)
  * or BF_FD_OWN (its own bf_lobe_fd_<model>).  bf_lobe and bf_lobe_fd (bf_lobe.h) switch
  * over this list; the rest of a model's facts are its registry entry. */
 #define BF_MODEL_LOBES(X)                                                                 \
-    X(0, ward, BF_FD_POINTWISE)                                                           \
-    X(1, ward_duer, BF_FD_POINTWISE)                                                      \
-    X(2, blinn_phong, BF_FD_POINTWISE)                                                    \
-    X(3, lafortune, BF_FD_POINTWISE)                                                      \
+    X(0, ward, BF_FD_GRAD)                                                               \
+    X(1, ward_duer, BF_FD_GRAD)                                                          \
+    X(2, blinn_phong, BF_FD_GRAD)                                                        \
+    X(3, lafortune, BF_FD_GRAD)                                                          \
     X(4, cook_torrance, BF_FD_SCHLICK)                                                    \
     X(5, ashikhmin_shirley, BF_FD_SCHLICK)                                                \
     X(6, he, BF_FD_OWN)                                                                   \

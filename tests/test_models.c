@@ -389,6 +389,111 @@ START_TEST(abi_values)
 }
 END_TEST
 
+/* The lobe's K at p[0] and its forward-difference neighbours, each evaluated
+ * (BF_FD_POINTWISE, the plain forward differences): the oracle of the
+ * partials a data pass takes instead (BF_FD_GRAD, BF_FD_SCHLICK). */
+static void fd_pointwise(int model, const bf_geom *g, const double (*p)[3], int np,
+                         const double *lam, double *K0, double (*Kj)[3])
+{
+    switch (model) {
+#define PW_CASE(id, name, fd) \
+    case id: { BF_FD_POINTWISE(name) } return;
+        BF_MODEL_LOBES(PW_CASE)
+#undef PW_CASE
+    default: ck_abort_msg("model %d has no lobe", model);
+    }
+}
+
+/* A data pass's derivative of a closed-form lobe in each parameter,
+ * (K(p_j) - K(p_0)) / h from bf_lobe_fd with p_j = p_0 + h e_j, h = 1e-8 of
+ * |p_j| (its partials, BF_FD_GRAD / BF_FD_SCHLICK), against the central
+ * difference (K(p_0 + H e_j) - K(p_0 - H e_j)) / 2H of the lobe evaluated
+ * at those points (fd_pointwise), H = 1e-6 of |p_j| or less where K
+ * changes by more than 1e-3 of itself over it: within 1e-5 of
+ * |G| + |K| / |p_j| at random points and directions (the central
+ * difference's own error is ~H^2 / 6 times the third partial, ~1e-7 of
+ * it; not where K is subnormal), and finite at the corners of the parameter
+ * box too.  K0 is the lobe's value, bit for bit. */
+START_TEST(partials_match_differences)
+{
+    brdffit_model m = closed_form_model(_i);
+    const brdffit_model_info *mi = brdffit_model_get(m);
+    ck_assert_int_ne(bf_lobe_fd_kind((int)m), BF_FD_KIND_OWN);
+    const double lam[3] = { 0.645, 0.526, 0.444 };
+    const int np = mi->nparams, corners = 1 << np;
+    unsigned st = 4242u + (unsigned)_i;
+    long compared = 0;
+    for (int pt = 0; pt < corners + 40; pt++) {
+        double p0[3] = { 0, 0, 0 };
+        for (int k = 0; k < np; k++) {
+            double lo = mi->params[k].lower, hi = mi->params[k].upper;
+            if (pt < corners)
+                p0[k] = (pt >> k & 1) ? hi : lo;
+            else if (mi->params[k].map == BRDFFIT_MAP_LOG) /* log-uniform, as the fit sees it */
+                p0[k] = lo * pow(hi / lo, tu_urand(&st));
+            else
+                p0[k] = lo + (hi - lo) * tu_urand(&st);
+        }
+        if (mi->params[0].map == BRDFFIT_MAP_DIRECTION) {
+            if (p0[0] == 0 && p0[1] == 0)
+                p0[1] = 1;
+            if (fabs(fabs(p0[0]) - fabs(p0[1])) < 1e-3 * fmax(fabs(p0[0]), fabs(p0[1])))
+                p0[1] *= 1.01; /* off Lafortune's kink at |Cxy| = |Cz| */
+        }
+        double pa[4][3], step[3];
+        for (int j = 0; j <= np; j++) {
+            memcpy(pa[j], p0, sizeof p0);
+            if (j > 0) {
+                step[j - 1] = 1e-8 * fmax(fabs(p0[j - 1]), 1e-3);
+                pa[j][j - 1] += step[j - 1];
+            }
+        }
+        for (int t = 0; t < 400; t++) {
+            double wi[3], wo[3], K0[3], Ka[3][3], Kb0[3], Kb[3][3], Kc[3][3];
+            double ga[3], H[3], pb[4][3], pc[4][3];
+            tu_rand_dir(&st, t < 200 ? 1e-3 : 0.2, wi);
+            tu_rand_dir(&st, t < 200 ? 1e-3 : 0.2, wo);
+            bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
+            bf_geom_derive(&g);
+            bf_lobe_fd((int)m, &g, (const double(*)[3])pa, np, lam, K0, Ka, NULL);
+            /* the oracle's step: 1e-6 of |p_j|, or less where K changes by more
+             * than 1e-3 of itself over it (a far tail) */
+            for (int j = 0; j <= np; j++) {
+                memcpy(pb[j], p0, sizeof p0);
+                memcpy(pc[j], p0, sizeof p0);
+                if (j == 0)
+                    continue;
+                ga[j - 1] = (Ka[j - 1][0] - K0[0]) / step[j - 1];
+                H[j - 1] = 100.0 * step[j - 1];
+                if (fabs(ga[j - 1]) * H[j - 1] > 1e-3 * K0[0])
+                    H[j - 1] = 1e-3 * K0[0] / fabs(ga[j - 1]);
+                pb[j][j - 1] += H[j - 1];
+                pc[j][j - 1] -= H[j - 1];
+            }
+            fd_pointwise((int)m, &g, (const double(*)[3])pb, np, lam, Kb0, Kb);
+            ck_assert(memcmp(K0, Kb0, sizeof K0) == 0);
+            fd_pointwise((int)m, &g, (const double(*)[3])pc, np, lam, Kb0, Kc);
+            for (int j = 0; j < np; j++) {
+                ck_assert_msg(isfinite(ga[j]), "%s p=(%g,%g,%g): partial %d is %g", mi->name,
+                              p0[0], p0[1], p0[2], j, ga[j]);
+                if (pt < corners || !(K0[0] > 1e-280)) /* subnormal K: no digits to compare */
+                    continue;
+                double gb = (Kb[j][0] - Kc[j][0]) / ((pb[1 + j][j] - p0[j]) - (pc[1 + j][j] - p0[j]));
+                double scale = fabs(gb) + fabs(K0[0]) / fmax(fabs(p0[j]), 1e-3);
+                ck_assert_msg(fabs(ga[j] - gb) <= 1e-5 * scale,
+                              "%s p=(%.9g,%.9g,%.9g) wi=(%g,%g,%g) wo=(%g,%g,%g) K=%g: partial %d "
+                              "%.9g, difference %.9g",
+                              mi->name, p0[0], p0[1], p0[2], wi[0], wi[1], wi[2], wo[0], wo[1],
+                              wo[2], K0[0], j, ga[j], gb);
+                compared++;
+            }
+        }
+    }
+    ck_assert_msg(compared > 40L * 400 * np / 4, "%s: only %ld partials compared where K > 0",
+                  mi->name, compared);
+}
+END_TEST
+
 Suite *models_suite(void)
 {
     Suite *s = suite_create("models");
@@ -403,6 +508,7 @@ Suite *models_suite(void)
     int nclosed = closed_form(ms);
     tcase_add_loop_test(tc, reciprocity, 0, nclosed);
     tcase_add_loop_test(tc, finite_everywhere, 0, nclosed);
+    tcase_add_loop_test(tc, partials_match_differences, 0, nclosed);
     tcase_add_test(tc, exponent_million);
     tcase_add_test(tc, bad_parameters);
     tcase_add_test(tc, below_horizon_and_batch);

@@ -52,10 +52,6 @@ BF_FN BF_REAL bf_schlick(double f0, BF_REAL c)
     return f0 + (1.0 - f0) * (u2 * u2 * u);
 }
 
-/* x^n for x >= 0 (at most 1 + rounding) and real n > 0: exp(n log x), 0 where
- * x <= 0.  Not clamped at 1: the reference values are not either. */
-BF_FN BF_REAL bf_powu(BF_REAL x, double n);
-
 /* ln x as bf_powu takes it (x floored at BF_TINY): also d ln x^n / d n. */
 BF_FN BF_REAL bf_powu_log(BF_REAL x)
 {
@@ -68,6 +64,8 @@ BF_FN BF_REAL bf_powu_l(BF_REAL x, BF_REAL lx, double n)
     return BF_SEL(exp(n * lx), BF_R(0.0), x <= 0.0);
 }
 
+/* x^n for x >= 0 (at most 1 + rounding) and real n > 0: exp(n log x), 0 where
+ * x <= 0.  Not clamped at 1: the reference values are not either. */
 BF_FN BF_REAL bf_powu(BF_REAL x, double n)
 {
     return bf_powu_l(x, bf_powu_log(x), n);
@@ -236,8 +234,8 @@ BF_FN BF_REAL bf_ashikhmin_shirley(const bf_geom *g, double f0, double n)
  * without 1 - cos^2 and without dividing by the cosines: with H = wi + wo
  * (not normalised) D = a^2 |H|^4 / (pi (a^2 Hz^2 + Hx^2 + Hy^2)^2), and with
  * q(w) = sqrt(z^2 + a^2 (x^2 + y^2)) = z (1 + 2 L(w)),
- * G2 / (4 cos ti cos to) = 1 / (2 (q(wi) oz + q(wo) iz)). */
-/* With deriv, *dr = d R / d alpha = R 2 alpha d ln R / d a^2,
+ * G2 / (4 cos ti cos to) = 1 / (2 (q(wi) oz + q(wo) iz)).  With deriv, also
+ * *dr = d R / d alpha = R 2 alpha d ln R / d a^2, where
  * d ln R / d a^2 = 1 / a^2 - 2 Hz^2 / den - (oz dqi + iz dqo) / (qi oz + qo iz),
  * dq(w) = d q(w) / d a^2 = (x^2 + y^2) / (2 q(w)). */
 BF_FN BF_REAL bf_ggx_rest_d(const bf_geom *g, double alpha, int deriv, BF_REAL *dr)

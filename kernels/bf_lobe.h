@@ -59,6 +59,16 @@ BF_FN BF_REAL bf_dk_step(const BF_REAL *dK, const double *p, const double *q)
     return (dK[0] * (q[0] - p[0]) + dK[1] * (q[1] - p[1])) + dK[2] * (q[2] - p[2]);
 }
 
+/* K0 = k0 and the neighbours K(p[0]) + dK . (p[1 + j] - p[0]) of a lobe
+ * with partials dK, the same in every channel (BF_FD_GRAD, BF_FD_SCHLICK). */
+BF_FN void bf_lobe_fd_partials(BF_REAL k0, const BF_REAL *dK, const double (*p)[3], int np,
+                               BF_REAL *K0, BF_REAL (*Kj)[3])
+{
+    K0[0] = K0[1] = K0[2] = k0;
+    for (int j = 0; j < np; j++)
+        Kj[j][0] = Kj[j][1] = Kj[j][2] = k0 + bf_dk_step(dK, p[0], p[1 + j]);
+}
+
 /* The kinds of forward differences a BF_MODEL_LOBES entry names. */
 #define BF_FD_POINTWISE(name)                                   \
     bf_lobe_##name(g, p[0], lam, K0);                           \
@@ -69,10 +79,8 @@ BF_FN BF_REAL bf_dk_step(const BF_REAL *dK, const double *p, const double *q)
         bf_lobe_##name(g, p[0], lam, K0);                       \
     else {                                                      \
         BF_REAL dk[3] = { BF_R(0.0), BF_R(0.0), BF_R(0.0) };    \
-        K0[0] = K0[1] = K0[2] = bf_##name##_vdk(g, p[0], dk);   \
-        for (int j = 0; j < np; j++)                            \
-            Kj[j][0] = Kj[j][1] = Kj[j][2] =                    \
-                K0[0] + bf_dk_step(dk, p[0], p[1 + j]);         \
+        BF_REAL k0 = bf_##name##_vdk(g, p[0], dk);              \
+        bf_lobe_fd_partials(k0, dk, p, np, K0, Kj);             \
     }
 #define BF_FD_SCHLICK(name)                                     \
     {                                                           \
@@ -82,17 +90,12 @@ BF_FN BF_REAL bf_dk_step(const BF_REAL *dK, const double *p, const double *q)
         else                                                    \
             r0 = bf_##name##_rest_vdk(g, p[0][1], &dr);         \
         BF_REAL f0 = bf_schlick(p[0][0], g->vh);                \
-        BF_REAL k0 = f0 * r0;                                   \
-        K0[0] = K0[1] = K0[2] = k0;                             \
+        BF_REAL dk[3] = { BF_R(0.0), BF_R(0.0), BF_R(0.0) };    \
         if (np > 0) {                                           \
-            BF_REAL dk[3];                                      \
             dk[0] = (1.0 - bf_schlick(0.0, g->vh)) * r0;        \
             dk[1] = f0 * dr;                                    \
-            dk[2] = BF_R(0.0);                                  \
-            for (int j = 0; j < np; j++)                        \
-                Kj[j][0] = Kj[j][1] = Kj[j][2] =                \
-                    k0 + bf_dk_step(dk, p[0], p[1 + j]);        \
         }                                                       \
+        bf_lobe_fd_partials(f0 * r0, dk, p, np, K0, Kj);        \
     }
 #define BF_FD_OWN(name) bf_lobe_fd_##name(g, p, np, lam, K0, Kj, st);
 

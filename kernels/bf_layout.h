@@ -17,7 +17,7 @@
  *     BF_MC_SE, BF_MC_SKE, BF_MC_SEE   sum a^2 e, a^2 K e, a^2 e^2
  *     bf_mc_sge(j)                 sum a^2 G_j e
  * The offsets inside a block are relative to the block's start.
- * (The bin table a He pass also reads is He's own: BF_B_* in bf_he.h.)
+ * (The bin table a He pass also reads is He's own: BF_B_* in bf_he_rows.h.)
  */
 #ifndef BF_LAYOUT_H
 #define BF_LAYOUT_H

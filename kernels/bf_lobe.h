@@ -165,7 +165,7 @@ BF_FN int bf_lobe_fd_factored(int model, const bf_geom *g, const double (*p)[3],
 }
 
 /* The bin rows of a pass (He: bf_he_bin_rows), for the lobes that have them
- * (BF_FD_OWN): made for the bins h0 .. h1 of the bin table `bins` (bf_he.h)
+ * (BF_FD_OWN): made for the bins h0 .. h1 of the bin table `bins` (bf_he_rows.h)
  * into rows (nrows per field) and handed to st, which then serves a vector
  * whose lanes are flat from them, given the vector's bins (bf_lobe_bins). */
 BF_FN void bf_lobe_rows_he(BF_GLOBAL const double *bins, int h0, int h1, const double (*p)[3],

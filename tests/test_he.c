@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_he.c -- the He et al. lobe (kernels/bf_he.h): the reference values of
+/* test_he.c -- the He et al. lobe (kernels/bf_he*.h): the reference values of
  * ../shared/data/he-reference.tsv, reciprocity, the limits of G, D and S, the
  * series against a brute-force sum, and finiteness at the published fits and
  * at the corners of the parameter box. */

@@ -14,7 +14,7 @@
 
 #include "bf_layout.h"
 
-/* The bin table of a sample set (BF_B_* in kernels/bf_he.h) and room for a pass's
+/* The bin table of a sample set (BF_B_* in kernels/bf_he_rows.h) and room for a pass's
  * bin rows, for a model whose pass makes them (He); all NULL: none. */
 typedef struct bf_pass_bins {
     double *hd;     /* npad: each sample's bin hd (padding: the last one's) */

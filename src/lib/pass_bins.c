@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* pass_bins.c -- the bin table of a sample set (BF_B_* in kernels/bf_he.h) for a
- * model whose pass makes bin rows (He: bf_he_bin_rows in kernels/bf_he.h):
+/* pass_bins.c -- the bin table of a sample set (BF_B_* in kernels/bf_he_rows.h) for a
+ * model whose pass makes bin rows (He: bf_he_bin_rows in kernels/bf_he_rows.h):
  * each sample's (theta_h, theta_d) bin, one geometry per bin and its
  * flatness bounds, and room for the host loop's rows. */
 #include "pass.h"

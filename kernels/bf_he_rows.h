@@ -1,0 +1,277 @@
+/* SPDX-License-Identifier: MIT */
+/* bf_he_rows.h -- the bin rows of a He data pass: K cos ti cos to per
+ * (theta_h, theta_d) bin and point where the shadowing is flat, made once per
+ * pass from the sample set's bin table (BF_B_*) and served to the vectors
+ * whose lanes are flat. */
+#ifndef BF_HE_ROWS_H
+#define BF_HE_ROWS_H
+
+#ifndef __OPENCL_VERSION__
+#include "bf_he_fd.h"
+#endif
+
+/* The (theta_h, theta_d) bins of a sample set, for a lobe whose value factors
+ * on a bin (He where the shadowing is flat: bf_he_bin_rows).  Bin hd = the
+ * MERL bin index / 180 (0 .. BF_NHD - 1); field f of bin hd at
+ * bins[f * BF_NHD_PAD + hd]: the geometry of the set's first sample in the
+ * bin, BF_B_COT, the largest over the bin's samples of
+ * min(cot ti, cot to) (bf_he_cot_of_cos; 0 for a bin with no sample), and
+ * BF_B_COTLO, the smallest (0 for a bin with no sample).  A pass's bin rows hold
+ * BF_BK_FIELDS fields per bin (bf_he_bin_rows). */
+enum {
+    BF_B_IX, BF_B_IY, BF_B_IZ, BF_B_OX, BF_B_OY, BF_B_OZ, BF_B_NH, BF_B_VH,
+    BF_B_COT, BF_B_COTLO,
+    BF_BFIELDS
+};
+#define BF_NHD (90 * 90)
+#define BF_NHD_PAD (BF_NHD + 8) /* a vector from the last bin stays inside */
+#define BF_BK_FIELDS (3 * (1 + BF_HE_NP))
+
+/* The bin rows of a data pass (bf_he_memo.rows).  Where the shadowing is flat
+ * (u >= BF_HE_U_FLAT for both directions: S = 1, sigma = sigma0), K depends
+ * on the sample through its (theta_h, theta_d) bin alone (F at cos theta_d,
+ * G, g and a, the rough limit) and through the factor 1 / (cos ti cos to) of
+ * S(ti) S(to) / (cos ti cos to); so do the neighbours (bf_he_rough_step keeps
+ * S and sigma0's place there).  A pass therefore makes, once per bin of its
+ * samples and point p[0..np], the row K cos ti cos to at each point and
+ * channel (bf_he_bin_rows: the bin's geometry from the sample set's bin table,
+ * BF_NLANES bins at a time, so the series of distinct bins fill a vector's
+ * lanes), and a vector whose lanes are all flat takes K = row / (cos ti cos to):
+ * no logarithm, exponential or series.  The lanes of a bin differ from the
+ * table's sample by the rounding of their directions, so a served K differs
+ * from its own evaluation by that rounding's effect (tests/test_he.c,
+ * pass_memo: at most ~1e-12 relative, at K ~ 1e-148 where a large a
+ * amplifies it), or is 0 below the rows' floor (bf_he_row_floor). */
+typedef struct bf_he_flat {
+    BF_REAL ci, co;   /* cos ti, cos to, floored as bf_he_dir_make floors them */
+    BF_REAL lanes;    /* 1 in a lane whose shadowing is flat at p[0]            */
+} bf_he_flat;
+
+/* f's cosines, floored as bf_he_dir_make floors them. */
+BF_FN void bf_he_flat_cos(const bf_geom *g, bf_he_flat *f)
+{
+    f->ci = fmax(g->iz, BF_HE_COS_MIN);
+    f->co = fmax(g->oz, BF_HE_COS_MIN);
+}
+
+BF_FN void bf_he_flat_make(const bf_geom *g, double tau, double sigma0, bf_he_flat *f)
+{
+    bf_he_flat_cos(g, f);
+    BF_REAL ui = bf_he_u(f->ci, sqrt(g->ix * g->ix + g->iy * g->iy), tau, sigma0);
+    BF_REAL uo = bf_he_u(f->co, sqrt(g->ox * g->ox + g->oy * g->oy), tau, sigma0);
+    f->lanes = BF_SEL(BF_R(0.0), BF_R(1.0), (ui >= BF_HE_U_FLAT) && (uo >= BF_HE_U_FLAT));
+}
+
+/* bf_he_flat_make's flags for a vector whose lanes all lie in one bin hd
+ * whose every sample is flat at p0 = (tau, sigma0) for certain (its
+ * smallest min(cot ti, cot to), BF_B_COTLO, at least BF_HE_SURE_MARGIN above
+ * the threshold 2 BF_HE_U_FLAT sigma0 / tau: the samples' own u, computed
+ * from other roundings of the same cotangent, are then >= BF_HE_U_FLAT): the
+ * cosines alone, with no square root or division.  0 when it cannot say (f
+ * left); the lanes are then bf_he_flat_make's. */
+#define BF_HE_SURE_MARGIN 1e-6
+
+BF_FN double bf_he_cot_sure(double tau, double sigma0)
+{
+    return (2.0 * BF_HE_U_FLAT) * sigma0 / tau * (1.0 + BF_HE_SURE_MARGIN);
+}
+
+BF_FN int bf_he_flat_sure(const bf_geom *g, BF_GLOBAL const double *bins, BF_REAL vhd,
+                          double cot_sure, bf_he_flat *f)
+{
+    const double hd = BF_LAST(vhd);
+    if (!bins || BF_ANY(vhd != hd) || !(bins[BF_B_COTLO * BF_NHD_PAD + (int)hd] >= cot_sure))
+        return 0;
+    bf_he_flat_cos(g, f);
+    f->lanes = BF_R(1.0);
+    return 1;
+}
+
+/* The factor q = 1 / (cos ti cos to) of a vector the rows serve: its K at
+ * p[j] in channel c is row[j][c] q. */
+BF_FN BF_REAL bf_he_bin_q(const bf_he_flat *f)
+{
+    return 1.0 / (f->ci * f->co);
+}
+
+/* The cotangent of the angle whose cosine is c, with bf_he_u's floors: a
+ * lane is flat at (tau, sigma0) where min(cot ti, cot to) is at least
+ * 2 BF_HE_U_FLAT sigma0 / tau (to rounding), and min(cot ti, cot to) is this
+ * of min(cos ti, cos to) (to rounding: sin t = sqrt(1 - cos^2 t) for unit
+ * directions).  The sample set's bin table keeps it of the largest
+ * min(cos ti, cos to) over a bin (BF_B_COT). */
+BF_FN BF_REAL bf_he_cot_of_cos(BF_REAL c)
+{
+    BF_REAL cf = fmax(c, BF_HE_COS_MIN);
+    return cf / fmax(sqrt(fmax(1.0 - c * c, 0.0)), 1e-300);
+}
+
+/* K0 and Kj of a vector the rows serve whole (every lane in the bin of bk),
+ * from its factor q. */
+BF_FN void bf_he_bin_serve(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
+                           BF_REAL (*Kj)[3])
+{
+    for (int c = 0; c < 3; c++)
+        K0[c] = m->bk[0][c] * q;
+    for (int j = 0; j < np; j++)
+        for (int c = 0; c < 3; c++)
+            Kj[j][c] = m->bk[1 + j][c] * q;
+}
+
+/* bk from bin hd's row, for np neighbours. */
+BF_FN void bf_he_bin_load(bf_he_memo *m, int hd, int np)
+{
+    for (int j = 0; j <= np; j++)
+        for (int c = 0; c < 3; c++)
+            m->bk[j][c] = m->rows[(3 * j + c) * m->nrows + hd];
+    m->bgen = 1.0 + (double)hd;
+}
+
+/* K0 and Kj of a flat vector whose lanes lie in several bins: each lane's
+ * row, times its q. */
+BF_FN void bf_he_bin_gather(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
+                            BF_REAL (*Kj)[3])
+{
+    double hv[BF_NLANES], t[BF_NLANES];
+    BF_STORE(m->vhd, hv);
+    for (int j = 0; j <= np; j++)
+        for (int c = 0; c < 3; c++) {
+            for (int l = 0; l < BF_NLANES; l++)
+                t[l] = m->rows[(3 * j + c) * m->nrows + (int)hv[l]];
+            BF_REAL v = BF_LOADP(t) * q;
+            if (j == 0)
+                K0[c] = v;
+            else
+                Kj[j - 1][c] = v;
+        }
+}
+
+/* K at p[0] and at p[1..np] of the lanes of g, every step of bf_he_fd
+ * (below) but the rows; with flat, every lane flat (bf_he_rough_make). */
+BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const double *lam,
+                          const bf_he_pconst *pc, int flat, BF_REAL *K0, BF_REAL (*Kj)[3],
+                          bf_he_memo *memo)
+{
+    bf_he_base b;
+    bf_he_fd_base(g, p[0], lam, pc, flat, &b);
+    for (int ch = 0; ch < 3; ch++)
+        K0[ch] = bf_he_fd_channel(&b, p[0][0], lam[ch], ch, pc, memo);
+    for (int j = 0; j < np; j++)
+        bf_he_fd_neighbour(&b, p[0], p[1 + j], lam, Kj[j]);
+}
+
+/* The floor of a pass's rows.  At a smooth point most bins lie far from the
+ * specular direction, where K is below its value at normal incidence by
+ * e^-100 to e^-700 without reaching e^BF_HE_LN_DEAD, and summing their
+ * series was most of the rows' work (blue-acrylic at its fit: half the bins,
+ * 60% of the terms).  So the rows take a lane as dead (0) where its series'
+ * peak term puts less into K than e^-BF_HE_ROW_FLOOR of K at normal
+ * incidence (wi = wo = N) at p0, per channel: pc->ldead = max(BF_HE_LN_DEAD,
+ * ln K_normal - BF_HE_ROW_FLOOR) (BF_HE_LN_DEAD where K_normal is 0).  A
+ * served K then differs from bf_he's by less than
+ * BF_HE_MMAX e^-BF_HE_ROW_FLOOR K_normal ~ 3.5e-24 K_normal (at most
+ * BF_HE_MMAX terms, none above the peak; tests/test_he.c, pass_memo).  In a
+ * pass's sums, such a sample's term K w rho is then below 3.5e-24 e^20 ~
+ * 1.7e-15 of the term of a sample near normal incidence (a MERL table's
+ * rho spans less than e^20): below the rounding of sums of 1e5 to 1e6
+ * such terms.  Measured over the 100 MERL tables: every fit the same to
+ * the bit, at e^-100 first and at e^-60 since (subset passes at
+ * blue-acrylic's and brass's fits 5-9% faster than at e^-100). */
+#define BF_HE_ROW_FLOOR 60.0
+
+BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc)
+{
+    const double p[1][3] = { { p0[0], p0[1], p0[2] } };
+    bf_geom n;
+    n.ix = n.iy = n.ox = n.oy = BF_R(0.0);
+    n.iz = n.oz = n.nh = n.vh = BF_R(1.0);
+    BF_REAL K[3];
+    bf_he_fd_lanes(&n, p, 0, lam, pc, 0, K, (BF_REAL(*)[3])0, (bf_he_memo *)0);
+    for (int ch = 0; ch < 3; ch++) {
+        const double kn = BF_LAST(K[ch]);
+        pc->ldead[ch] = kn > 0.0 ? fmax(BF_HE_LN_DEAD, log(kn) - BF_HE_ROW_FLOOR) : BF_HE_LN_DEAD;
+    }
+}
+
+/* 1 when no lane of g (BF_NLANES bins' geometry) needs its row made at p0:
+ * each is either not read (live 0: no sample of its bin is flat) or dead in
+ * every channel at every point for certain (0 in the rows, as
+ * bf_he_fd_lanes would make it), from a bound that takes a few logarithms
+ * instead of the series' search for its peak.  With F <= 1 and S = 1 (flat),
+ * K's scale e^lk is at most kt^2 G / (pi cos ti cos to), and with P the
+ * Poisson weights of g, V = sum_m P(m) e^(-a/m) / m is at most
+ * e^(-a/M) + P(m >= M) <= e^(-a/M) + e^(M (1 + ln(g/M)) - g) for any M > g
+ * (Chernoff).  With M = a / w, w = 2 + ln(kt^2 G / (pi ci co)) - ldead,
+ * both are at most e^-w, so lpk + lk <= ln V + lk <= ln 2 - 2 + ldead < ldead:
+ * bf_he_series_x leaves the lane dead.  Only where g < 18 / BF_HE_FD_MARGIN,
+ * so that no rough limit enters the value or a neighbour. */
+BF_FN int bf_he_rows_dead(const bf_geom *g, BF_REAL live, const double *p0, const double *lam,
+                          const bf_he_pconst *pc)
+{
+    bf_he_dir d;
+    bf_he_dir_make(g, &d);
+    BF_REAL lscale = d.lg2 - log(BF_PI * (d.ci * d.co)); /* ln G / (pi ci co) */
+    BF_REAL vxy2 = d.vxy2, lnv2 = d.lvxy2;
+    BF_REAL s0v = p0[1] * d.vz, lns0v2 = 2.0 * log(s0v);
+    BF_REAL dead = BF_SEL(BF_R(1.0), BF_R(0.0), live > 0.0);
+    BF_REAL all = BF_R(1.0);
+    for (int ch = 0; ch < 3; ch++) {
+        const double kl = 2.0 * BF_PI / lam[ch], kt = BF_PI * p0[0] / (2.0 * lam[ch]);
+        BF_REAL gg = (kl * kl) * (s0v * s0v), lng = pc->lkl2[ch] + lns0v2;
+        BF_REAL aa = (4.0 * (kt * kt)) * vxy2, la = pc->l4kt2[ch] + lnv2;
+        BF_REAL w = 2.0 + (lscale + pc->lkt2[ch]) - pc->ldead[ch];
+        BF_REAL lw = log(fmax(w, BF_R(1.0)));
+        BF_REAL M = aa / fmax(w, BF_R(1.0)), lnM = la - lw;
+        BF_REAL tail = M * (1.0 + lng - lnM) - gg;
+        all = BF_SEL(BF_R(0.0), all,
+                     (w >= 1.0) && (gg < BF_HE_G_LO / BF_HE_FD_MARGIN) && (M > gg) && (tail <= -w));
+    }
+    dead = BF_SEL(dead, BF_R(1.0), all > 0.0);
+    return !BF_ANY(dead <= 0.0);
+}
+
+/* A pass's rows (see above) of the bins h0 .. h1 of the bin table `bins`
+ * (BF_B_* above) at p[0..np]: field f = 3 j + c (K cos ti cos to at p[j] in
+ * channel c) of bin hd into rows[f * nrows + hd], BF_NLANES bins at a time
+ * (so also bins up to h1 + BF_NLANES - 1), with the floor of
+ * bf_he_row_floor.  A run of bins where no sample can be flat at p[0]
+ * (BF_B_COT, with a margin for rounding) is skipped: no lane of theirs
+ * reads its row. */
+BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const double (*p)[3],
+                          int np, const double *lam, BF_GLOBAL double *rows, int nrows)
+{
+    const double cot_flat = (2.0 * BF_HE_U_FLAT) * p[0][1] / p[0][0] * (1.0 - 1e-9);
+    bf_he_pconst pc;
+    bf_he_pconst_make(p[0][0], lam, &pc);
+    bf_he_row_floor(p[0], lam, &pc);
+    for (int h = h0; h <= h1; h += BF_NLANES) {
+        BF_REAL cot = BF_LOADG(bins + BF_B_COT * BF_NHD_PAD + h);
+        BF_REAL live = BF_SEL(BF_R(0.0), BF_R(1.0), cot >= cot_flat);
+        if (!BF_ANY(live > 0.0))
+            continue;
+        bf_geom g;
+        g.ix = BF_LOADG(bins + BF_B_IX * BF_NHD_PAD + h);
+        g.iy = BF_LOADG(bins + BF_B_IY * BF_NHD_PAD + h);
+        g.iz = BF_LOADG(bins + BF_B_IZ * BF_NHD_PAD + h);
+        g.ox = BF_LOADG(bins + BF_B_OX * BF_NHD_PAD + h);
+        g.oy = BF_LOADG(bins + BF_B_OY * BF_NHD_PAD + h);
+        g.oz = BF_LOADG(bins + BF_B_OZ * BF_NHD_PAD + h);
+        g.nh = BF_LOADG(bins + BF_B_NH * BF_NHD_PAD + h);
+        g.vh = BF_LOADG(bins + BF_B_VH * BF_NHD_PAD + h);
+        BF_REAL K0[3], Kj[BF_HE_NP][3];
+        if (bf_he_rows_dead(&g, live, p[0], lam, &pc)) {
+            for (int f = 0; f < 3 * (1 + np); f++)
+                BF_STORE(BF_R(0.0), rows + f * nrows + h);
+            continue;
+        }
+        bf_he_fd_lanes(&g, p, np, lam, &pc, 1, K0, Kj, (bf_he_memo *)0);
+        BF_REAL cc = fmax(g.iz, BF_HE_COS_MIN) * fmax(g.oz, BF_HE_COS_MIN);
+        for (int c = 0; c < 3; c++)
+            BF_STORE(K0[c] * cc, rows + c * nrows + h);
+        for (int j = 0; j < np; j++)
+            for (int c = 0; c < 3; c++)
+                BF_STORE(Kj[j][c] * cc, rows + (3 * (1 + j) + c) * nrows + h);
+    }
+}
+
+#endif /* BF_HE_ROWS_H */

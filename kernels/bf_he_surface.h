@@ -1,0 +1,169 @@
+/* SPDX-License-Identifier: MIT */
+/* bf_he_surface.h -- the He lobe's terms of one direction (pair) at the
+ * surface: Fresnel's F, u = tau cot(theta) / (2 sigma0), erfc(u) (Cody's
+ * approximation), the shadowing S(u) and its derivative, and the root x of
+ * the effective roughness sigma (bf_he.h: the model). */
+#ifndef BF_HE_SURFACE_H
+#define BF_HE_SURFACE_H
+
+#ifndef __OPENCL_VERSION__
+#include "bf_he_const.h"
+#endif
+
+/* Fresnel reflectance, unpolarised, real index n >= 1, at c = cos theta_b in
+ * (0, 1]; g' - c = (n^2 - 1) / (g' + c) without cancellation for n ~ 1. */
+BF_FN BF_REAL bf_he_fresnel(BF_REAL c, double n)
+{
+    double e = (n - 1.0) * (n + 1.0);
+    BF_REAL gpc = sqrt(e + c * c) + c;
+    BF_REAL gmc = e / gpc;
+    BF_REAL q = gmc / gpc;
+    BF_REAL r = (c * gpc - 1.0) / (c * gmc + 1.0);
+    return 0.5 * (q * q) * (1.0 + r * r);
+}
+
+/* u = tau cot(theta) / (2 sigma0) from cos and sin, kept in [1e-300, 1e10]
+ * (u = 1e10 is the normal: every use below is exactly its u -> inf value there). */
+BF_FN BF_REAL bf_he_u(BF_REAL c, BF_REAL s, double tau, double sigma0)
+{
+    BF_REAL u = (tau / (2.0 * sigma0)) * c / fmax(s, 1e-300);
+    return fmin(fmax(u, 1e-300), 1e10);
+}
+
+/* erfc(u) for u in [0, BF_HE_U_FLAT], given ex = e^(-u^2): W. J. Cody's
+ * rational Chebyshev approximations (Math. Comp. 23, 631-637, 1969; the
+ * coefficients of netlib's specfun CALERF): 1 - u A(u^2) / B(u^2) on
+ * [0, 0.46875], ex C(u) / D(u) on (0.46875, 4], ex (1/sqrt(pi) - z P(z) / Q(z)) / u,
+ * z = 1/u^2, above; each piece only when some lane needs it.  Against glibc's
+ * erfc over [0, 6] in steps of 1e-6 (tests/test_he.c, erfc_cody): within
+ * 2.3e-15 relative up to u = 5 and 4e-15 up to 6 (where erfc < 2e-12: the
+ * rounding of u^2 in ex).  It replaced the OpenCL library's erfc, which cost
+ * as much as the rest of a rough sample's shadowing. */
+BF_HE_CONSTANT double bf_he_cody_a[5] = {
+    3.16112374387056560e00, 1.13864154151050156e02, 3.77485237685302021e02,
+    3.20937758913846947e03, 1.85777706184603153e-1
+};
+BF_HE_CONSTANT double bf_he_cody_b[4] = {
+    2.36012909523441209e01, 2.44024637934444173e02, 1.28261652607737228e03,
+    2.84423683343917062e03
+};
+BF_HE_CONSTANT double bf_he_cody_c[9] = {
+    5.64188496988670089e-1, 8.88314979438837594e00, 6.61191906371416295e01,
+    2.98635138197400131e02, 8.81952221241769090e02, 1.71204761263407058e03,
+    2.05107837782607147e03, 1.23033935479799725e03, 2.15311535474403846e-8
+};
+BF_HE_CONSTANT double bf_he_cody_d[8] = {
+    1.57449261107098347e01, 1.17693950891312499e02, 5.37181101862009858e02,
+    1.62138957456669019e03, 3.29079923573345963e03, 4.36261909014324716e03,
+    3.43936767414372164e03, 1.23033935480374942e03
+};
+BF_HE_CONSTANT double bf_he_cody_p[6] = {
+    3.05326634961232344e-1, 3.60344899949804439e-1, 1.25781726111229246e-1,
+    1.60837851487422766e-2, 6.58749161529837803e-4, 1.63153871373020978e-2
+};
+BF_HE_CONSTANT double bf_he_cody_q[5] = {
+    2.56852019228982242e00, 1.87295284992346725e00, 5.27905102951428412e-1,
+    6.05183413124413191e-2, 2.33520497626869185e-3
+};
+
+BF_FN BF_REAL bf_he_erfc_cody(BF_REAL u, BF_REAL ex)
+{
+    BF_REAL r = BF_R(0.0);
+    if (BF_ANY(u <= 0.46875)) {
+        BF_REAL z = u * u, n = bf_he_cody_a[4] * z, d = z;
+        for (int i = 0; i < 3; i++) {
+            n = (n + bf_he_cody_a[i]) * z;
+            d = (d + bf_he_cody_b[i]) * z;
+        }
+        r = BF_SEL(r, 1.0 - u * (n + bf_he_cody_a[3]) / (d + bf_he_cody_b[3]), u <= 0.46875);
+    }
+    if (BF_ANY((u > 0.46875) && (u <= 4.0))) {
+        BF_REAL n = bf_he_cody_c[8] * u, d = u;
+        for (int i = 0; i < 7; i++) {
+            n = (n + bf_he_cody_c[i]) * u;
+            d = (d + bf_he_cody_d[i]) * u;
+        }
+        r = BF_SEL(r, ex * (n + bf_he_cody_c[7]) / (d + bf_he_cody_d[7]), (u > 0.46875) && (u <= 4.0));
+    }
+    if (BF_ANY(u > 4.0)) {
+        BF_REAL z = 1.0 / fmax(u * u, BF_R(16.0)), n = bf_he_cody_p[5] * z, d = z;
+        for (int i = 0; i < 4; i++) {
+            n = (n + bf_he_cody_p[i]) * z;
+            d = (d + bf_he_cody_q[i]) * z;
+        }
+        BF_REAL t = z * (n + bf_he_cody_p[4]) / (d + bf_he_cody_q[4]);
+        r = BF_SEL(r, ex * (0.56418958354775628695 - t) / fmax(u, BF_R(4.0)), u > 4.0);
+    }
+    return r;
+}
+
+/* erfc(u) and e^(-u^2) of the shadowing, for u in [1e-300, 1e10], as 0 for
+ * u >= BF_HE_U_FLAT = 6 (erfc(6) = 2.2e-17, e^-36 = 2.3e-16): there S(t)
+ * rounds to 1 and sigma's r gains less than 1e-14 (sigma: relative 1e-14),
+ * so the rule changes no value measurably, and a vector with every u >= 6 (a
+ * smooth surface away from grazing) skips both. */
+BF_FN void bf_he_erfc2(BF_REAL u, BF_REAL *ec, BF_REAL *ex)
+{
+    *ec = BF_R(0.0);
+    *ex = BF_R(0.0);
+    if (BF_ANY(u < BF_HE_U_FLAT)) {
+        BF_REAL flat = BF_SEL(BF_R(0.0), BF_R(1.0), u >= BF_HE_U_FLAT);
+        BF_REAL us = fmin(u, BF_R(BF_HE_U_FLAT));
+        BF_REAL e = exp(-us * us);
+        *ec = BF_SEL(bf_he_erfc_cody(us, e), BF_R(0.0), flat > 0.0);
+        *ex = BF_SEL(e, BF_R(0.0), flat > 0.0);
+    }
+}
+
+/* One direction's shadowing S(theta) from u, erfc(u) and exp(-u^2). */
+BF_FN BF_REAL bf_he_shadow1x(BF_REAL u, BF_REAL ec, BF_REAL ex)
+{
+    BF_REAL lam = 0.5 * (ex / (BF_SQRT_PI * u) - ec);
+    return (1.0 - 0.5 * ec) / (1.0 + lam);
+}
+
+/* dS/du of bf_he_shadow1x, finite for u in [1e-300, 1e10]:
+ * with L' = -e^(-u^2) / (2 sqrt(pi) u^2) and (1 + L) u = u + (e^(-u^2) / sqrt(pi) - erfc(u) u) / 2,
+ * dS/du = e^(-u^2) / sqrt(pi) (u (1 + L) u + (1 - erfc(u) / 2) / 2) / ((1 + L) u)^2. */
+BF_FN BF_REAL bf_he_dshadow1(BF_REAL u, BF_REAL ec, BF_REAL ex)
+{
+    BF_REAL xs = ex * (1.0 / BF_SQRT_PI);
+    BF_REAL lu = u + 0.5 * (xs - ec * u);
+    return xs * (u * lu + 0.5 * (1.0 - 0.5 * ec)) / (lu * lu);
+}
+
+
+
+/* The effective roughness sigma = sigma0 / sqrt(1 + x^2), x e^(x^2/2) = r, from
+ * r = (K(ti) + K(to)) / sqrt(8 pi) >= 0.  For r <= BF_HE_R_SER = 0.01 the
+ * series x = r (1 - t/2 + 5 t^2/8 - 49 t^3/48), t = r^2 (of y = e^(-t y^2 / 2),
+ * y = x / r; the next term is below 2 t^4 < 2e-16), within 3.2e-16 of the
+ * root (against a long double Newton; tests/test_he.c, newton_x).  Above,
+ * Newton on ln x + x^2/2 - ln r (no overflow for any r), from r when r <= 1
+ * (the right of the root; the first step lands left of it and the rest
+ * increase monotonically) and from max(sqrt(2 ln r), 0.75) otherwise
+ * (monotone on either side of x = 1).  A lane stops after a step
+ * |dx| <= 1e-8 x: with F = ln x + x^2/2 - ln r the relative error after a
+ * step is (x F'' / 2F') (dx / x)^2 and |x F'' / 2F'| = |x^2 - 1| / (2 (1 + x^2))
+ * < 1/2, so x is then within 5e-17 of the root (and rounding: 1.3e-15
+ * measured).  A vector whose every r is at most 0.01 takes no logarithm. */
+#define BF_HE_R_SER 0.01
+
+BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
+{
+    BF_REAL rs = fmax(r, BF_TINY), t = rs * rs;
+    BF_REAL xs = rs * (1.0 + t * (-0.5 + t * (0.625 + t * (-49.0 / 48.0))));
+    if (!BF_ANY(rs > BF_HE_R_SER))
+        return xs;
+    BF_REAL lr = log(rs);
+    BF_REAL x = BF_SEL(rs, fmax(sqrt(2.0 * fmax(lr, 0.0)), BF_R(0.75)), rs > 1.0);
+    BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), rs > BF_HE_R_SER);
+    for (int it = 0; it < 60 && BF_ANY(act > 0.0); it++) {
+        BF_REAL dx = (log(x) + 0.5 * x * x - lr) * x / (1.0 + x * x);
+        x = BF_SEL(x, fmax(x - dx, 0.5 * x), act > 0.0);
+        act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-8 * x);
+    }
+    return BF_SEL(xs, x, rs > BF_HE_R_SER);
+}
+
+#endif /* BF_HE_SURFACE_H */

@@ -24,6 +24,9 @@
  *   BF_LOADG(p)       BF_NLANES consecutive doubles from global memory.
  *   BF_GLOBAL         the address space of buffers a pass writes and reads
  *                     (__global in the kernel, nothing on the host).
+ *   BF_FN, BF_FN_INLINE  how the functions are declared; BF_FN_INLINE is
+ *                     always inlined into the kernel, so that its callers'
+ *                     constants (the model, nk, np) fold into it.
  *
  * Code that uses BF_REAL is branch-free per lane: data-dependent choices go
  * through BF_SEL, loops that depend on the data run while BF_ANY(...).
@@ -61,12 +64,14 @@
 #  define BF_NLANES BF_WIDTH
 #  define BF_GLOBAL __global
 #  define BF_FN inline
+#  define BF_FN_INLINE inline __attribute__((always_inline))
 #  define BF_SEL(a, b, c) select((a), (b), (c))
 #  define BF_ANY(c) any(c)
 #else
 #  include <math.h>
 #  define BF_REAL double
 #  define BF_FN static inline
+#  define BF_FN_INLINE static inline
 #  define BF_SEL(a, b, c) ((c) ? (b) : (a))
 #  define BF_ANY(c) (c)
 #  define BF_LAST(v) (v)

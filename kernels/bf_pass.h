@@ -126,9 +126,14 @@ BF_FN void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_par *pp,
 
 /* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)].
  * ps: the state of the run of samples being walked in table order
- * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL. */
-BF_FN void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp, const bf_geom *g,
-                         const BF_REAL *rho, BF_REAL a2, BF_REAL *acc, bf_pass_state *ps)
+ * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL.
+ * Always inlined into the kernel's loop: PoCL called it there, with nk and np
+ * as run-time arguments, and the closed-form full passes took 4-32% longer
+ * (alum-bronze, 2026-12-03: Ward 2.0 -> 1.4 ms, Cook-Torrance 2.7 -> 2.2,
+ * GGX 2.2 -> 1.85; He's the same); the sums are the same to the bit. */
+BF_FN_INLINE void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp,
+                                const bf_geom *g, const BF_REAL *rho, BF_REAL a2, BF_REAL *acc,
+                                bf_pass_state *ps)
 {
     BF_REAL K0[3], K[BF_MAX_NP][3], G[3][BF_MAX_NP], q;
     if (bf_lobe_fd_factored(model, g, pp->p, np, pp->lam, K0, K, ps ? &ps->lobe : (bf_lobe_state *)0, &q)) {

@@ -49,9 +49,10 @@
  *   bf_he_series.h   the series D around its peak, and the rough limit
  *   bf_he_tab.h      a bin's series as a polynomial in g, a point's series
  *   bf_he_memo.h     what a pass keeps from vector to vector; a lane's series
- *   bf_he_fd.h       K in stages, and the neighbours of a forward difference
+ *   bf_he_stages.h   K in stages, and the neighbours of a forward difference
  *   bf_he_rows.h     the bin rows of a pass where the shadowing is flat
- *   bf_he.h          (this file) K and its neighbours for a pass: rows or stages
+ *   bf_he.h          (this file) K and its neighbours for a pass: rows or
+ *                    stages (bf_he_fd), and bf_he, bf_lobe_he
  */
 #ifndef BF_HE_H
 #define BF_HE_H

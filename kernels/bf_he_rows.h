@@ -7,7 +7,7 @@
 #define BF_HE_ROWS_H
 
 #ifndef __OPENCL_VERSION__
-#include "bf_he_fd.h"
+#include "bf_he_stages.h"
 #endif
 
 /* The (theta_h, theta_d) bins of a sample set, for a lobe whose value factors
@@ -147,7 +147,7 @@ BF_FN void bf_he_bin_gather(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
 }
 
 /* K at p[0] and at p[1..np] of the lanes of g, every step of bf_he_fd
- * (below) but the rows; with flat, every lane flat (bf_he_rough_make). */
+ * (bf_he.h) but the rows; with flat, every lane flat (bf_he_rough_make). */
 BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                           const bf_he_pconst *pc, int flat, BF_REAL *K0, BF_REAL (*Kj)[3],
                           bf_he_memo *memo)

@@ -124,7 +124,7 @@ BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
 
 /* sum_{m>=1} exp(ln T_m + lk) for the lanes where act > 0 (the others: 0),
  * for g = min(g, 19) > 0 with lng = ln g, a >= 0 with la ~ ln a (only a
- * starting point depends on la).  See the header comment; a lane whose peak
+ * starting point depends on la).  See bf_he.h's header comment; a lane whose peak
  * term puts less than e^ldead into the value (lpk + lk < ldead) is dead: 0,
  * not summed.  ldead is BF_HE_LN_DEAD (where the value underflows) but in a
  * pass's bin rows (bf_he_row_floor).

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* bf_he_fd.h -- the He lobe's K in stages (the direction pair, then tau and
+/* bf_he_stages.h -- the He lobe's K in stages (the direction pair, then tau and
  * sigma0, then n, then each channel) and its forward-difference neighbours
  * carried from the value point's stages to first order. */
-#ifndef BF_HE_FD_H
-#define BF_HE_FD_H
+#ifndef BF_HE_STAGES_H
+#define BF_HE_STAGES_H
 
 #ifndef __OPENCL_VERSION__
 #include "bf_he_memo.h"
@@ -310,4 +310,4 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
     }
 }
 
-#endif /* BF_HE_FD_H */
+#endif /* BF_HE_STAGES_H */

@@ -27,6 +27,11 @@
  *   BF_FN, BF_FN_INLINE  how the functions are declared; BF_FN_INLINE is
  *                     always inlined into the kernel, so that its callers'
  *                     constants (the model, nk, np) fold into it.
+ *   BF_UNROLL3(v, ...)   the statements ... three times, each in a block of
+ *                     its own with the constant v = 0, 1, 2: a loop over the
+ *                     channels or a pass's coordinates (np <= BF_MAX_NP = 3,
+ *                     bf_layout.h) written out, so that every index it makes
+ *                     is a constant (bf_accumulate, bf_pass.h).
  *
  * Code that uses BF_REAL is branch-free per lane: data-dependent choices go
  * through BF_SEL, loops that depend on the data run while BF_ANY(...).
@@ -34,6 +39,11 @@
  */
 #ifndef BF_COMMON_H
 #define BF_COMMON_H
+
+#define BF_UNROLL3(v, ...)                                                      \
+    { const int v = 0; __VA_ARGS__ }                                            \
+    { const int v = 1; __VA_ARGS__ }                                            \
+    { const int v = 2; __VA_ARGS__ }
 
 #ifdef __OPENCL_VERSION__
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable

@@ -36,8 +36,12 @@ enum {
     BF_NFIELDS
 };
 
-/* Lobe coordinates a pass differentiates in, at most. */
+/* Lobe coordinates a pass differentiates in, at most (bf_accumulate's
+ * loops over them are written out three times: BF_UNROLL3). */
 #define BF_MAX_NP 3
+#if BF_MAX_NP != 3
+#error "bf_accumulate (bf_pass.h) unrolls its loops over the coordinates to BF_MAX_NP = 3"
+#endif
 
 /* The point of a pass.  Only doubles: the same bytes in C and OpenCL C
  * (the kernel reads it as BF_PASS_PAR_DOUBLES doubles). */

@@ -112,8 +112,8 @@ BF_FN void bf_lobe_fd_partials(BF_REAL k0, const BF_REAL *dK, const double (*p)[
  * vector's series where g and a are unchanged, and with the pass's bin rows
  * (bf_lobe_rows) takes a flat vector's whole value from them (bf_he_fd; K0
  * is then bf_he's to ~1e-12). */
-BF_FN void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
-                      const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3], bf_lobe_state *st)
+BF_FN_INLINE void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
+                             const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3], bf_lobe_state *st)
 {
     (void)st;
     switch (model) {
@@ -147,9 +147,9 @@ BF_FN int bf_lobe_fdf_he(const bf_geom *g, const double (*p)[3], int np, const d
 #define BF_FDF_BF_FD_SCHLICK(name)
 #define BF_FDF_BF_FD_OWN(name) return bf_lobe_fdf_##name(g, p, np, lam, K0, Kj, st, q);
 
-BF_FN int bf_lobe_fd_factored(int model, const bf_geom *g, const double (*p)[3], int np,
-                              const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3],
-                              bf_lobe_state *st, BF_REAL *q)
+BF_FN_INLINE int bf_lobe_fd_factored(int model, const bf_geom *g, const double (*p)[3],
+                                     int np, const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3],
+                                     bf_lobe_state *st, BF_REAL *q)
 {
     if (st) {
         switch (model) {

@@ -158,9 +158,10 @@ BF_FN BF_REAL bf_lafortune(const bf_geom *g, double cxy, double cz, double n)
  * normal part, d x / d C = (w - [m is |C|] x sgn C) / m and
  * d K / d C = K n (d x / d C) / x, x floored at BF_LAF_X_MIN: below it the
  * lobe is at most (n + 2) / (2 pi) 1e-12^n, and for n < 1 its partial would
- * grow without bound (K = 0 where x <= 0: its partials 0). */
+ * grow without bound (K = 0 where x <= 0: its partials 0).  Always inlined,
+ * as PoCL inlines the other lobes' partials of itself (bf_accumulate). */
 #define BF_LAF_X_MIN 1e-12
-BF_FN BF_REAL bf_lafortune_vdk(const bf_geom *g, const double *p, BF_REAL *dK)
+BF_FN_INLINE BF_REAL bf_lafortune_vdk(const bf_geom *g, const double *p, BF_REAL *dK)
 {
     const double cxy = p[0], cz = p[1], n = p[2];
     const double m = fmax(fabs(cxy), fabs(cz));

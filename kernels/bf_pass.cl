@@ -34,10 +34,11 @@
  * the bin table and room for the rows: nrows per field, the work-item's
  * rows BF_NLANES gid further on than the one before's (its bins begin
  * where that one's end, and a vector of rows reaches BF_NLANES - 1 past). */
-inline void bf_kernel_pass(const int np, __global const double *data, const ulong npad,
-                           const uint vec_per_item, __constant const double *ppar,
-                           __global double *out, __global const double *hd,
-                           __global const double *bins, __global double *rows, const int nrows)
+BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, const ulong npad,
+                                 const uint vec_per_item, __constant const double *ppar,
+                                 __global double *out, __global const double *hd,
+                                 __global const double *bins, __global double *rows,
+                                 const int nrows)
 {
     const uint gid = get_global_id(0);
     const int nmom = bf_nmom(BF_NK, np);

@@ -65,7 +65,7 @@ BF_FN void bf_pass_state_clear(bf_pass_state *ps)
 }
 
 /* Add the fold's run to acc and empty it. */
-BF_FN void bf_fold_flush(bf_fold *f, int nk, int np, const bf_pass_par *pp, BF_REAL *acc)
+BF_FN_INLINE void bf_fold_flush(bf_fold *f, int nk, int np, const bf_pass_par *pp, BF_REAL *acc)
 {
     if (f->gen < 0.0)
         return;
@@ -98,8 +98,8 @@ BF_FN void bf_fold_flush(bf_fold *f, int nk, int np, const bf_pass_par *pp, BF_R
 
 /* Add a factored vector (factor q per lane) to the fold, after flushing a
  * run of other factors. */
-BF_FN void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_par *pp,
-                       const BF_REAL *rho, BF_REAL a2, BF_REAL q, BF_REAL *acc)
+BF_FN_INLINE void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_par *pp,
+                              const BF_REAL *rho, BF_REAL a2, BF_REAL q, BF_REAL *acc)
 {
     bf_fold *f = &ps->fold;
     double gen = bf_lobe_factor_gen(&ps->lobe);
@@ -127,10 +127,21 @@ BF_FN void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_par *pp,
 /* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)].
  * ps: the state of the run of samples being walked in table order
  * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL.
- * Always inlined into the kernel's loop: PoCL called it there, with nk and np
- * as run-time arguments, and the closed-form full passes took 4-32% longer
- * (alum-bronze, 2026-12-03: Ward 2.0 -> 1.4 ms, Cook-Torrance 2.7 -> 2.2,
- * GGX 2.2 -> 1.85; He's the same); the sums are the same to the bit. */
+ *
+ * Written so that PoCL keeps a closed-form model's moments in registers
+ * through the kernel's loop: it is always inlined there (PoCL had called it
+ * with nk and np as run-time arguments: the closed-form full passes took
+ * 4-32% longer), its loops are written out (BF_UNROLL3: each index into acc
+ * a constant; the trip counts, 1-3, were left as loops), acc never leaves
+ * the kernel (bf_fold_add, bf_fold_flush and bf_accumulate_end inlined) and
+ * the loop calls nothing (bf_lobe_fd inlined, and the lobes it calls: a call
+ * clobbers every vector register, so the sums were stored and loaded around
+ * it).  PoCL had kept acc in memory, a load and a store per moment and
+ * vector; now Ward's full pass on alum-bronze is 8% faster, Blinn-Phong's,
+ * Lafortune's, Cook-Torrance's and GGX's 18-30% (a scratch timer
+ * alternating the builds, 2026-12-04), He's the same (its 61 moments do not
+ * fit the registers).  The sums, the same operations in the same order, are
+ * the same to the bit. */
 BF_FN_INLINE void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp,
                                 const bf_geom *g, const BF_REAL *rho, BF_REAL a2, BF_REAL *acc,
                                 bf_pass_state *ps)
@@ -140,39 +151,37 @@ BF_FN_INLINE void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp
         bf_fold_add(ps, nk, np, pp, rho, a2, q, acc);
         return;
     }
-    for (int j = 0; j < np; j++)
-        for (int k = 0; k < nk; k++)
-            G[k][j] = (K[j][k] - K0[k]) * pp->inv_h[j];
+    BF_UNROLL3(j, if (j < np) {
+        BF_UNROLL3(k, if (k < nk) G[k][j] = (K[j][k] - K0[k]) * pp->inv_h[j];)
+    })
     acc[BF_MOM_A] += a2;
-    for (int k = 0; k < nk; k++) {
+    BF_UNROLL3(k, if (k < nk) {
         BF_REAL *m = acc + bf_mom_lobe(k, np);
         BF_REAL aK = a2 * K0[k];
         m[BF_MK_SK] += aK;
         m[BF_MK_SKK] += aK * K0[k];
-        for (int j = 0; j < np; j++) {
+        BF_UNROLL3(j, if (j < np) {
             BF_REAL aG = a2 * G[k][j];
             m[bf_mk_sg(j)] += aG;
             m[bf_mk_skg(np, j)] += aK * G[k][j];
-            for (int l = j; l < np; l++)
-                m[bf_mk_sgg(np, j, l)] += aG * G[k][l];
-        }
-    }
-    for (int c = 0; c < 3; c++) {
-        int k = nk > 1 ? c : 0;
+            BF_UNROLL3(l, if (l >= j && l < np) m[bf_mk_sgg(np, j, l)] += aG * G[k][l];)
+        })
+    })
+    BF_UNROLL3(c, {
+        const int k = nk > 1 ? c : 0;
         BF_REAL e = rho[c] - (pp->d[c] * (1.0 / BF_PI) + pp->s[c] * K0[k]);
         BF_REAL ae = a2 * e;
         BF_REAL *m = acc + bf_mom_chan(c, nk, np);
         m[BF_MC_SE] += ae;
         m[BF_MC_SKE] += ae * K0[k];
         m[BF_MC_SEE] += ae * e;
-        for (int j = 0; j < np; j++)
-            m[bf_mc_sge(j)] += ae * G[k][j];
-    }
+        BF_UNROLL3(j, if (j < np) m[bf_mc_sge(j)] += ae * G[k][j];)
+    })
 }
 
 /* The end of a run of samples: what the fold holds into acc. */
-BF_FN void bf_accumulate_end(int nk, int np, const bf_pass_par *pp, BF_REAL *acc,
-                             bf_pass_state *ps)
+BF_FN_INLINE void bf_accumulate_end(int nk, int np, const bf_pass_par *pp, BF_REAL *acc,
+                                    bf_pass_state *ps)
 {
     bf_fold_flush(&ps->fold, nk, np, pp, acc);
 }

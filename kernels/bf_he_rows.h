@@ -132,13 +132,9 @@ BF_FN void bf_he_bin_load(bf_he_memo *m, int hd, int np)
 BF_FN void bf_he_bin_gather(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
                             BF_REAL (*Kj)[3])
 {
-    double hv[BF_NLANES], t[BF_NLANES];
-    BF_STORE(m->vhd, hv);
     for (int j = 0; j <= np; j++)
         for (int c = 0; c < 3; c++) {
-            for (int l = 0; l < BF_NLANES; l++)
-                t[l] = m->rows[(3 * j + c) * m->nrows + (int)hv[l]];
-            BF_REAL v = BF_LOADP(t) * q;
+            BF_REAL v = BF_GATHERG(m->rows + (3 * j + c) * m->nrows, m->vhd) * q;
             if (j == 0)
                 K0[c] = v;
             else

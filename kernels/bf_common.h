@@ -13,7 +13,7 @@
  *              vector of BF_WIDTH doubles in the kernel (-DBF_WIDTH=4|8).
  *   BF_SEL(a, b, c)   c ? b : a, lane by lane (OpenCL select()).
  *   BF_ANY(c)         true when c holds in some lane.
- *   BF_LAST(v)        the last lane of v, as a double.
+ *   BF_LAST(v), BF_FIRST(v)   the last and the first lane of v, as a double.
  *   BF_NLANES         the lanes of a BF_REAL (1 on the host, BF_WIDTH in the kernel).
  *   BF_IOTA           a BF_REAL whose lane i is i (0.0 on the host).
  *   BF_HSUM(v)        the sum of v's lanes, in a fixed order, as a double.
@@ -57,6 +57,7 @@
 #  if BF_WIDTH == 4
 #    define BF_REAL double4
 #    define BF_LAST(v) ((v).s3)
+#    define BF_FIRST(v) ((v).s0)
 #    define BF_IOTA ((double4)(0.0, 1.0, 2.0, 3.0))
 #    define BF_LOADC(p) vload4(0, (p))
 #    define BF_LOADP(p) vload4(0, (p))
@@ -71,6 +72,7 @@ inline double4 bf_gatherg4(__global const double *p, int4 i)
 #  elif BF_WIDTH == 8
 #    define BF_REAL double8
 #    define BF_LAST(v) ((v).s7)
+#    define BF_FIRST(v) ((v).s0)
 #    define BF_IOTA ((double8)(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0))
 #    define BF_LOADC(p) vload8(0, (p))
 #    define BF_LOADP(p) vload8(0, (p))
@@ -99,6 +101,7 @@ inline double8 bf_gatherg8(__global const double *p, int8 i)
 #  define BF_SEL(a, b, c) ((c) ? (b) : (a))
 #  define BF_ANY(c) (c)
 #  define BF_LAST(v) (v)
+#  define BF_FIRST(v) (v)
 #  define BF_NLANES 1
 #  define BF_IOTA 0.0
 #  define BF_LOADC(p) (*(p))

@@ -128,13 +128,19 @@ BF_FN void bf_he_bin_load(bf_he_memo *m, int hd, int np)
 }
 
 /* K0 and Kj of a flat vector whose lanes lie in several bins: each lane's
- * row, times its q. */
+ * row, times its q.  Where they lie in two (a vector of the stride subset
+ * mostly does), a select between the two rows: 4% faster than gathering
+ * them at blue-acrylic's and brass's fits. */
 BF_FN void bf_he_bin_gather(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
                             BF_REAL (*Kj)[3])
 {
+    const double h0 = BF_FIRST(m->vhd), h1 = BF_LAST(m->vhd);
+    const int two = !BF_ANY((m->vhd != h0) && (m->vhd != h1));
     for (int j = 0; j <= np; j++)
         for (int c = 0; c < 3; c++) {
-            BF_REAL v = BF_GATHERG(m->rows + (3 * j + c) * m->nrows, m->vhd) * q;
+            BF_GLOBAL const double *r = m->rows + (3 * j + c) * m->nrows;
+            BF_REAL v = (two ? BF_SEL(BF_R(r[(int)h0]), BF_R(r[(int)h1]), m->vhd == h1)
+                             : BF_GATHERG(r, m->vhd)) * q;
             if (j == 0)
                 K0[c] = v;
             else

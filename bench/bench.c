@@ -55,24 +55,33 @@ static brdffit_samples *load(const char *name)
     return s;
 }
 
-/* A representative pass point: the model's typical start. */
-static void point_of(brdffit_model m, bf_pass_par *pp)
+/* A pass point: lobe parameters p (fit: the fit's d and s, else NULL: d =
+ * 0.05, s = 0.1), with forward-difference neighbours 1e-7 away. */
+static void point_at(brdffit_model m, const double *p, const brdffit_params *fit, bf_pass_par *pp)
 {
     memset(pp, 0, sizeof *pp);
     for (int c = 0; c < 3; c++) {
-        pp->d[c] = 0.05;
-        pp->s[c] = 0.1;
+        pp->d[c] = fit ? fit->d[c] : 0.05;
+        pp->s[c] = fit ? fit->s[c] : 0.1;
     }
     pp->lam[0] = 0.645, pp->lam[1] = 0.526, pp->lam[2] = 0.444;
     int np = bf_model_ncoords(m);
     for (int j = 0; j <= np; j++) {
-        bf_model_start_params(m, pp->p[j]);
+        memcpy(pp->p[j], p, sizeof pp->p[j]);
         if (j > 0) {
             int k = bf_model_coord_param(m, j - 1); /* a parameter coordinate j-1 moves */
             pp->p[j][k] *= 1 + 1e-7;
             pp->inv_h[j - 1] = 1e7;
         }
     }
+}
+
+/* A representative pass point: the model's typical start. */
+static void point_of(brdffit_model m, bf_pass_par *pp)
+{
+    double p[3];
+    bf_model_start_params(m, p);
+    point_at(m, p, NULL, pp);
 }
 
 static int model_selected(const char *list, brdffit_model m)
@@ -167,11 +176,11 @@ typedef struct pass_times {
  * so that a burst of load hits all three, the kernel's value pass, its full
  * pass and the streaming read of the same buffer (bs, opened here on first
  * use).  0, or 1 after printing why. */
-static int time_passes(bf_pass_driver *dr, bench_stream *bs, int reps, int creps, pass_times *t)
+static int time_passes(bf_pass_driver *dr, const bf_pass_par *at, bench_stream *bs, int reps,
+                       int creps, pass_times *t)
 {
     brdffit_error err;
-    bf_pass_par pp;
-    point_of(dr->model, &pp);
+    bf_pass_par pp = *at;
     double mom[BF_NMOM_MAX], ref[BF_NMOM_MAX], t0;
     if (!bs->kernel && bench_stream_open(bs, dr->ctx, dr->samples, dr->items) != 0)
         return 1;
@@ -206,10 +215,41 @@ failed:
     return 1;
 }
 
+/* Part 1's row of model m at point pp (its name and `tag`): 0, or 1 after
+ * printing why. */
+static int pass_row(brdffit_context *ctx, const brdffit_samples *s, brdffit_model m,
+                    const bf_pass_par *pp, const char *tag, bench_stream *bs, int reps, int creps)
+{
+    double bytes = (double)BF_NFIELDS * sizeof(double) * (double)s->npad;
+    brdffit_error err;
+    bf_pass_driver dr;
+    memset(&dr, 0, sizeof dr); /* closed below whatever happens */
+    pass_times t;
+    int rc = 0;
+    if (brdffit_context_prepare(ctx, m, &err) != BRDFFIT_OK ||
+        bf_driver_open(&dr, ctx, s, m, &err) != BRDFFIT_OK) {
+        fprintf(stderr, "bench: %s\n", err.message);
+        rc = 1;
+    } else {
+        rc = time_passes(&dr, pp, bs, reps, creps, &t);
+    }
+    bf_driver_close(&dr);
+    if (rc == 0) {
+        char name[32];
+        snprintf(name, sizeof name, "%s%s", brdffit_model_get(m)->name, tag);
+        printf("%-18s %7.2f %7.1f %9.1f %9.1f %9.1f %9.1f %7.2fx %7.2fx %6.1fx %9.1f\n", name,
+               brdffit_context_build_seconds(ctx, m), bytes / (double)s->n, t.c_loop * 1e3,
+               t.value * 1e3, t.full * 1e3, t.stream * 1e3, t.value / t.stream, t.full / t.stream,
+               t.c_loop / t.full, bytes / t.stream * 1e-9);
+    }
+    return rc;
+}
+
 /* 1. per model: its kernel build (brdffit_context_prepare), then one pass of
  * the kernel against the plain C loop, and the kernel's value and full
- * passes against a streaming read of the same bytes (bench_stream.c); the
- * host's memcpy and sum of the buffer for context. */
+ * passes against a streaming read of the same bytes (bench_stream.c), at the
+ * model's typical start, and He's also at its fit of the table; the host's
+ * memcpy and sum of the buffer for context. */
 static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a)
 {
     int reps = a->quick ? 2 : 5, creps = a->quick ? 1 : 2;
@@ -219,7 +259,9 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const be
     printf("1. one data pass, alum-bronze; kernel build first.  A pass reads %d doubles per sample:\n"
            "   %.1f bytes per valid sample (padding included), %.1f MB; the host, one thread: memcpy\n"
            "   %.1f ms (%.1f GB/s copied), sum %.1f ms (%.1f GB/s read).  stream: an OpenCL kernel\n"
-           "   reading the same buffer as the pass does, and only adding it up (the memory bound)\n",
+           "   reading the same buffer as the pass does, and only adding it up (the memory bound).\n"
+           "   Each model at its typical start; he @fit at alum-bronze's own He fit, where most\n"
+           "   samples are flat and served from the pass's bin rows\n",
            (int)BF_NFIELDS, bytes / (double)s->n, bytes * 1e-6, copy_s * 1e3, bytes / copy_s * 1e-9,
            sum_s * 1e3, bytes / sum_s * 1e-9);
     printf("%-18s %7s %7s %9s %9s %9s %9s %8s %8s %7s %9s\n", "model", "build s", "B/smp", "C loop ms",
@@ -230,23 +272,20 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const be
     for (int m = 0; m < brdffit_model_count() && rc == 0; m++) {
         if (!model_selected(a->models, (brdffit_model)m))
             continue;
+        bf_pass_par pp;
+        point_of((brdffit_model)m, &pp);
+        rc = pass_row(ctx, s, (brdffit_model)m, &pp, "", &bs, reps, creps);
+        brdffit_fit_result r;
         brdffit_error err;
-        bf_pass_driver dr;
-        memset(&dr, 0, sizeof dr); /* closed below whatever happens */
-        pass_times t;
-        if (brdffit_context_prepare(ctx, (brdffit_model)m, &err) != BRDFFIT_OK ||
-            bf_driver_open(&dr, ctx, s, (brdffit_model)m, &err) != BRDFFIT_OK) {
-            fprintf(stderr, "bench: %s\n", err.message);
-            rc = 1;
-        } else {
-            rc = time_passes(&dr, &bs, reps, creps, &t);
+        if (rc == 0 && m == BRDFFIT_HE) { /* and at its fit, where most samples are flat */
+            if (brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) != BRDFFIT_OK) {
+                fprintf(stderr, "bench: %s\n", err.message);
+                rc = 1;
+            } else {
+                point_at(BRDFFIT_HE, r.params.p, &r.params, &pp);
+                rc = pass_row(ctx, s, BRDFFIT_HE, &pp, " @fit", &bs, reps, creps);
+            }
         }
-        bf_driver_close(&dr);
-        if (rc == 0)
-            printf("%-18s %7.2f %7.1f %9.1f %9.1f %9.1f %9.1f %7.2fx %7.2fx %6.1fx %9.1f\n",
-                   brdffit_model_get((brdffit_model)m)->name, brdffit_context_build_seconds(ctx, (brdffit_model)m),
-                   bytes / (double)s->n, t.c_loop * 1e3, t.value * 1e3, t.full * 1e3, t.stream * 1e3, t.value / t.stream,
-                   t.full / t.stream, t.c_loop / t.full, bytes / t.stream * 1e-9);
     }
     bench_stream_close(&bs);
     return rc;

@@ -137,10 +137,11 @@ BF_FN_INLINE void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_p
  * the loop calls nothing (bf_lobe_fd inlined, and the lobes it calls: a call
  * clobbers every vector register, so the sums were stored and loaded around
  * it).  PoCL had kept acc in memory, a load and a store per moment and
- * vector; now Ward's full pass on alum-bronze is 8% faster, Blinn-Phong's,
- * Lafortune's, Cook-Torrance's and GGX's 18-30% (a scratch timer
- * alternating the builds, 2026-12-04), He's the same (its 61 moments do not
- * fit the registers).  The sums, the same operations in the same order, are
+ * vector; registers take off a full pass on alum-bronze (a scratch timer
+ * alternating the builds, 2026-12-04) 27-33% of its time for Blinn-Phong,
+ * 20% Lafortune, 18-21% Cook-Torrance, 13-17% Ward, 8-15% Ward-Duer, 9%
+ * Ashikhmin-Shirley, 4-11% GGX; He's the same (its 61 moments do not fit
+ * the registers).  The sums, the same operations in the same order, are
  * the same to the bit. */
 BF_FN_INLINE void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp,
                                 const bf_geom *g, const BF_REAL *rho, BF_REAL a2, BF_REAL *acc,

@@ -212,6 +212,56 @@ START_TEST(fold_equals_plain)
 }
 END_TEST
 
+/* He's kernel pass on the refinement's stride subset (every 12th sample) at
+ * a smooth fit, where most vectors are flat and their lanes lie in two bins
+ * (served by a select between two bins' rows) or in more (a gather), equals
+ * the host C loop's, which takes each sample's row alone, to 1e-9 relative,
+ * value and full passes; the subset has vectors of both kinds. */
+START_TEST(kernel_equals_host_on_stride_subset)
+{
+    brdffit_samples *s = load_samples("alum-bronze"), *sub = NULL;
+    brdffit_error err;
+    ck_assert_msg(bf_samples_every(s, 12, &sub, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_context *ctx = NULL;
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    const size_t w = (size_t)ctx->width; /* the kernel's lanes a vector */
+    long two = 0, more = 0;
+    for (size_t v = 0; v + w <= sub->n; v += w) {
+        int distinct = 1; /* a vector's samples are consecutive: count the changes of bin */
+        for (size_t l = 1; l < w; l++)
+            distinct += sub->bin[v + l] / 180 != sub->bin[v + l - 1] / 180;
+        two += distinct == 2;
+        more += distinct > 2;
+    }
+    ck_assert_msg(two > 0 && more > 0, "vectors of two bins %ld, of more %ld", two, more);
+    bf_pass_driver dr;
+    ck_assert_msg(bf_driver_open(&dr, ctx, sub, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_par pp;
+    some_point(BRDFFIT_HE, &pp);
+    const double p0[3] = { 38.97, 0.3836, 1.607 }; /* alum-bronze's He fit */
+    for (int j = 0; j <= 3; j++) {
+        memcpy(pp.p[j], p0, sizeof p0);
+        if (j > 0) {
+            pp.p[j][j - 1] *= 1 + 1e-7;
+            pp.inv_h[j - 1] = 1e7;
+        }
+    }
+    for (int full = 0; full <= 1; full++) {
+        int np = full ? dr.np : 0, nmom = bf_nmom(dr.nk, np);
+        double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
+        ck_assert_msg(bf_driver_run(&dr, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
+        bf_host_loop(sub, &dr.bins, BRDFFIT_HE, dr.nk, np, &pp, h);
+        for (int i = 0; i < nmom; i++)
+            ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "full=%d moment %d: kernel %.17g host %.17g",
+                          full, i, k[i], h[i]);
+    }
+    bf_driver_close(&dr);
+    brdffit_context_free(ctx);
+    brdffit_samples_free(sub);
+    brdffit_samples_free(s);
+}
+END_TEST
+
 /* The named moment offsets of kernels/bf_layout.h (used by the kernel, the
  * host loop and the fit alike) tile [0, bf_nmom(nk, np)) exactly: every
  * moment has one name and no two names share a slot, for every nk and np. */
@@ -541,6 +591,7 @@ Suite *pass_suite(void)
     tcase_add_test(tc, weights_normalised);
     tcase_add_test(tc, subset_every_8th);
     tcase_add_test(tc, fold_equals_plain);
+    tcase_add_test(tc, kernel_equals_host_on_stride_subset);
     tcase_add_test(tc, subset_of_bins);
     suite_add_tcase(s, tc);
     TCase *tl = tcase_create("layout");

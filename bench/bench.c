@@ -79,7 +79,7 @@ static void point_at(brdffit_model m, const double *p, const brdffit_params *fit
 /* A representative pass point: the model's typical start. */
 static void point_of(brdffit_model m, bf_pass_par *pp)
 {
-    double p[3];
+    double p[BRDFFIT_MAX_LOBE_PARAMS];
     bf_model_start_params(m, p);
     point_at(m, p, NULL, pp);
 }
@@ -275,9 +275,9 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const be
         bf_pass_par pp;
         point_of((brdffit_model)m, &pp);
         rc = pass_row(ctx, s, (brdffit_model)m, &pp, "", &bs, reps, creps);
-        brdffit_fit_result r;
-        brdffit_error err;
         if (rc == 0 && m == BRDFFIT_HE) { /* and at its fit, where most samples are flat */
+            brdffit_fit_result r;
+            brdffit_error err;
             if (brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) != BRDFFIT_OK) {
                 fprintf(stderr, "bench: %s\n", err.message);
                 rc = 1;

@@ -47,6 +47,41 @@ static void some_point(brdffit_model m, bf_pass_par *pp)
     }
 }
 
+/* He at alum-bronze's own He fit, a smooth point where most samples are
+ * flat, with forward-difference neighbours 1e-7 away. */
+static void he_at_alum_bronze_fit(bf_pass_par *pp)
+{
+    some_point(BRDFFIT_HE, pp);
+    const double p0[3] = { 38.97, 0.3836, 1.607 };
+    for (int j = 0; j <= 3; j++) {
+        memcpy(pp->p[j], p0, sizeof p0);
+        if (j > 0) {
+            pp->p[j][j - 1] *= 1 + 1e-7;
+            pp->inv_h[j - 1] = 1e7;
+        }
+    }
+}
+
+/* The kernel's sums of an open driver at pp equal the host C loop's to 1e-9
+ * relative, both kernels (value only and value + Jacobian). */
+static void assert_kernel_equals_host(bf_pass_driver *dr, const bf_pass_par *pp)
+{
+    brdffit_error err;
+    for (int full = 0; full <= 1; full++) {
+        int np = full ? dr->np : 0, nmom = bf_nmom(dr->nk, np);
+        double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
+        ck_assert_msg(bf_driver_run(dr, full, pp, k, &err) == BRDFFIT_OK, "%s", err.message);
+        bf_host_loop(dr->samples, &dr->bins, dr->model, dr->nk, np, pp, h);
+        for (int i = 0; i < nmom; i++) {
+            ck_assert_msg(isfinite(k[i]) && isfinite(h[i]), "moment %d not finite", i);
+            ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "%s full=%d moment %d: kernel %.17g host %.17g",
+                          brdffit_model_get(dr->model)->name, full, i, k[i], h[i]);
+        }
+        if (!full)
+            ck_assert(h[BF_MOM_A] > 0); /* A = sum of the weights: the pass saw the data */
+    }
+}
+
 /* The kernel's sums equal the host C loop's to 1e-9 relative, every model,
  * both kernels (value only and value + Jacobian). */
 START_TEST(kernel_equals_host)
@@ -60,19 +95,7 @@ START_TEST(kernel_equals_host)
     ck_assert_msg(bf_driver_open(&dr, ctx, s, m, &err) == BRDFFIT_OK, "%s", err.message);
     bf_pass_par pp;
     some_point(m, &pp);
-    for (int full = 0; full <= 1; full++) {
-        int np = full ? dr.np : 0, nmom = bf_nmom(dr.nk, np);
-        double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
-        ck_assert_msg(bf_driver_run(&dr, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
-        bf_host_loop(s, &dr.bins, m, dr.nk, np, &pp, h);
-        for (int i = 0; i < nmom; i++) {
-            ck_assert_msg(isfinite(k[i]) && isfinite(h[i]), "moment %d not finite", i);
-            ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "%s full=%d moment %d: kernel %.17g host %.17g",
-                          brdffit_model_get(m)->name, full, i, k[i], h[i]);
-        }
-        if (!full)
-            ck_assert(h[BF_MOM_A] > 0); /* A = sum of the weights: the pass saw the data */
-    }
+    assert_kernel_equals_host(&dr, &pp);
     bf_driver_close(&dr);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
@@ -181,15 +204,7 @@ START_TEST(fold_equals_plain)
 {
     brdffit_samples *s = load_samples("alum-bronze");
     bf_pass_par pp;
-    some_point(BRDFFIT_HE, &pp);
-    const double p0[3] = { 38.97, 0.3836, 1.607 };
-    for (int j = 0; j <= 3; j++) {
-        memcpy(pp.p[j], p0, sizeof p0);
-        if (j > 0) {
-            pp.p[j][j - 1] *= 1 + 1e-7;
-            pp.inv_h[j - 1] = 1e7;
-        }
-    }
+    he_at_alum_bronze_fit(&pp);
     const int np = 3, nmom = bf_nmom(3, np);
     double fold[BF_NMOM_MAX] = { 0 }, plain[BF_NMOM_MAX] = { 0 };
     bf_pass_state ps;
@@ -237,24 +252,8 @@ START_TEST(kernel_equals_host_on_stride_subset)
     bf_pass_driver dr;
     ck_assert_msg(bf_driver_open(&dr, ctx, sub, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
     bf_pass_par pp;
-    some_point(BRDFFIT_HE, &pp);
-    const double p0[3] = { 38.97, 0.3836, 1.607 }; /* alum-bronze's He fit */
-    for (int j = 0; j <= 3; j++) {
-        memcpy(pp.p[j], p0, sizeof p0);
-        if (j > 0) {
-            pp.p[j][j - 1] *= 1 + 1e-7;
-            pp.inv_h[j - 1] = 1e7;
-        }
-    }
-    for (int full = 0; full <= 1; full++) {
-        int np = full ? dr.np : 0, nmom = bf_nmom(dr.nk, np);
-        double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
-        ck_assert_msg(bf_driver_run(&dr, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
-        bf_host_loop(sub, &dr.bins, BRDFFIT_HE, dr.nk, np, &pp, h);
-        for (int i = 0; i < nmom; i++)
-            ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "full=%d moment %d: kernel %.17g host %.17g",
-                          full, i, k[i], h[i]);
-    }
+    he_at_alum_bronze_fit(&pp);
+    assert_kernel_equals_host(&dr, &pp);
     bf_driver_close(&dr);
     brdffit_context_free(ctx);
     brdffit_samples_free(sub);

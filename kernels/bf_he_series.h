@@ -122,6 +122,64 @@ BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
     return lng - log((m + 1.0) * (m + 1.0) / m) + a / (m * (m + 1.0));
 }
 
+/* The discrete peak m* of the terms T_m of bf_he_series_x for the lanes
+ * where act > 0: d(m* - 1) > 0 >= d(m*) (or m* = 1, = BF_HE_MMAX), found
+ * from the continuous peak of ln T_m ~ m ln(g/m) + m - a/m, ln(m/g) = a/m^2
+ * (Newton in y = ln m: concave increasing, monotone after the first step),
+ * then by single steps.  *conv = 0 in a lane whose steps hit their cap (it
+ * is then summed in full), else 1. */
+BF_FN_INLINE BF_REAL bf_he_series_peak(BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL act,
+                                       BF_REAL *conv)
+{
+    const double mmax = (double)BF_HE_MMAX, lnmmax = BF_HE_LN_MMAX;
+    BF_REAL y = fmax(lng, 0.5 * (la - log(fmax(0.5 * la - lng, BF_R(1.0)))));
+    y = fmin(fmax(y, 0.0), lnmmax);
+    for (int it = 0; it < 3; it++) {
+        BF_REAL e = a * exp(-2.0 * y);
+        y = fmin(fmax(y - (y - lng - e) / (1.0 + 2.0 * e), 0.0), lnmmax);
+    }
+    BF_REAL m = fmin(fmax(floor(exp(y) + 0.5), BF_R(1.0)), BF_R(mmax));
+
+    BF_REAL up = BF_SEL(BF_R(0.0), BF_R(1.0),
+                        (act > 0.0) && (m < mmax) && (bf_he_dlog(m, lng, a) > 0.0));
+    for (int it = 0; it < 64 && BF_ANY(up > 0.0); it++) {
+        m = BF_SEL(m, m + 1.0, up > 0.0);
+        up = BF_SEL(BF_R(0.0), BF_R(1.0),
+                    (act > 0.0) && (m < mmax) && (bf_he_dlog(m, lng, a) > 0.0));
+    }
+    BF_REAL dn = BF_SEL(BF_R(0.0), BF_R(1.0),
+                        (act > 0.0) && (m > 1.0)
+                            && (bf_he_dlog(fmax(m - 1.0, BF_R(1.0)), lng, a) <= 0.0));
+    for (int it = 0; it < 64 && BF_ANY(dn > 0.0); it++) {
+        m = BF_SEL(m, m - 1.0, dn > 0.0);
+        dn = BF_SEL(BF_R(0.0), BF_R(1.0),
+                    (act > 0.0) && (m > 1.0)
+                        && (bf_he_dlog(fmax(m - 1.0, BF_R(1.0)), lng, a) <= 0.0));
+    }
+    *conv = BF_SEL(BF_R(1.0), BF_R(0.0), (up > 0.0) || (dn > 0.0));
+    return m;
+}
+
+/* The first m (a scalar for the vector) from which bf_he_series_x sums
+ * the lanes where act > 0: at most each lane's first term within e^-40 of
+ * its peak term m (conv: m is the peak; else from 1).  The curvature of
+ * ln T is at least kap on [3, m], so ln T(m - w) <= ln T(m) - kap w (w - 1) / 2. */
+BF_FN_INLINE int bf_he_series_first(BF_REAL m, BF_REAL a, BF_REAL conv, BF_REAL act)
+{
+    BF_REAL x1 = m + 1.0;
+    BF_REAL kap = 2.0 * a / (x1 * x1 * x1) + (m - 1.0) / (m * x1);
+    BF_REAL w = 0.5 + sqrt(0.25 + 80.0 / fmax(kap, BF_R(1e-300)));
+    BF_REAL mlo = floor(m - w);
+    mlo = BF_SEL(mlo, BF_R(1.0), (mlo < 3.0) || (conv <= 0.0));
+    mlo = BF_SEL(BF_R(1e9), mlo, act > 0.0);
+    int m0 = 1;
+    while (m0 + 16 <= BF_HE_MMAX && !BF_ANY(mlo <= (double)(m0 + 16)))
+        m0 += 16;
+    while (m0 < BF_HE_MMAX && !BF_ANY(mlo <= (double)m0))
+        m0++;
+    return m0;
+}
+
 /* sum_{m>=1} exp(ln T_m + lk) for the lanes where act > 0 (the others: 0),
  * for g = min(g, 19) > 0 with lng = ln g, a >= 0 with la ~ ln a (only a
  * starting point depends on la).  See bf_he.h's header comment; a lane whose peak
@@ -142,7 +200,6 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
                              double ldead, BF_REAL act, int deriv, BF_REAL *vg, BF_REAL *va,
                              BF_REAL *lpko, BF_REAL *sumo)
 {
-    const double mmax = (double)BF_HE_MMAX, lnmmax = BF_HE_LN_MMAX;
     if (deriv) {
         *vg = BF_R(0.0);
         *va = BF_R(0.0);
@@ -151,36 +208,8 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
     }
     if (!BF_ANY(act > 0.0))
         return BF_R(0.0);
-
-    /* The continuous peak of ln T_m ~ m ln(g/m) + m - a/m: ln(m/g) = a/m^2,
-     * Newton in y = ln m (concave increasing: monotone after the first step). */
-    BF_REAL y = fmax(lng, 0.5 * (la - log(fmax(0.5 * la - lng, BF_R(1.0)))));
-    y = fmin(fmax(y, 0.0), lnmmax);
-    for (int it = 0; it < 3; it++) {
-        BF_REAL e = a * exp(-2.0 * y);
-        y = fmin(fmax(y - (y - lng - e) / (1.0 + 2.0 * e), 0.0), lnmmax);
-    }
-    BF_REAL m = fmin(fmax(floor(exp(y) + 0.5), BF_R(1.0)), BF_R(mmax));
-
-    /* The exact discrete peak m*: d(m* - 1) > 0 >= d(m*) (or m* = 1, = mmax). */
-    BF_REAL up = BF_SEL(BF_R(0.0), BF_R(1.0),
-                        (act > 0.0) && (m < mmax) && (bf_he_dlog(m, lng, a) > 0.0));
-    for (int it = 0; it < 64 && BF_ANY(up > 0.0); it++) {
-        m = BF_SEL(m, m + 1.0, up > 0.0);
-        up = BF_SEL(BF_R(0.0), BF_R(1.0),
-                    (act > 0.0) && (m < mmax) && (bf_he_dlog(m, lng, a) > 0.0));
-    }
-    BF_REAL dn = BF_SEL(BF_R(0.0), BF_R(1.0),
-                        (act > 0.0) && (m > 1.0)
-                            && (bf_he_dlog(fmax(m - 1.0, BF_R(1.0)), lng, a) <= 0.0));
-    for (int it = 0; it < 64 && BF_ANY(dn > 0.0); it++) {
-        m = BF_SEL(m, m - 1.0, dn > 0.0);
-        dn = BF_SEL(BF_R(0.0), BF_R(1.0),
-                    (act > 0.0) && (m > 1.0)
-                        && (bf_he_dlog(fmax(m - 1.0, BF_R(1.0)), lng, a) <= 0.0));
-    }
-    /* conv: m is the peak (a lane that hit a search cap is summed in full) */
-    BF_REAL conv = BF_SEL(BF_R(1.0), BF_R(0.0), (up > 0.0) || (dn > 0.0));
+    BF_REAL conv;
+    BF_REAL m = bf_he_series_peak(lng, a, la, act, &conv);
 
     /* ln T at the peak (ln m! to ~1e-3 is enough here): too small -> 0. */
     BF_REAL x1 = m + 1.0;
@@ -192,26 +221,13 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
     if (!BF_ANY(act > 0.0))
         return BF_R(0.0);
 
-    /* First term within e^-40 of the peak: the curvature of ln T is at least
-     * kap on [3, m*], so ln T(m* - w) <= ln T(m*) - kap w (w - 1) / 2. */
-    BF_REAL kap = 2.0 * a / (x1 * x1 * x1) + (m - 1.0) / (m * x1);
-    BF_REAL w = 0.5 + sqrt(0.25 + 80.0 / fmax(kap, BF_R(1e-300)));
-    BF_REAL mlo = floor(m - w);
-    mlo = BF_SEL(mlo, BF_R(1.0), (mlo < 3.0) || (conv <= 0.0));
-    mlo = BF_SEL(BF_R(1e9), mlo, act > 0.0);
-    int m0 = 1;
-    while (m0 + 16 <= BF_HE_MMAX && !BF_ANY(mlo <= (double)(m0 + 16)))
-        m0 += 16;
-    while (m0 < BF_HE_MMAX && !BF_ANY(mlo <= (double)m0))
-        m0++;
-
     /* The sum, while some lane is before its peak or above 1e-12 of its sum,
      * of the terms relative to the peak (exp's arguments stay in about
      * [-60, 0], away from its slow underflow paths; the clamps only guard
      * the finiteness of lanes that are not summed). */
     BF_REAL sum = BF_R(0.0), s1 = BF_R(0.0), sinv = BF_R(0.0);
     BF_REAL base = -g - lpk;
-    for (int k = m0; k <= BF_HE_MMAX; k++) {
+    for (int k = bf_he_series_first(m, a, conv, act); k <= BF_HE_MMAX; k++) {
         double dk = (double)k, ik = 1.0 / dk;
         BF_REAL e = dk * lng - a * ik + (base - bf_he_lkk[k]);
         BF_REAL t = exp(fmin(fmax(e, BF_R(-700.0)), BF_R(700.0)));

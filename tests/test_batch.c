@@ -386,6 +386,40 @@ static void check_material_files(const char *out, const char *name)
     ck_assert_int_ge(check_page(out, path), 3);
 }
 
+/* The pages of the batch of batch_writes_every_file in out: the index (the
+ * matrix marks one best per fitted material, failure rows say why, the
+ * settings are there, the published Error is shown), a material's page (the
+ * renders, differences, plots and EXR files of each model) and its
+ * params.tsv. */
+static void check_batch_pages(const char *out)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/index.html", out);
+    char *idx = slurp(path);
+    ck_assert_int_eq(count_lines(idx, "class=\"best\""), 3);
+    ck_assert_int_eq(count_lines(idx, "not fitted: "), 2);
+    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") && strstr(idx, "0.1.0") &&
+                      strstr(idx, "median Error") && strstr(idx, "headline.svg"),
+                  "%s", idx);
+    ck_assert_msg(strstr(idx, "published "), "no published Error in the matrix");
+    free(idx);
+    snprintf(path, sizeof path, "%s/chrome/index.html", out);
+    char *page = slurp(path);
+    static const char *const linked[] = {
+        "src=\"reference.png\"", "src=\"ward.png\"", "src=\"ward-diff.png\"",
+        "src=\"blinn-phong.png\"", "src=\"plot-measured.svg\"", "src=\"plot-ward.svg\"",
+        "src=\"plot-blinn-phong.svg\"", "href=\"reference.exr\"", "href=\"ward.exr\"",
+    };
+    for (size_t i = 0; i < sizeof linked / sizeof linked[0]; i++)
+        ck_assert_msg(strstr(page, linked[i]), "chrome's page has no %s", linked[i]);
+    ck_assert_msg(strstr(page, "Ward: "), "no caption with the Error");
+    free(page);
+    snprintf(path, sizeof path, "%s/blue-rubber/params.tsv", out);
+    char *pt = slurp(path);
+    ck_assert_msg(strstr(pt, "\nward\t") && strstr(pt, "\nblinn-phong\t"), "%s", pt);
+    free(pt);
+}
+
 START_TEST(batch_writes_every_file)
 {
     char dir[512], args[8192], list[1024], pub[1024], out[1024];
@@ -443,33 +477,7 @@ START_TEST(batch_writes_every_file)
     ck_assert_msg(strstr(fits, "nope\t-\t") && strstr(fits, "cannot open"), "%s", fits);
     free(fits);
 
-    /* the index: the matrix marks one best per fitted material, failure rows say why,
-     * the settings are there; the published Error and ratio are shown */
-    snprintf(path, sizeof path, "%s/index.html", out);
-    char *idx = slurp(path);
-    ck_assert_int_eq(count_lines(idx, "class=\"best\""), 3);
-    ck_assert_int_eq(count_lines(idx, "not fitted: "), 2);
-    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") && strstr(idx, "0.1.0") &&
-                      strstr(idx, "median Error") && strstr(idx, "headline.svg"),
-                  "%s", idx);
-    ck_assert_msg(strstr(idx, "published "), "no published Error in the matrix");
-    free(idx);
-    /* a material's page: the renders, differences, plots and EXR files of each model */
-    snprintf(path, sizeof path, "%s/chrome/index.html", out);
-    char *page = slurp(path);
-    static const char *const linked[] = {
-        "src=\"reference.png\"", "src=\"ward.png\"", "src=\"ward-diff.png\"",
-        "src=\"blinn-phong.png\"", "src=\"plot-measured.svg\"", "src=\"plot-ward.svg\"",
-        "src=\"plot-blinn-phong.svg\"", "href=\"reference.exr\"", "href=\"ward.exr\"",
-    };
-    for (size_t i = 0; i < sizeof linked / sizeof linked[0]; i++)
-        ck_assert_msg(strstr(page, linked[i]), "chrome's page has no %s", linked[i]);
-    ck_assert_msg(strstr(page, "Ward: "), "no caption with the Error");
-    free(page);
-    snprintf(path, sizeof path, "%s/blue-rubber/params.tsv", out);
-    char *pt = slurp(path);
-    ck_assert_msg(strstr(pt, "\nward\t") && strstr(pt, "\nblinn-phong\t"), "%s", pt);
-    free(pt);
+    check_batch_pages(out);
     run_free(&r);
 }
 END_TEST

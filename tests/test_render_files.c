@@ -86,46 +86,33 @@ static const rf_file *find_file(const rf_result *r, const char *name)
     return NULL;
 }
 
-START_TEST(material_files_read_back)
+/* The files rf_write_material lists: each written, not empty and listed,
+ * the captions those of the fits. */
+static void check_listed(const char *dir, const rf_result *r)
 {
-    char dir[512], path[1024];
-    tmpdir(dir, sizeof dir);
-    brdffit_table *t = ct_table();
-    rf_fit fits[2];
-    memset(fits, 0, sizeof fits);
-    fits[0].model = BRDFFIT_COOK_TORRANCE;
-    fits[0].params = ct_params();
-    fits[0].error = 0.0123;
-    fits[1].model = BRDFFIT_WARD;
-    fits[1].params = ct_params();
-    fits[1].params.p[0] = 0.2;
-    fits[1].error = NAN;
-    rf_settings s;
-    rf_settings_default(&s, BRDFFIT_SCALE_STANDARD);
-    s.render_opt.width = 64;
-    rf_result r;
-    brdffit_error err;
-    ck_assert_msg(rf_write_material(dir, "ct-test <&>", t, fits, 2, &s, &r, &err) == 0, "%s",
-                  err.message);
+    char path[1024];
     const char *names[] = { "reference.exr", "reference.png", "cook-torrance.exr",
                             "cook-torrance.png", "cook-torrance-diff.png", "ward.exr", "ward.png",
                             "ward-diff.png", "renders.json", "plot-measured.svg",
                             "plot-cook-torrance.svg", "plot-ward.svg" };
-    ck_assert_int_eq(r.nfiles, 12);
+    ck_assert_int_eq(r->nfiles, 12);
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         struct stat st;
         snprintf(path, sizeof path, "%s/%s", dir, names[i]);
         ck_assert_msg(stat(path, &st) == 0 && st.st_size > 0, "%s missing", path);
-        ck_assert_msg(find_file(&r, names[i]) != NULL, "%s not listed", names[i]);
+        ck_assert_msg(find_file(r, names[i]) != NULL, "%s not listed", names[i]);
     }
-    ck_assert_str_eq(find_file(&r, "cook-torrance.png")->caption, "Cook-Torrance: 0.0123");
-    ck_assert_str_eq(find_file(&r, "ward.png")->caption, "Ward");
-    ck_assert_int_eq(find_file(&r, "ward.png")->fit, 1);
-    ck_assert(r.image_error[0] < 0.01 && r.image_error[1] > 0.05);
+    ck_assert_str_eq(find_file(r, "cook-torrance.png")->caption, "Cook-Torrance: 0.0123");
+    ck_assert_str_eq(find_file(r, "ward.png")->caption, "Ward");
+    ck_assert_int_eq(find_file(r, "ward.png")->fit, 1);
+    ck_assert(r->image_error[0] < 0.01 && r->image_error[1] > 0.05);
+}
 
-    /* EXR: the pixels the library renders, A the coverage */
-    float *want = malloc(sizeof(float) * 4 * 64 * 64);
-    ck_assert_int_eq(brdffit_render_table(t, &s.render_opt, want, 0, NULL), BRDFFIT_OK);
+/* reference.exr: the pixels the library renders (want, 64 x 64 RGBA), A the coverage. */
+static void check_reference_exr(const char *dir, const float *want)
+{
+    char path[1024];
+    brdffit_error err;
     float *rgb = NULL, *a = NULL;
     int w = 0, h = 0;
     snprintf(path, sizeof path, "%s/reference.exr", dir);
@@ -139,8 +126,15 @@ START_TEST(material_files_read_back)
     }
     free(rgb);
     free(a);
+}
 
-    /* PNG: 64 x 64, sRGB of exposure x radiance; the exposure from the reference */
+/* reference.png: 64 x 64, sRGB of exposure x radiance (the exposure from the
+ * reference); the difference image of a poor fit (ward) brighter than that of
+ * the exact model (cook-torrance), masked pixels grey, pixels off the sphere black. */
+static void check_pngs(const char *dir, const float *want, double exposure)
+{
+    char path[1024];
+    int w = 0, h = 0;
     snprintf(path, sizeof path, "%s/reference.png", dir);
     unsigned char *png = read_png(path, &w, &h);
     ck_assert_int_eq(w, 64);
@@ -148,14 +142,13 @@ START_TEST(material_files_read_back)
     int bright = 0;
     for (int i = 0; i < 64 * 64; i++)
         for (int c = 0; c < 3; c++) {
-            int v = want[4 * i + 3] > 0 ? srgb8(r.exposure * want[4 * i + c]) : 0;
+            int v = want[4 * i + 3] > 0 ? srgb8(exposure * want[4 * i + c]) : 0;
             ck_assert_msg(abs(png[3 * i + c] - v) <= 0, "pixel %d ch %d: %d want %d", i, c,
                           png[3 * i + c], v);
             bright += png[3 * i + c] == 255;
         }
     ck_assert(bright > 0 && bright < 64 * 64 / 10); /* ~1% of the sphere may clip */
     free(png);
-    /* the difference image of a poor fit is brighter than that of the exact model */
     long sum[2] = { 0, 0 };
     for (int k = 0; k < 2; k++) {
         snprintf(path, sizeof path, "%s/%s-diff.png", dir, k ? "ward" : "cook-torrance");
@@ -171,8 +164,14 @@ START_TEST(material_files_read_back)
         free(png);
     }
     ck_assert(sum[1] > 5 * sum[0]);
+}
 
-    /* SVG: well-formed XML; title with model and Error; dashed model curves, one colour per theta_i */
+/* The plots: well-formed XML; the title with model, Error and the escaped
+ * material name; dashed model curves and solid measured ones, one colour
+ * per theta_i; the measured plot has no dashed curve. */
+static void check_svgs(const char *dir)
+{
+    char path[1024];
     tu_xml_doc doc;
     snprintf(path, sizeof path, "%s/plot-cook-torrance.svg", dir);
     ck_assert_msg(tu_xml_load(path, &doc) == 0, "%s", doc.error);
@@ -206,7 +205,35 @@ START_TEST(material_files_read_back)
         if (strcmp(doc.e[i].name, "polyline") == 0)
             ck_assert_ptr_null(tu_xml_attr(&doc.e[i], "stroke-dasharray"));
     tu_xml_free(&doc);
+}
 
+START_TEST(material_files_read_back)
+{
+    char dir[512];
+    tmpdir(dir, sizeof dir);
+    brdffit_table *t = ct_table();
+    rf_fit fits[2];
+    memset(fits, 0, sizeof fits);
+    fits[0].model = BRDFFIT_COOK_TORRANCE;
+    fits[0].params = ct_params();
+    fits[0].error = 0.0123;
+    fits[1].model = BRDFFIT_WARD;
+    fits[1].params = ct_params();
+    fits[1].params.p[0] = 0.2;
+    fits[1].error = NAN;
+    rf_settings s;
+    rf_settings_default(&s, BRDFFIT_SCALE_STANDARD);
+    s.render_opt.width = 64;
+    rf_result r;
+    brdffit_error err;
+    ck_assert_msg(rf_write_material(dir, "ct-test <&>", t, fits, 2, &s, &r, &err) == 0, "%s",
+                  err.message);
+    check_listed(dir, &r);
+    float *want = malloc(sizeof(float) * 4 * 64 * 64);
+    ck_assert_int_eq(brdffit_render_table(t, &s.render_opt, want, 0, NULL), BRDFFIT_OK);
+    check_reference_exr(dir, want);
+    check_pngs(dir, want, r.exposure);
+    check_svgs(dir);
     free(want);
     brdffit_table_free(t);
     rm_tree(dir);

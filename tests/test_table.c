@@ -335,23 +335,28 @@ START_TEST(test_lookup_own_bins)
 }
 END_TEST
 
-START_TEST(test_lookup_interp)
+/* A table of a smooth, non-linear pattern with distinct values (*v: its values). */
+static brdffit_table *interp_table(double **v)
 {
     brdffit_table *t = NULL;
     ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
-    double *v = brdffit_table_values(t);
-    /* a smooth, non-linear pattern with distinct values */
+    *v = brdffit_table_values(t);
     for (int i = 0; i < 90; i++)
         for (int j = 0; j < 90; j++)
             for (int k = 0; k < 180; k++) {
                 size_t n = brdffit_bin_index(i, j, k);
-                v[n] = 1 + i + 0.01 * j * j + 0.001 * k;
-                v[NB + n] = 2 + 0.5 * i;
-                v[2 * NB + n] = 3 + sin(0.1 * k);
+                (*v)[n] = 1 + i + 0.01 * j * j + 0.001 * k;
+                (*v)[NB + n] = 2 + 0.5 * i;
+                (*v)[2 * NB + n] = 3 + sin(0.1 * k);
             }
-    double f[3];
+    return t;
+}
+
+START_TEST(test_lookup_interp)
+{
+    double *v, f[3], wi[3], wo[3], a[3], b[3];
+    brdffit_table *t = interp_table(&v);
     brdffit_scale_factors(BRDFFIT_SCALE_FLAT, f, NULL);
-    double wi[3], wo[3], a[3], b[3];
 
     /* the middle of a cell: the mean of its 8 corners; nearest: the lower corner */
     grid_dirs(10.5, 20.5, 30.5, wi, wo);
@@ -386,42 +391,55 @@ START_TEST(test_lookup_interp)
         ck_assert_double_le(tu_reldiff(a[2], 0.5 * (lo + hi) * f[2]), 1e-9);
     }
 
-    /* reciprocity: phi_d + pi is the same bin */
-    {
-        double wi2[3], wo2[3], c1[3], c2[3];
-        grid_dirs(33.2, 44.7, 55.3, wi, wo);
-        grid_dirs(33.2, 44.7, 55.3 + 180, wi2, wo2);
-        for (int m = 0; m < 2; m++) {
-            brdffit_interp in = m ? BRDFFIT_INTERP_TRILINEAR : BRDFFIT_INTERP_NEAREST;
-            brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, in, c1, NULL);
-            brdffit_table_lookup(t, wi2, wo2, BRDFFIT_SCALE_FLAT, in, c2, NULL);
-            for (int c = 0; c < 3; c++)
-                ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-9);
-        }
-        /* swapping wi and wo (reciprocity) gives the same value */
-        brdffit_table_lookup(t, wo, wi, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2, NULL);
-        for (int c = 0; c < 3; c++)
-            ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-9);
-    }
-
-    /* directions need not be unit vectors */
-    {
-        double wi3[3], wo3[3], c1[3], c2[3];
-        grid_dirs(12.3, 45.6, 78.9, wi, wo);
-        for (int c = 0; c < 3; c++) {
-            wi3[c] = 3 * wi[c];
-            wo3[c] = 0.5 * wo[c];
-        }
-        brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c1, NULL);
-        brdffit_table_lookup(t, wi3, wo3, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2, NULL);
-        for (int c = 0; c < 3; c++)
-            ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-12);
-    }
-
     /* clamped beyond the last theta_h bin centre (89 < uh < 90) */
     grid_dirs(89.5, 10, 20, wi, wo);
     brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, a, NULL);
     ck_assert_double_eq(a[1], v[NB + brdffit_bin_index(89, 10, 20)] * f[1]);
+    brdffit_table_free(t);
+}
+END_TEST
+
+START_TEST(test_lookup_symmetries)
+{
+    double *v, wi[3], wo[3];
+    brdffit_table *t = interp_table(&v);
+
+    /* reciprocity: phi_d + pi is the same bin */
+    double wi2[3], wo2[3], c1[3], c2[3];
+    grid_dirs(33.2, 44.7, 55.3, wi, wo);
+    grid_dirs(33.2, 44.7, 55.3 + 180, wi2, wo2);
+    for (int m = 0; m < 2; m++) {
+        brdffit_interp in = m ? BRDFFIT_INTERP_TRILINEAR : BRDFFIT_INTERP_NEAREST;
+        brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, in, c1, NULL);
+        brdffit_table_lookup(t, wi2, wo2, BRDFFIT_SCALE_FLAT, in, c2, NULL);
+        for (int c = 0; c < 3; c++)
+            ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-9);
+    }
+    /* swapping wi and wo (reciprocity) gives the same value */
+    brdffit_table_lookup(t, wo, wi, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2, NULL);
+    for (int c = 0; c < 3; c++)
+        ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-9);
+
+    /* directions need not be unit vectors */
+    double wi3[3], wo3[3];
+    grid_dirs(12.3, 45.6, 78.9, wi, wo);
+    for (int c = 0; c < 3; c++) {
+        wi3[c] = 3 * wi[c];
+        wo3[c] = 0.5 * wo[c];
+    }
+    brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c1, NULL);
+    brdffit_table_lookup(t, wi3, wo3, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_TRILINEAR, c2, NULL);
+    for (int c = 0; c < 3; c++)
+        ck_assert_double_le(tu_reldiff(c1[c], c2[c]), 1e-12);
+    brdffit_table_free(t);
+}
+END_TEST
+
+START_TEST(test_lookup_masked_corner)
+{
+    double *v, f[3], wi[3], wo[3], a[3];
+    brdffit_table *t = interp_table(&v);
+    brdffit_scale_factors(BRDFFIT_SCALE_FLAT, f, NULL);
 
     /* a masked corner: -1 in that channel only, for trilinear; nearest of the
      * lower corner is unaffected unless it is the masked one */
@@ -440,8 +458,15 @@ START_TEST(test_lookup_interp)
     grid_dirs(11, 21, 31, wi, wo);
     brdffit_table_lookup(t, wi, wo, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST, a, NULL);
     ck_assert_double_eq(a[1], -1.0);
+    brdffit_table_free(t);
+}
+END_TEST
 
-    /* invalid arguments */
+START_TEST(test_lookup_invalid_arguments)
+{
+    double *v, f[3], a[3];
+    brdffit_table *t = interp_table(&v);
+    brdffit_scale_factors(BRDFFIT_SCALE_FLAT, f, NULL);
     const double zero[3] = { 0, 0, 0 }, nan3[3] = { NAN, 0, 1 }, inf3[3] = { 0, INFINITY, 1 };
     const double up[3] = { 0, 0, 1 }, down[3] = { 0, 0, -1 };
     ck_assert_int_eq(brdffit_table_lookup(t, zero, up, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST,
@@ -464,6 +489,7 @@ START_TEST(test_lookup_interp)
                                           a, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_table_lookup(t, up, up, BRDFFIT_SCALE_FLAT, (brdffit_interp)9, a, NULL),
                      BRDFFIT_E_INVALID_ARGUMENT);
+    /* and the valid call after them */
     ck_assert_int_eq(brdffit_table_lookup(t, up, up, BRDFFIT_SCALE_FLAT, BRDFFIT_INTERP_NEAREST,
                                           a, NULL), BRDFFIT_OK);
     ck_assert_double_eq(a[0], v[0] * f[0]);
@@ -473,60 +499,45 @@ END_TEST
 
 /* ------------------------------------------------------------------ 2. MERL tables */
 
-static void check_material(const char *name)
-{
-    brdffit_table *t = NULL;
-    brdffit_error e;
-    brdffit_status s = tu_merl_read(name, &t, &e);
-    ck_assert_msg(s == BRDFFIT_OK, "%s: %s", name, e.message);
-    const double *v = brdffit_table_values_const(t);
+/* A table's bins counted independently of the library: valid ones (n,
+ * their sums of the solid-angle weight w and of w cos^2 ti), masked ones
+ * and those beyond the 80-degree cutoff. */
+typedef struct bin_count {
+    size_t n, masked, beyond;
+    double sw, swc;
+} bin_count;
 
-    /* the independent count */
+static bin_count count_bins(const double *v)
+{
     const double cosc = cos(80.0 * PI / 180.0) - 1e-12;
-    size_t n = 0, masked = 0, beyond = 0;
-    double sw = 0, swc = 0;
+    bin_count bc = { 0, 0, 0, 0.0, 0.0 };
     for (int i = 0; i < 90; i++)
         for (int j = 0; j < 90; j++)
             for (int k = 0; k < 180; k++) {
                 size_t b = (size_t)k + 180 * ((size_t)j + 90 * (size_t)i);
                 if (v[b] < 0 || v[NB + b] < 0 || v[2 * NB + b] < 0) {
-                    masked++;
+                    bc.masked++;
                     continue;
                 }
                 double wi[3], wo[3];
                 my_bin_dirs(i, j, k, wi, wo);
                 if (wi[2] > 0 && wo[2] > 0 && wi[2] >= cosc && wo[2] >= cosc) {
-                    n++;
+                    bc.n++;
                     double w = my_weight(i, j);
-                    sw += w;
-                    swc += w * wi[2] * wi[2];
+                    bc.sw += w;
+                    bc.swc += w * wi[2] * wi[2];
                 } else {
-                    beyond++;
+                    bc.beyond++;
                 }
             }
+    return bc;
+}
 
-    brdffit_samples *sm = NULL;
-    s = brdffit_samples_create(t, NULL, &sm, &e);
-    ck_assert_msg(s == BRDFFIT_OK, "%s: %s", name, e.message);
-    ck_assert_uint_gt(n, 0);
-    ck_assert_uint_gt(masked, 0);
-    ck_assert_uint_eq(brdffit_samples_count(sm), n);
-    ck_assert_uint_eq(brdffit_samples_masked(sm), masked);
-    ck_assert_uint_eq(brdffit_samples_beyond_cutoff(sm), beyond);
-    ck_assert_uint_eq(n + masked + beyond, NB);
-
-    /* the prepared block */
-    ck_assert_uint_eq(sm->n, n);
-    ck_assert_uint_eq(sm->npad % BF_PAD, 0);
-    ck_assert_uint_ge(sm->npad, n);
-    ck_assert_uint_lt(sm->npad - n, BF_PAD);
-    ck_assert_uint_eq((uintptr_t)sm->data % 64, 0);
-    ck_assert_double_le(tu_reldiff(sm->sum_w, sw), 1e-12);
-    double sa2 = 0;
-    for (size_t m = 0; m < sm->npad; m++)
-        sa2 += sm->data[BF_F_A2 * sm->npad + m];
-    ck_assert_double_le(tu_reldiff(sa2, swc / (3 * sw)), 1e-12);
-
+/* Each sample of sm (n valid, the table's values v, sum of weights sw): its
+ * bin once and in table order, its directions, standard-scaled values,
+ * weight, N.H, V.H and a^2; the padding past n neutral. */
+static void check_sample_block(const brdffit_samples *sm, const double *v, size_t n, double sw)
+{
     double f[3];
     brdffit_scale_factors(BRDFFIT_SCALE_STANDARD, f, NULL);
     const size_t np = sm->npad;
@@ -564,6 +575,41 @@ static void check_material(const char *name)
         EXPECT(sm->data[BF_F_VH * np + m] == 1.0);
     }
     EXPECT_NONE();
+}
+
+static void check_material(const char *name)
+{
+    brdffit_table *t = NULL;
+    brdffit_error e;
+    brdffit_status s = tu_merl_read(name, &t, &e);
+    ck_assert_msg(s == BRDFFIT_OK, "%s: %s", name, e.message);
+    const double *v = brdffit_table_values_const(t);
+    const bin_count bc = count_bins(v);
+    const size_t n = bc.n;
+
+    brdffit_samples *sm = NULL;
+    s = brdffit_samples_create(t, NULL, &sm, &e);
+    ck_assert_msg(s == BRDFFIT_OK, "%s: %s", name, e.message);
+    ck_assert_uint_gt(n, 0);
+    ck_assert_uint_gt(bc.masked, 0);
+    ck_assert_uint_eq(brdffit_samples_count(sm), n);
+    ck_assert_uint_eq(brdffit_samples_masked(sm), bc.masked);
+    ck_assert_uint_eq(brdffit_samples_beyond_cutoff(sm), bc.beyond);
+    ck_assert_uint_eq(n + bc.masked + bc.beyond, NB);
+
+    /* the prepared block */
+    ck_assert_uint_eq(sm->n, n);
+    ck_assert_uint_eq(sm->npad % BF_PAD, 0);
+    ck_assert_uint_ge(sm->npad, n);
+    ck_assert_uint_lt(sm->npad - n, BF_PAD);
+    ck_assert_uint_eq((uintptr_t)sm->data % 64, 0);
+    ck_assert_double_le(tu_reldiff(sm->sum_w, bc.sw), 1e-12);
+    double sa2 = 0;
+    for (size_t m = 0; m < sm->npad; m++)
+        sa2 += sm->data[BF_F_A2 * sm->npad + m];
+    ck_assert_double_le(tu_reldiff(sa2, bc.swc / (3 * bc.sw)), 1e-12);
+    check_sample_block(sm, v, n, bc.sw);
+
     brdffit_sample x;
     ck_assert_int_eq(brdffit_samples_get(sm, n, &x, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_samples_get(sm, 0, NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
@@ -918,6 +964,9 @@ Suite *table_suite(void)
     tcase_add_test(tc, test_write_errors);
     tcase_add_test(tc, test_lookup_own_bins);
     tcase_add_test(tc, test_lookup_interp);
+    tcase_add_test(tc, test_lookup_symmetries);
+    tcase_add_test(tc, test_lookup_masked_corner);
+    tcase_add_test(tc, test_lookup_invalid_arguments);
     suite_add_tcase(s, tc);
 
     tc = tcase_create("merl");

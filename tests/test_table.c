@@ -885,6 +885,31 @@ START_TEST(test_sample_options)
     ck_assert_int_eq(o.scale, BRDFFIT_SCALE_STANDARD);
     o.scale = (brdffit_scale)3;
     ck_assert_int_eq(brdffit_samples_create(t, &o, &s, &e), BRDFFIT_E_INVALID_ARGUMENT);
+    brdffit_table_free(t);
+}
+END_TEST
+
+/* The valid samples of t with the cutoff cutoff_deg. */
+static size_t count_at_cutoff(const brdffit_table *t, double cutoff_deg)
+{
+    brdffit_sample_options o;
+    brdffit_sample_options_default(&o);
+    o.cutoff_deg = cutoff_deg;
+    brdffit_samples *s = NULL;
+    brdffit_error e;
+    ck_assert_int_eq(brdffit_samples_create(t, &o, &s, &e), BRDFFIT_OK);
+    size_t n = brdffit_samples_count(s);
+    brdffit_samples_free(s);
+    return n;
+}
+
+START_TEST(test_sample_cutoffs)
+{
+    brdffit_table *t = NULL;
+    brdffit_error e;
+    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
+    brdffit_samples *s = NULL;
+    brdffit_sample_options o;
 
     /* all zeros: every bin above the horizon is valid; cutoff 90 keeps them all */
     size_t above = 0;
@@ -907,11 +932,8 @@ START_TEST(test_sample_options)
     ck_assert_double_eq(got.cutoff_deg, 90.0);
     size_t n90 = brdffit_samples_count(s);
     brdffit_samples_free(s);
-    /* smaller cutoffs keep fewer */
-    o.cutoff_deg = 80;
-    ck_assert_int_eq(brdffit_samples_create(t, &o, &s, &e), BRDFFIT_OK);
-    size_t n80 = brdffit_samples_count(s);
-    brdffit_samples_free(s);
+    /* smaller cutoffs keep fewer, and only samples within them */
+    size_t n80 = count_at_cutoff(t, 80);
     o.cutoff_deg = 30;
     ck_assert_int_eq(brdffit_samples_create(t, &o, &s, &e), BRDFFIT_OK);
     size_t n30 = brdffit_samples_count(s);
@@ -927,6 +949,17 @@ START_TEST(test_sample_options)
     ck_assert_uint_lt(n80, n90);
     ck_assert_uint_lt(n30, n80);
     ck_assert_uint_gt(n30, 0);
+    brdffit_table_free(t);
+}
+END_TEST
+
+START_TEST(test_sample_masking)
+{
+    brdffit_table *t = NULL;
+    brdffit_error e;
+    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
+    brdffit_samples *s = NULL;
+    const size_t n80 = count_at_cutoff(t, 80);
 
     /* one masked channel masks the bin */
     double *v = brdffit_table_values(t);
@@ -995,6 +1028,8 @@ Suite *table_suite(void)
     tcase_set_timeout(tc, 300);
     tcase_add_test(tc, test_scales);
     tcase_add_test(tc, test_sample_options);
+    tcase_add_test(tc, test_sample_cutoffs);
+    tcase_add_test(tc, test_sample_masking);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -10,9 +10,11 @@
  * Each work-item walks a contiguous run of BF_WIDTH-wide sample vectors
  * (explicit vector types: PoCL does not vectorise scalar work-items that call
  * exp/log), keeps its sums in BF_REAL lanes, and writes their lane sums, in
- * double, to out[gid * nmom ...].  The host adds the work-items' rows.
- * Global size = number of work-items (a multiple of the work-group size the
- * host picks); items past the data write zeros.
+ * double, to out[run * nmom ...].  Work-item gid takes run
+ * (gid * order) mod (global size), order prime to it (bf_pass_order in
+ * src/lib/pass.h says why); the host adds the runs' rows in run order.
+ * Global size = number of runs (a multiple of the work-group size the host
+ * picks); runs past the data write zeros.
  *
  * Two kernels: bf_kernel_full (value + forward-difference Jacobian moments,
  * np = BF_NP) and bf_kernel_value (np = 0: value moments only).
@@ -29,18 +31,19 @@
 #error "BF_WIDTH must be 4 or 8"
 #endif
 
-/* One work-item's run of vectors: the body of both kernels.  A model with
- * bin rows (He: bf_lobe_rows) also gets the samples' bins hd (npad doubles),
- * the bin table and room for the rows: nrows per field, the work-item's
- * rows BF_NLANES gid further on than the one before's (its bins begin
- * where that one's end, and a vector of rows reaches BF_NLANES - 1 past). */
+/* One work-item's run of vectors, run number `run`: the body of both
+ * kernels.  A model with bin rows (He: bf_lobe_rows) also gets the samples'
+ * bins hd (npad doubles), the bin table and room for the rows: nrows per
+ * field, run r's rows BF_NLANES r further on than the rows' start (its bins
+ * begin where run r - 1's end, and a vector of rows reaches BF_NLANES - 1
+ * past). */
 BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, const ulong npad,
                                  const uint vec_per_item, __constant const double *ppar,
                                  __global double *out, __global const double *hd,
                                  __global const double *bins, __global double *rows,
-                                 const int nrows)
+                                 const int nrows, const uint order)
 {
-    const uint gid = get_global_id(0);
+    const uint run = (uint)(((ulong)get_global_id(0) * order) % get_global_size(0));
     const int nmom = bf_nmom(BF_NK, np);
     bf_pass_par pp;
     double *q = (double *)&pp;
@@ -54,11 +57,11 @@ BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, cons
     bf_pass_state state;
     bf_pass_state_clear(&state);
     const ulong nvec = npad / BF_WIDTH;
-    ulong v0 = (ulong)gid * vec_per_item;
+    ulong v0 = (ulong)run * vec_per_item;
     ulong v1 = min(v0 + vec_per_item, nvec);
     if (nrows > 0 && v0 < v1)
         bf_lobe_rows(BF_MODEL, bins, (int)hd[v0 * BF_WIDTH], (int)hd[v1 * BF_WIDTH - 1], pp.p, np,
-                     pp.lam, rows + (ulong)gid * BF_WIDTH, nrows, &state.lobe);
+                     pp.lam, rows + (ulong)run * BF_WIDTH, nrows, &state.lobe);
     for (ulong v = v0; v < v1; v++) {
         bf_geom g;
         g.ix = BF_VLOAD(v, data + BF_F_IX * npad);
@@ -80,21 +83,21 @@ BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, cons
     }
     bf_accumulate_end(BF_NK, np, &pp, acc, &state);
     for (int m = 0; m < nmom; m++)
-        out[(ulong)gid * nmom + m] = BF_HSUM(acc[m]);
+        out[(ulong)run * nmom + m] = BF_HSUM(acc[m]);
 }
 
 __kernel void bf_kernel_full(__global const double *data, const ulong npad, const uint vec_per_item,
                              __constant const double *ppar, __global double *out,
                              __global const double *hd, __global const double *bins,
-                             __global double *rows, const int nrows)
+                             __global double *rows, const int nrows, const uint order)
 {
-    bf_kernel_pass(BF_NP, data, npad, vec_per_item, ppar, out, hd, bins, rows, nrows);
+    bf_kernel_pass(BF_NP, data, npad, vec_per_item, ppar, out, hd, bins, rows, nrows, order);
 }
 
 __kernel void bf_kernel_value(__global const double *data, const ulong npad, const uint vec_per_item,
                               __constant const double *ppar, __global double *out,
                               __global const double *hd, __global const double *bins,
-                              __global double *rows, const int nrows)
+                              __global double *rows, const int nrows, const uint order)
 {
-    bf_kernel_pass(0, data, npad, vec_per_item, ppar, out, hd, bins, rows, nrows);
+    bf_kernel_pass(0, data, npad, vec_per_item, ppar, out, hd, bins, rows, nrows, order);
 }

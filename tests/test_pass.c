@@ -580,6 +580,35 @@ START_TEST(ref_far_detected)
 }
 END_TEST
 
+/* bf_pass_order: every run taken once whatever the count of work-items, and
+ * for the counts a pass uses (16 a compute unit), the first chunk of
+ * work-items that PoCL's pthread device deals to one thread (1 + items / 2)
+ * takes 40-60% of its runs from each half of the table. */
+START_TEST(run_order_is_a_permutation)
+{
+    static unsigned char seen[600];
+    for (size_t n = 1; n <= sizeof seen; n++) {
+        cl_uint order = bf_pass_order(n);
+        ck_assert_uint_ge(order, 1);
+        ck_assert(n <= 2 ? order == 1 : order < n);
+        memset(seen, 0, n);
+        for (size_t gid = 0; gid < n; gid++)
+            seen[(gid * order) % n]++;
+        for (size_t r = 0; r < n; r++)
+            ck_assert_msg(seen[r] == 1, "items %zu, order %u: run %zu taken %d times", n,
+                          (unsigned)order, r, seen[r]);
+    }
+    for (size_t cus = 1; cus <= 32; cus *= 2) {
+        size_t n = 16 * cus, chunk = 1 + n / 2, low = 0;
+        cl_uint order = bf_pass_order(n);
+        for (size_t gid = 0; gid < chunk; gid++)
+            low += (gid * order) % n < n / 2;
+        ck_assert_msg(low >= 0.4 * chunk && low <= 0.6 * chunk, "items %zu: %zu of %zu in the first half",
+                      n, low, chunk);
+    }
+}
+END_TEST
+
 Suite *pass_suite(void)
 {
     Suite *s = suite_create("pass");
@@ -596,6 +625,7 @@ Suite *pass_suite(void)
     TCase *tl = tcase_create("layout");
     tcase_add_test(tl, moment_layout);
     tcase_add_test(tl, ref_far_detected);
+    tcase_add_test(tl, run_order_is_a_permutation);
     suite_add_tcase(s, tl);
     TCase *tp = tcase_create("prepare"); /* a synthetic table: no ../shared */
     tcase_set_timeout(tp, 300);

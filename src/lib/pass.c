@@ -13,6 +13,31 @@
 #include <stdlib.h>
 #include <string.h>
 
+static size_t gcd(size_t a, size_t b)
+{
+    while (b) {
+        size_t t = a % b;
+        a = b;
+        b = t;
+    }
+    return a;
+}
+
+cl_uint bf_pass_order(size_t items)
+{
+    if (items <= 2)
+        return 1;
+    const double golden = 0.6180339887498949;
+    size_t c = (size_t)(golden * (double)items + 0.5);
+    for (size_t d = 0; d < items; d++) { /* the nearest prime to items: c - d or c + d */
+        if (c > d && gcd(c - d, items) == 1)
+            return (cl_uint)(c - d);
+        if (c + d < items && gcd(c + d, items) == 1)
+            return (cl_uint)(c + d);
+    }
+    return 1;
+}
+
 /* The bin table's buffers; a model without bin rows gets one small buffer
  * for all three kernel arguments (nrows 0: the kernel reads none). */
 static cl_int open_bins(bf_pass_driver *dr)
@@ -69,6 +94,7 @@ brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
         items = nvec;
     dr->vec_per_item = (cl_uint)((nvec + items - 1) / items);
     dr->items = (nvec + dr->vec_per_item - 1) / dr->vec_per_item;
+    dr->order = bf_pass_order(dr->items);
     dr->rows = malloc(dr->items * BF_NMOM_MAX * sizeof *dr->rows);
     if (!dr->rows)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "out of memory for the pass");
@@ -111,6 +137,7 @@ static brdffit_status run_kernel(bf_pass_driver *dr, int full, const bf_pass_par
     rc |= clSetKernelArg(k, 6, sizeof(cl_mem), dr->btable ? &dr->btable : &dr->bhd);
     rc |= clSetKernelArg(k, 7, sizeof(cl_mem), dr->brows ? &dr->brows : &dr->bhd);
     rc |= clSetKernelArg(k, 8, sizeof nrows, &nrows);
+    rc |= clSetKernelArg(k, 9, sizeof dr->order, &dr->order);
     if (rc != CL_SUCCESS)
         return bf_fail(err, BRDFFIT_E_OPENCL, "setting the pass arguments failed (%d)", (int)rc);
     size_t global = dr->items, local = 1;

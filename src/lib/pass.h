@@ -41,11 +41,28 @@ typedef struct bf_pass_driver {
     cl_mem bhd, btable, brows;        /* its buffers (or one small stand-in) */
     size_t items;                     /* work-items per pass               */
     cl_uint vec_per_item;
+    cl_uint order;                    /* work-item gid takes run gid * order
+                                       * mod items (bf_pass_order)          */
     double *rows;                     /* items x BF_NMOM_MAX, host side    */
     double seconds;                   /* time spent in passes              */
     double seconds_build;             /* of the kernels, when open built them */
     int passes;
 } bf_pass_driver;
+
+/* The stride in which a pass's work-items take the runs of samples: work-item
+ * gid takes run (gid * order) mod items, and writes its sums to that run's
+ * row, so the host adds the rows in run order whatever the order (the sums
+ * are the same to the bit).  PoCL's pthread device deals a kernel's
+ * work-groups to its threads in contiguous chunks, the first holding about
+ * half of them (guided: 1 + remaining / threads); a He pass's runs at small
+ * theta_h make most of the bin rows, so in run order one thread took most of
+ * the rows while the other waited.  order is the integer nearest
+ * items (sqrt(5) - 1) / 2 that is prime to items (1 for items <= 2), so any
+ * contiguous chunk of work-items takes runs spread over the whole table.
+ * Measured (alternated builds): a stride-subset He pass at brass's fit
+ * 0.85-0.87 -> 0.69-0.76 ms; the closed-form passes and He's rough ones
+ * the same or 1-3% faster. */
+cl_uint bf_pass_order(size_t items);
 
 /* Bind samples to ctx for passes of model (on OpenCL: the model's kernels,
  * built here when the context has not built them yet (their build time in

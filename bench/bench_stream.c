@@ -3,7 +3,8 @@
  * the bytes a data pass reads.  The streaming kernel below walks a pass's
  * sample buffer exactly as bf_pass.cl does (BF_WIDTH-wide vloads of the
  * BF_NFIELDS fields, one contiguous run of vectors per work-item, the
- * driver's work-item count and run length, work-groups of 1) and does
+ * driver's work-item count, run length and order of runs (work-item gid
+ * takes run gid * order mod items: bf_pass_order), work-groups of 1) and does
  * nothing with them but add them up per field, so its time is the memory
  * (and load) bound of a pass.  Each sum is checked against the host's: the
  * loads cannot be optimised away and a wrong walk is caught (to 1e-9 of the
@@ -37,19 +38,19 @@ static const char stream_source[] =
     "#error \"bf_stream sums 12 fields: the pass layout (bf_layout.h) changed\"\n"
     "#endif\n"
     "__kernel void bf_stream(__global const double *data, const ulong npad, const uint vec_per_item,\n"
-    "                        __global double *out)\n"
+    "                        __global double *out, const uint order)\n"
     "{\n"
-    "    const uint gid = get_global_id(0);\n"
+    "    const uint run = (uint)(((ulong)get_global_id(0) * order) % get_global_size(0));\n"
     "    vec a0 = (vec)(0.0), a1 = a0, a2 = a0, a3 = a0, a4 = a0, a5 = a0, a6 = a0, a7 = a0, a8 = a0, a9 = a0, a10 = a0, a11 = a0;\n"
     "    const ulong nvec = npad / BF_WIDTH;\n"
-    "    const ulong v0 = (ulong)gid * vec_per_item, v1 = min(v0 + vec_per_item, nvec);\n"
+    "    const ulong v0 = (ulong)run * vec_per_item, v1 = min(v0 + vec_per_item, nvec);\n"
     "    for (ulong v = v0; v < v1; v++) {\n"
     "        a0 += VLOAD(v, data); a1 += VLOAD(v, data + npad); a2 += VLOAD(v, data + 2 * npad);\n"
     "        a3 += VLOAD(v, data + 3 * npad); a4 += VLOAD(v, data + 4 * npad); a5 += VLOAD(v, data + 5 * npad);\n"
     "        a6 += VLOAD(v, data + 6 * npad); a7 += VLOAD(v, data + 7 * npad); a8 += VLOAD(v, data + 8 * npad);\n"
     "        a9 += VLOAD(v, data + 9 * npad); a10 += VLOAD(v, data + 10 * npad); a11 += VLOAD(v, data + 11 * npad);\n"
     "    }\n"
-    "    __global double *o = out + (ulong)gid * NFIELDS;\n"
+    "    __global double *o = out + (ulong)run * NFIELDS;\n"
     "    o[0] = HSUM(a0); o[1] = HSUM(a1); o[2] = HSUM(a2); o[3] = HSUM(a3); o[4] = HSUM(a4); o[5] = HSUM(a5);\n"
     "    o[6] = HSUM(a6); o[7] = HSUM(a7); o[8] = HSUM(a8); o[9] = HSUM(a9); o[10] = HSUM(a10); o[11] = HSUM(a11);\n"
     "}\n";
@@ -117,6 +118,7 @@ int bench_stream_run(bench_stream *bs, const bf_pass_driver *dr, double *seconds
     rc |= clSetKernelArg(bs->kernel, 1, sizeof npad, &npad);
     rc |= clSetKernelArg(bs->kernel, 2, sizeof vpi, &vpi);
     rc |= clSetKernelArg(bs->kernel, 3, sizeof(cl_mem), &bs->out);
+    rc |= clSetKernelArg(bs->kernel, 4, sizeof dr->order, &dr->order);
     size_t global = dr->items, local = 1;
     if (rc == CL_SUCCESS)
         rc = clEnqueueNDRangeKernel(ctx->queue, bs->kernel, 1, NULL, &global, &local, 0, NULL, NULL);

@@ -88,12 +88,19 @@ static brdffit_table *ct_table(brdffit_scale scale)
     return t;
 }
 
+/* A new table: every value 0 (brdffit_table_create). */
+static brdffit_table *zero_table(void)
+{
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
+    return t;
+}
+
 /* Write a valid (all-zero) table to a fresh temporary file. */
 static void zero_table_file(char *path, size_t len)
 {
-    brdffit_table *t = NULL;
     ck_assert_ptr_nonnull(tu_tmpfile(path, len));
-    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
+    brdffit_table *t = zero_table();
     brdffit_error e;
     ck_assert_int_eq(brdffit_table_write(t, path, &e), BRDFFIT_OK);
     brdffit_table_free(t);
@@ -338,8 +345,7 @@ END_TEST
 /* A table of a smooth, non-linear pattern with distinct values (*v: its values). */
 static brdffit_table *interp_table(double **v)
 {
-    brdffit_table *t = NULL;
-    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
+    brdffit_table *t = zero_table();
     *v = brdffit_table_values(t);
     for (int i = 0; i < 90; i++)
         for (int j = 0; j < 90; j++)
@@ -866,9 +872,8 @@ END_TEST
 
 START_TEST(test_sample_options)
 {
-    brdffit_table *t = NULL;
+    brdffit_table *t = zero_table();
     brdffit_error e;
-    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
     brdffit_samples *s = NULL;
     brdffit_sample_options o;
     const double bad[] = { 0, 91, NAN, -5, INFINITY, 90.0000001 };
@@ -905,9 +910,8 @@ static size_t count_at_cutoff(const brdffit_table *t, double cutoff_deg)
 
 START_TEST(test_sample_cutoffs)
 {
-    brdffit_table *t = NULL;
+    brdffit_table *t = zero_table();
     brdffit_error e;
-    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
     brdffit_samples *s = NULL;
     brdffit_sample_options o;
 
@@ -955,9 +959,8 @@ END_TEST
 
 START_TEST(test_sample_masking)
 {
-    brdffit_table *t = NULL;
+    brdffit_table *t = zero_table();
     brdffit_error e;
-    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
     brdffit_samples *s = NULL;
     const size_t n80 = count_at_cutoff(t, 80);
 

@@ -29,7 +29,7 @@ cl_uint bf_pass_order(size_t items)
         return 1;
     const double golden = 0.6180339887498949;
     size_t c = (size_t)(golden * (double)items + 0.5);
-    for (size_t d = 0; d < items; d++) { /* the nearest prime to items: c - d or c + d */
+    for (size_t d = 0; d < items; d++) { /* the nearest integer prime to items: c - d or c + d */
         if (c > d && gcd(c - d, items) == 1)
             return (cl_uint)(c - d);
         if (c + d < items && gcd(c + d, items) == 1)

@@ -109,22 +109,24 @@ static const bf_model_def registry[] = {
      * fit in another minimum (red-fabric 1.1e-6, white-diffuse-bball 9.6e-5
      * above it).  A subset pass costs more than its share of samples: He's
      * memos work per (theta_h, theta_d) bin, and a subset has few samples
-     * of each bin.  So its 21 starts are screened on a quarter of the bins
-     * and every 12th phi_d (every 2nd theta_h and theta_d index: a 48th of
-     * the samples), and the kept ones taken again on the stride subset: on
-     * all 100 MERL tables that kept the same starts, so every fit is the
-     * same to the bit (every 6th phi_d, measured first: He's time in fits
-     * 92.3 -> 86.9 s; every 12th, once the bin rows made a pass's per-bin
-     * work cheap: a screening pass at a rough start 2.3 -> 1.4 ms, He's time
-     * 83.8 -> 76.2 s; every 30th, or every 3rd theta_h and theta_d and 12th
-     * phi_d: 2 and 1 fits moved, by less than 1e-9). */
+     * of each bin.  So its 21 starts are screened on a ninth of the bins
+     * and every 12th phi_d (every 3rd theta_h and theta_d index: a 108th of
+     * the samples), and the kept ones taken again on the stride subset,
+     * which orders them as a screening there would (every 2nd theta_h and
+     * theta_d index, measured first: every fit the same to the bit, He's
+     * time in fits 92.3 -> 86.9 s with every 6th phi_d and 83.8 -> 76.2 s
+     * with every 12th; every 3rd, over the 100 tables: the screening's
+     * passes 1.84 -> 1.09 s, one fit 4.6e-14 higher (specular-red-phenolic),
+     * the others the same to the bit; every 4th: 0.76 s, three fits moved by
+     * less than 6e-15, a 192nd of the samples, close to SCREEN_MIN_SAMPLES;
+     * every 30th sample: 2 fits moved by less than 1e-9). */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
                   .default_starts = 21 },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LINEAR, .lo = 4, .hi = 28, .period = 7,
                   .round_param = 1, .round_factor = 4.0 },
         .screen_stride = 12,
-        .screen_bins = { 2, 2, 12 },
+        .screen_bins = { 3, 3, 12 },
         .secant = BF_SECANT_ON_ALL,
         .refine_on_subset = 1,
     },

@@ -412,26 +412,33 @@ brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
     size_t *idx = index_alloc(src->n, err);
     if (!idx)
         return BRDFFIT_E_NO_MEMORY;
-    /* phi_d's test once per index; theta_h's and theta_d's once per run of
-     * samples in one (theta_h, theta_d) bin (a set in table order walks
-     * each bin's samples in a row): no division for most samples (with
-     * three divisions a sample, the subset of a full table took 7-8.6 ms;
-     * so, 4.2-5.5 ms) */
+    /* A set in table order walks each (theta_h, theta_d) bin's samples in a
+     * row (bins increasing): theta_h's and theta_d's test once per run, and
+     * a run not kept is passed over by a bisection for its end (with three
+     * divisions a sample, the subset of a full table took 7-8.6 ms; testing
+     * every sample, 0.68 ms at every 3rd theta_h and theta_d and 12th phi_d,
+     * best of 50 on brass, ~2.3 ms inside a fit; so, 0.27 ms) */
     char keep_k[BF_NPD];
     for (int k = 0; k < BF_NPD; k++)
         keep_k[k] = k % step[2] == 0;
     size_t n = 0;
-    int lo = 0, keep_hd = 0; /* the bin lo .. lo + BF_NPD - 1 of the last sample, kept or not */
-    for (size_t i = 0; i < src->n; i++) {
-        int b = src->bin[i];
-        if (i == 0 || b < lo || b >= lo + BF_NPD) {
-            int h, j, k; /* theta_h, theta_d, phi_d */
-            bf_bin_ijk((size_t)b, &h, &j, &k);
-            lo = b - k;
-            keep_hd = h % step[0] == 0 && j % step[1] == 0;
+    for (size_t i = 0; i < src->n;) {
+        int h, j, k; /* theta_h, theta_d, phi_d of the run's first sample */
+        bf_bin_ijk((size_t)src->bin[i], &h, &j, &k);
+        const int lo = src->bin[i] - k, end = lo + BF_NPD;
+        size_t e = i + 1, hi = src->n - i < BF_NPD ? src->n : i + BF_NPD; /* the run: i .. e-1 */
+        while (e < hi) { /* the first index in [e, hi) with bin >= end, or hi */
+            size_t mid = e + (hi - e) / 2;
+            if (src->bin[mid] >= end)
+                hi = mid;
+            else
+                e = mid + 1;
         }
-        if (keep_hd && keep_k[b - lo])
-            idx[n++] = i;
+        if (h % step[0] == 0 && j % step[1] == 0)
+            for (size_t q = i; q < e; q++)
+                if (keep_k[src->bin[q] - lo])
+                    idx[n++] = q;
+        i = e;
     }
     brdffit_status st = samples_take(src, idx, n, out, err);
     free(idx);

@@ -919,6 +919,23 @@ static brdffit_status bound_restart(lmstate *S, const brdffit_fit_options *o, lm
  * vanishes only at the bound itself, and the rest converge slowly beside it
  * (measured, He, black-soft-plastic: 1.2e-5 above where a second run from
  * inside went). */
+/* lm_converge with the lobe coordinates of mask held where they are
+ * (S->pinned; none when mask is 0).  The cached points were assembled
+ * without the pins, and the run's with them: the cache is cleared on both
+ * sides of a pinned run. */
+static brdffit_status lm_converge_pinned(lmstate *S, const brdffit_fit_options *o, lmrun *run,
+                                         unsigned mask, double *solver_s)
+{
+    S->pinned = mask;
+    if (mask)
+        cache_clear(S);
+    brdffit_status st = lm_converge(S, o, run, solver_s);
+    if (mask)
+        cache_clear(S);
+    S->pinned = 0;
+    return st;
+}
+
 static brdffit_status pinned_run(lmstate *S, const brdffit_fit_options *o, lmrun *run,
                                  unsigned mask, double *solver_s)
 {
@@ -929,11 +946,7 @@ static brdffit_status pinned_run(lmstate *S, const brdffit_fit_options *o, lmrun
             pin.x[j] = coord_position(&S->fm, j, run->x[j]) < 0.5 ? -M_PI_2 : M_PI_2;
     S->ref = pin.lin;
     S->secant = 1;
-    S->pinned = mask;
-    cache_clear(S); /* assembled without the pins */
-    brdffit_status st = lm_converge(S, o, &pin, solver_s);
-    S->pinned = 0;
-    cache_clear(S); /* assembled with them */
+    brdffit_status st = lm_converge_pinned(S, o, &pin, mask, solver_s);
     if (st == BRDFFIT_OK)
         keep_lower(run, &pin);
     return st;
@@ -1049,13 +1062,7 @@ static brdffit_status polish(lmstate *S, const brdffit_fit_options *o, lmrun *be
     brdffit_fit_options tight = *o;
     tight.ftol *= POLISH_TOL;
     tight.xtol *= POLISH_TOL;
-    S->pinned = on_bounds(&S->fm, best->x);
-    if (S->pinned)
-        cache_clear(S); /* assembled without the pins */
-    brdffit_status st = lm_converge(S, &tight, &pol, solver_s);
-    if (S->pinned)
-        cache_clear(S); /* assembled with them */
-    S->pinned = 0;
+    brdffit_status st = lm_converge_pinned(S, &tight, &pol, on_bounds(&S->fm, best->x), solver_s);
     if (st == BRDFFIT_OK)
         keep_lower(best, &pol);
     return st;

@@ -73,7 +73,9 @@
  * exactly, the scale e^(lk' - lk) = (fs' / fs)(kt' / kt)^2 exactly, and
  *     series  V' = e^(lk' - lk) V e^x,  x = dlnV/dg (g' - g) + dlnV/da (a' - a)
  *             (e^x by its cubic: |x| is ~1e-4 at most where it matters),
- *     limit   L' = L e^(lk' - lk) e^(a/g - a'/g') g / g'   (one exp, exact),
+ *     limit   L' = L e^(lk' - lk) e^(a/g - a'/g') g / g'   (the exp by its
+ *             Taylor polynomial of degree 5 where every lane's exponent is
+ *             within 1e-3 of 0, to 1.4e-21: bf_he_exp_small; else exp),
  * blended by the weight t(g') as bf_he_dblend blends the value; a step in
  * n alone scales K by F' / F.  The series is carried in its log because ln V is
  * close to linear in g and a where V itself is not (d lnV / d ln tau reaches

@@ -139,15 +139,33 @@ BF_FN BF_REAL bf_he_dshadow1(BF_REAL u, BF_REAL ec, BF_REAL ex)
  * series x = r (1 - t/2 + 5 t^2/8 - 49 t^3/48), t = r^2 (of y = e^(-t y^2 / 2),
  * y = x / r; the next term is below 2 t^4 < 2e-16), within 3.2e-16 of the
  * root (against a long double Newton; tests/test_he.c, newton_x).  Above,
- * Newton on ln x + x^2/2 - ln r (no overflow for any r), from r when r <= 1
- * (the right of the root; the first step lands left of it and the rest
- * increase monotonically) and from max(sqrt(2 ln r), 0.75) otherwise
- * (monotone on either side of x = 1).  A lane stops after a step
- * |dx| <= 1e-8 x: with F = ln x + x^2/2 - ln r the relative error after a
- * step is (x F'' / 2F') (dx / x)^2 and |x F'' / 2F'| = |x^2 - 1| / (2 (1 + x^2))
+ * Newton on ln x + x^2/2 - ln r (no overflow for any r): for r up to
+ * BF_HE_R_FIT = 2 from bf_he_x_start, within 5.7e-11 of the root, so that
+ * one step ends it (the rough samples' r are mostly below 1, and a vector
+ * took the four steps of its slowest lane from x = r: a rough full pass 5%
+ * faster), above from max(sqrt(2 ln r), 0.75) (monotone on either side of
+ * x = 1).  A lane stops after a step |dx| <= 1e-8 x: with
+ * F = ln x + x^2/2 - ln r the relative error after a step is
+ * (x F'' / 2F') (dx / x)^2 and |x F'' / 2F'| = |x^2 - 1| / (2 (1 + x^2))
  * < 1/2, so x is then within 5e-17 of the root (and rounding: 1.3e-15
  * measured).  A vector whose every r is at most 0.01 takes no logarithm. */
 #define BF_HE_R_SER 0.01
+#define BF_HE_R_FIT 2.0
+
+/* x's start for r in [0, BF_HE_R_FIT]: r P(t) / Q(t), t = r^2, a rational
+ * function of degree (6, 6) fitted to x / r over t in [0, 4] (x^2 = W(r^2),
+ * Lambert's W), its relative error below 5.7e-11 there (tests/test_he.c,
+ * newton_x); every coefficient positive, so P and Q take no cancellation. */
+BF_FN BF_REAL bf_he_x_start(BF_REAL r)
+{
+    BF_REAL t = r * r;
+    BF_REAL p = 0.99999999994255218 + t * (4.9252967663259284 + t * (8.0826456807894687
+              + t * (5.239735759256245 + t * (1.2652491419240943 + t * (0.089074894653451975
+              + t * 0.00082898072995929439)))));
+    BF_REAL q = 1.0 + t * (5.4252967485420305 + t * (10.170294935704433 + t * (7.9548888863217604
+              + t * (2.5263287435881709 + t * (0.2745068180691122 + t * 0.0064419946217939561)))));
+    return r * (p / q);
+}
 
 BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
 {
@@ -156,7 +174,8 @@ BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
     if (!BF_ANY(rs > BF_HE_R_SER))
         return xs;
     BF_REAL lr = log(rs);
-    BF_REAL x = BF_SEL(rs, fmax(sqrt(2.0 * fmax(lr, 0.0)), BF_R(0.75)), rs > 1.0);
+    BF_REAL x = BF_SEL(bf_he_x_start(fmin(rs, BF_R(BF_HE_R_FIT))),
+                       fmax(sqrt(2.0 * fmax(lr, 0.0)), BF_R(0.75)), rs > BF_HE_R_FIT);
     BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), rs > BF_HE_R_SER);
     for (int it = 0; it < 60 && BF_ANY(act > 0.0); it++) {
         BF_REAL dx = (log(x) + 0.5 * x * x - lr) * x / (1.0 + x * x);

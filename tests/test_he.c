@@ -887,13 +887,46 @@ START_TEST(fd_neighbours)
 }
 END_TEST
 
+/* The neighbours' e^d (bf_he_exp_small) against expl: within 2 ulp-ish
+ * (4e-16 relative) for |d| <= BF_HE_EXP_SMALL, where its Taylor polynomial
+ * serves (remainder 1.4e-21), and exactly exp past it, up to 700. */
+START_TEST(exp_small)
+{
+    double worst = 0.0;
+    for (int i = -10000; i <= 10000; i++) {
+        double d = BF_HE_EXP_SMALL * i / 10000.0;
+        worst = fmax(worst, fabs((double)(bf_he_exp_small(d) / expl((long double)d) - 1.0L)));
+    }
+    ck_assert_msg(worst <= 4e-16, "|d| <= 1e-3: %g relative", worst);
+    const double past[] = { -745.0, -30.0, -1.0, -1.0000001e-3, 1.0000001e-3, 0.5, 700.0 };
+    for (size_t i = 0; i < sizeof past / sizeof past[0]; i++)
+        ck_assert_msg(bf_he_exp_small(past[i]) == exp(past[i]), "d = %g", past[i]);
+}
+END_TEST
+
 /* sigma's x (x e^(x^2/2) = r, bf_he_newton_x) against a long double Newton
  * iteration run to 1e-19, r from 1e-12 to 1e6 (20 steps a factor of ten,
  * both sides of the series' end at 0.01 among them): within 2e-15 relative
  * (measured 3.2e-16 for the series, 1.3e-15 above); r = 0 gives the floor
- * BF_TINY. */
+ * BF_TINY.  Newton's start up to r = BF_HE_R_FIT (bf_he_x_start) within
+ * 1e-10 of the root (fitted: 5.7e-11), so that the first step is below the
+ * stopping rule's 1e-8 x (one step), from r = 0 to 2 in steps of 1e-4. */
 START_TEST(newton_x)
 {
+    double worst_start = 0.0;
+    for (int i = 1; i <= 20000; i++) {
+        double r = 1e-4 * i, x = bf_he_x_start(r);
+        long double lr = logl(r), xr = r;
+        for (int it = 0; it < 200; it++) {
+            long double dx = (logl(xr) + 0.5L * xr * xr - lr) * xr / (1.0L + xr * xr);
+            xr -= dx;
+            if (fabsl(dx) <= 1e-19L * xr)
+                break;
+        }
+        worst_start = fmax(worst_start, fabs((double)(x / xr - 1.0L)));
+    }
+    ck_assert_msg(worst_start <= 1e-10, "start: %g relative", worst_start);
+    ck_assert(bf_he_x_start(0.0) == 0.0);
     double worst = 0.0;
     for (int i = 0; i <= 360; i++) {
         double r = 1e-12 * pow(10.0, i / 20.0);
@@ -1229,6 +1262,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, fd_lobe_dispatch);
     tcase_add_test(tc, erfc_cody);
     tcase_add_test(tc, newton_x);
+    tcase_add_test(tc, exp_small);
     tcase_add_loop_test(tc, pass_memo, 0, NFD);
     tcase_add_loop_test(tc, rows_dead_bound, 0, NFD);
     suite_add_tcase(s, tc);

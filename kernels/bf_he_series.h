@@ -125,19 +125,20 @@ BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
 /* The discrete peak m* of the terms T_m of bf_he_series_x for the lanes
  * where act > 0: d(m* - 1) > 0 >= d(m*) (or m* = 1, = BF_HE_MMAX), found
  * from the continuous peak of ln T_m ~ m ln(g/m) + m - a/m, ln(m/g) = a/m^2
- * (Newton in y = ln m: concave increasing, monotone after the first step),
- * then by single steps.  *conv = 0 in a lane whose steps hit their cap (it
- * is then summed in full), else 1. */
+ * (one Newton step in y = ln m from a first guess), then by single steps:
+ * over g in [1e-6, 19] and a in [0, 1e7] (a grid of 401 x 401) at most 3 of
+ * them, 0.21 on average (three Newton steps left 0.17, each an exp a lane:
+ * a stride-subset pass at brass's fit 5% faster with one, the peak and so
+ * every sum the same).  *conv = 0 in a lane whose steps hit their cap (it is
+ * then summed in full), else 1. */
 BF_FN_INLINE BF_REAL bf_he_series_peak(BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL act,
                                        BF_REAL *conv)
 {
     const double mmax = (double)BF_HE_MMAX, lnmmax = BF_HE_LN_MMAX;
     BF_REAL y = fmax(lng, 0.5 * (la - log(fmax(0.5 * la - lng, BF_R(1.0)))));
     y = fmin(fmax(y, 0.0), lnmmax);
-    for (int it = 0; it < 3; it++) {
-        BF_REAL e = a * exp(-2.0 * y);
-        y = fmin(fmax(y - (y - lng - e) / (1.0 + 2.0 * e), 0.0), lnmmax);
-    }
+    BF_REAL e = a * exp(-2.0 * y);
+    y = fmin(fmax(y - (y - lng - e) / (1.0 + 2.0 * e), 0.0), lnmmax);
     BF_REAL m = fmin(fmax(floor(exp(y) + 0.5), BF_R(1.0)), BF_R(mmax));
 
     BF_REAL up = BF_SEL(BF_R(0.0), BF_R(1.0),

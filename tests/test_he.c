@@ -887,6 +887,31 @@ START_TEST(fd_neighbours)
 }
 END_TEST
 
+/* The series' peak (bf_he_series_peak) over g in [1e-6, 19] and a in
+ * [0, 1e7] (a log grid of 201 x 201, and a = 0): the discrete peak m*,
+ * d(m* - 1) > 0 >= d(m*) (or at 1 or BF_HE_MMAX), found without hitting the
+ * single steps' cap (conv = 1), so every sum starts from its own peak. */
+START_TEST(series_peak_exact)
+{
+    int checked = 0;
+    for (int i = 0; i <= 200; i++) {
+        double g = 1e-6 * pow(19e6, i / 200.0), lng = log(g);
+        for (int j = 0; j <= 201; j++) {
+            double a = j == 0 ? 0.0 : 1e-4 * pow(1e11, (j - 1) / 200.0), conv = 0.0;
+            double m = bf_he_series_peak(lng, a, log(fmax(a, 1e-300)), 1.0, &conv);
+            ck_assert_msg(conv == 1.0, "g %g a %g: the steps hit their cap", g, a);
+            ck_assert_msg(m >= 1.0 && m <= BF_HE_MMAX && m == floor(m), "g %g a %g: m %g", g, a, m);
+            if (m < BF_HE_MMAX)
+                ck_assert_msg(bf_he_dlog(m, lng, a) <= 0.0, "g %g a %g: m %g is before the peak", g, a, m);
+            if (m > 1.0)
+                ck_assert_msg(bf_he_dlog(m - 1.0, lng, a) > 0.0, "g %g a %g: m %g is past the peak", g, a, m);
+            checked++;
+        }
+    }
+    ck_assert_int_eq(checked, 201 * 202);
+}
+END_TEST
+
 /* The neighbours' e^d (bf_he_exp_small) against expl: within 2 ulp-ish
  * (4e-16 relative) for |d| <= BF_HE_EXP_SMALL, where its Taylor polynomial
  * serves (remainder 1.4e-21), and exactly exp past it, up to 700. */
@@ -1263,6 +1288,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, erfc_cody);
     tcase_add_test(tc, newton_x);
     tcase_add_test(tc, exp_small);
+    tcase_add_test(tc, series_peak_exact);
     tcase_add_loop_test(tc, pass_memo, 0, NFD);
     tcase_add_loop_test(tc, rows_dead_bound, 0, NFD);
     suite_add_tcase(s, tc);

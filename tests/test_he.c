@@ -887,6 +887,16 @@ START_TEST(fd_neighbours)
 }
 END_TEST
 
+/* bf_he_rcp[k] is 1.0 / k to the bit (bf_he_series_x takes it for its
+ * division), k = 1..BF_HE_MMAX. */
+START_TEST(reciprocal_table)
+{
+    ck_assert(bf_he_rcp[0] == 0.0);
+    for (int k = 1; k <= BF_HE_MMAX; k++)
+        ck_assert_msg(bf_he_rcp[k] == 1.0 / (double)k, "k = %d: %.17g", k, bf_he_rcp[k]);
+}
+END_TEST
+
 /* The series' peak (bf_he_series_peak) over g in [1e-6, 19] and a in
  * [0, 1e7] (a log grid of 201 x 201, and a = 0): the discrete peak m*,
  * d(m* - 1) > 0 >= d(m*) (or at 1 or BF_HE_MMAX), found without hitting the
@@ -1289,6 +1299,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, newton_x);
     tcase_add_test(tc, exp_small);
     tcase_add_test(tc, series_peak_exact);
+    tcase_add_test(tc, reciprocal_table);
     tcase_add_loop_test(tc, pass_memo, 0, NFD);
     tcase_add_loop_test(tc, rows_dead_bound, 0, NFD);
     suite_add_tcase(s, tc);

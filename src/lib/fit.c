@@ -912,13 +912,6 @@ static brdffit_status bound_restart(lmstate *S, const brdffit_fit_options *o, lm
     return st;
 }
 
-/* LM on all samples with the coordinates of mask held exactly on their
- * bounds (S->pinned: their rows of J^T J and J^T r are 0, so every step
- * leaves them), from *run, kept when lower.  LM that ends on a bound with
- * the coordinate free stops early: the sin map's fold leaves a column that
- * vanishes only at the bound itself, and the rest converge slowly beside it
- * (measured, He, black-soft-plastic: 1.2e-5 above where a second run from
- * inside went). */
 /* lm_converge with the lobe coordinates of mask held where they are
  * (S->pinned; none when mask is 0).  The cached points were assembled
  * without the pins, and the run's with them: the cache is cleared on both
@@ -936,6 +929,13 @@ static brdffit_status lm_converge_pinned(lmstate *S, const brdffit_fit_options *
     return st;
 }
 
+/* LM on all samples with the coordinates of mask held exactly on their
+ * bounds (S->pinned: their rows of J^T J and J^T r are 0, so every step
+ * leaves them), from *run, kept when lower.  LM that ends on a bound with
+ * the coordinate free stops early: the sin map's fold leaves a column that
+ * vanishes only at the bound itself, and the rest converge slowly beside it
+ * (measured, He, black-soft-plastic: 1.2e-5 above where a second run from
+ * inside went). */
 static brdffit_status pinned_run(lmstate *S, const brdffit_fit_options *o, lmrun *run,
                                  unsigned mask, double *solver_s)
 {

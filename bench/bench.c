@@ -296,15 +296,17 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *s, const be
 static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a)
 {
     double fit_seconds[BRDFFIT_MODEL_COUNT] = { 0 };
-    printf("\n2. one complete fit, alum-bronze (default options; kernels built beforehand by\n"
-           "   brdffit_context_prepare; the fastest of %d runs)\n", a->quick ? 1 : 3);
+    printf("\n2. one complete fit, alum-bronze (default options; kernels built and the set's\n"
+           "   screening subsets made beforehand by brdffit_context_prepare and\n"
+           "   brdffit_samples_prepare; the fastest of %d runs)\n", a->quick ? 1 : 3);
     printf("%-18s %10s %7s %7s %10s %10s %12s\n", "model", "Error", "passes", "LM it", "fit s",
            "passes s", "cminpack %");
     for (int m = 0; m < brdffit_model_count(); m++) {
         if (!model_selected(a->models, (brdffit_model)m))
             continue;
         brdffit_error err;
-        if (brdffit_context_prepare(ctx, (brdffit_model)m, &err) != BRDFFIT_OK) {
+        if (brdffit_context_prepare(ctx, (brdffit_model)m, &err) != BRDFFIT_OK ||
+            brdffit_samples_prepare(s, (brdffit_model)m, &err) != BRDFFIT_OK) {
             fprintf(stderr, "bench: %s\n", err.message);
             return 1;
         }

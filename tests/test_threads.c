@@ -2,10 +2,13 @@
 /* test_threads.c -- one context per thread, as the header says: four threads
  * create their FIRST contexts at the same moment (in a fresh process, where
  * PoCL's set-up has not happened yet) and fit at once; each gets the backend
- * it asked for and the Error a sequential fit gets.  `make tsan` runs this
- * suite under ThreadSanitizer. */
+ * it asked for and the Error a sequential fit gets.  Four threads fit one
+ * large set at once, each making the screening subsets it needs, which the
+ * set keeps (samples_derived.c): each is made once, and every fit is the
+ * sequential one.  `make tsan` runs this suite under ThreadSanitizer. */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
+#include "samples.h"
 
 #include <check.h>
 #include <math.h>
@@ -210,6 +213,92 @@ START_TEST(contexts_made_and_freed_in_four_threads)
 }
 END_TEST
 
+/* A synthetic table's sample set at the default cutoff (~1e6 samples): large
+ * enough for every model's screening subsets. */
+static brdffit_samples *large_samples(void)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    brdffit_samples *s = NULL;
+    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
+    if (brdffit_table_create(&t, &err) != BRDFFIT_OK ||
+        brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err) != BRDFFIT_OK)
+        return NULL;
+    brdffit_status st = brdffit_samples_create(t, NULL, &s, &err);
+    brdffit_table_free(t);
+    return st == BRDFFIT_OK ? s : NULL;
+}
+
+/* Two He fits (every 12th sample, the bin subset, three bin tables) and
+ * two of models screened on every 8th sample, at once on one set. */
+static const brdffit_model shared_fitted[NTHREADS] = { BRDFFIT_HE, BRDFFIT_COOK_TORRANCE,
+                                                       BRDFFIT_HE, BRDFFIT_WARD_DUER };
+
+typedef struct shared_seen {
+    int setup_ok;
+    size_t kept;      /* what the set keeps after the threads' fits */
+    worker threaded[NTHREADS], sequential[NTHREADS];
+} shared_seen;
+
+static void run_shared(void *arg, void *out, size_t len)
+{
+    (void)arg;
+    (void)len;
+    shared_seen *r = out;
+    brdffit_samples *s = large_samples(), *fresh = large_samples();
+    if (!s || !fresh)
+        goto done;
+    r->setup_ok = 1;
+    pthread_barrier_t start;
+    pthread_barrier_init(&start, NULL, NTHREADS);
+    pthread_t tid[NTHREADS];
+    for (int i = 0; i < NTHREADS; i++) {
+        worker *w = &r->threaded[i];
+        w->want = BRDFFIT_BACKEND_OPENCL;
+        w->model = shared_fitted[i];
+        w->samples = s;
+        w->start = &start;
+        if (pthread_create(&tid[i], NULL, thread_main, w) != 0)
+            r->setup_ok = 0;
+    }
+    for (int i = 0; i < NTHREADS; i++)
+        pthread_join(tid[i], NULL);
+    pthread_barrier_destroy(&start);
+    r->kept = bf_derived_count(s);
+    for (int i = 0; i < NTHREADS; i++) { /* each on a set of its own, made afresh */
+        worker *w = &r->sequential[i];
+        w->want = BRDFFIT_BACKEND_OPENCL;
+        w->model = shared_fitted[i];
+        w->samples = fresh;
+        create_and_fit(w);
+        brdffit_samples_free(fresh);
+        fresh = i + 1 < NTHREADS ? large_samples() : NULL;
+    }
+done:
+    brdffit_samples_free(s);
+    brdffit_samples_free(fresh);
+}
+
+START_TEST(one_set_fitted_in_four_threads)
+{
+    static shared_seen r;
+    int rc = tu_in_child(run_shared, NULL, &r, sizeof r);
+    ck_assert_msg(rc == 0, "the child process failed (%d): a crash or a ThreadSanitizer report", rc);
+    ck_assert_msg(r.setup_ok, "no sample set or no threads");
+    /* every 12th, He's bin subset, its bin table, every 8th: each made once */
+    ck_assert_uint_eq(r.kept, 4);
+    for (int i = 0; i < NTHREADS; i++) {
+        const worker *t = &r.threaded[i], *q = &r.sequential[i];
+        ck_assert_msg(t->st_context == BRDFFIT_OK && t->st_fit == BRDFFIT_OK, "thread %d: %d/%d %s",
+                      i, t->st_context, t->st_fit, t->message);
+        ck_assert_msg(q->st_context == BRDFFIT_OK && q->st_fit == BRDFFIT_OK,
+                      "sequential %d: %d/%d %s", i, q->st_context, q->st_fit, q->message);
+        ck_assert_msg(t->error == q->error, "thread %d (%s): Error %.17g, alone %.17g", i,
+                      brdffit_model_get(shared_fitted[i])->name, t->error, q->error);
+    }
+}
+END_TEST
+
 Suite *threads_suite(void)
 {
     Suite *s = suite_create("threads");
@@ -217,6 +306,7 @@ Suite *threads_suite(void)
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, first_contexts_in_four_threads);
     tcase_add_test(tc, contexts_made_and_freed_in_four_threads);
+    tcase_add_test(tc, one_set_fitted_in_four_threads);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -219,6 +219,7 @@ FUNCTIONS = {
     "brdffit_samples_beyond_cutoff": (C.c_size_t, [_P]),
     "brdffit_samples_get": (_status, [_P, C.c_size_t, C.POINTER(Sample), _err]),
     "brdffit_samples_options": (_status, [_P, C.POINTER(SampleOptions), _err]),
+    "brdffit_samples_prepare": (_status, [_P, c_enum, _err]),
     # contexts and fits
     "brdffit_context_options_default": (None, [C.POINTER(ContextOptions)]),
     "brdffit_context_create": (_status, [C.POINTER(ContextOptions), C.POINTER(_P), _err]),

@@ -77,6 +77,18 @@ class Samples:
         """The channel scale's name."""
         return scale_name(self._options().scale)
 
+    def prepare(self, *models):
+        """Make now what fits of these models (names, ids or Models; none:
+        every model) derive from the set and share: their screening subsets
+        and He's bin tables, kept with the set, so that no fit's ``seconds``
+        include making them (without this the first fit that needs one makes
+        it).  Returns self."""
+        from .models import model as _model, models as _models
+
+        for m in (models or _models()):
+            _lib.call("brdffit_samples_prepare", self._h.ptr, _model(m).id)
+        return self
+
     def __getitem__(self, index):
         n = self.count
         if not isinstance(index, int):

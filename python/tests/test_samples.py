@@ -54,3 +54,21 @@ def test_bad_samples(brdffit):
     with pytest.raises(brdffit.NoSamplesError) as e:
         brdffit.Samples(masked)
     assert e.value.status == brdffit.Status.NO_SAMPLES and "masked" in str(e.value)
+
+
+def test_prepare(brdffit, ctx):
+    """prepare() for some models, all models, again: the set is unchanged
+    and a fit of it is the fit of a fresh set, to the bit; bad models refused."""
+    t = brdffit.Table.from_model("ward-duer", [0.05, 0.04, 0.03, 0.04, 0.03, 0.02, 0.15])
+    fresh, prepared = brdffit.Samples(t, cutoff=60), brdffit.Samples(t, cutoff=60)
+    assert prepared.prepare("ggx", 1) is prepared
+    prepared.prepare()
+    prepared.prepare(brdffit.model("he"))
+    assert prepared.count == fresh.count and prepared[100] == fresh[100]
+    a = brdffit.fit(ctx, fresh, "ggx")
+    b = brdffit.fit(ctx, prepared, "ggx")
+    assert a.error == b.error and a.params == b.params and a.passes == b.passes
+    with pytest.raises(brdffit.UnknownModelError):
+        prepared.prepare("nonesuch")
+    with pytest.raises(brdffit.UnknownModelError):
+        prepared.prepare(99)

@@ -766,8 +766,10 @@ static int material_samples(batch_run *R, batch_material *m, int i, int n, brdff
     brdffit_status st = *t ? BRDFFIT_OK : load_table(m, o->sample.scale, t, &err);
     if (st == BRDFFIT_OK)
         st = brdffit_samples_create(*t, &o->sample, s, &err);
-    if (st == BRDFFIT_OK)
+    if (st == BRDFFIT_OK) {
+        samples_prepare(*s, o->models, o->nmodels); /* as the prefetch does */
         return 0;
+    }
     err.status = st;
     if (!strstr(err.message, m->path) || m->embedded) {
         char msg[BRDFFIT_MESSAGE_MAX];
@@ -829,7 +831,7 @@ static int do_material(batch_run *R, batch_material *m, const batch_material *ne
         goto done;
     }
     if (next && !next->embedded)
-        prefetch_start(R->pre, next->path, &o->sample, 1);
+        prefetch_start(R->pre, next->path, &o->sample, 1, o->models, o->nmodels);
     fit_planned(R, m, i, n, &td, s);
     if (td.assets && !R->out_failed && !stop_signal) {
         brdffit_samples_free(s);

@@ -167,6 +167,7 @@ static brdffit_samples *file_samples(runner *R, const cli_material *m)
         material_failed(R, m, &err);
         return NULL;
     }
+    samples_prepare(samples, R->o->models, R->o->nmodels); /* as the prefetch does */
     return samples;
 }
 
@@ -186,7 +187,7 @@ static void fit_file(runner *R, const char *path, const char *next, int first)
         return;
     }
     if (next) /* after the first context: its set-up may set POCL_CACHE_DIR */
-        prefetch_start(&R->pre, next, &o->sample, 0);
+        prefetch_start(&R->pre, next, &o->sample, 0, o->models, o->nmodels);
     if (!o->json) {
         if (!first)
             putchar('\n');

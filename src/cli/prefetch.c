@@ -19,7 +19,17 @@ static void *prefetch_main(void *arg)
     }
     if (brdffit_samples_create(P->table, &P->sample, &P->samples, &err) != BRDFFIT_OK)
         P->samples = NULL;
+    else
+        samples_prepare(P->samples, P->models, P->nmodels);
     return NULL;
+}
+
+void samples_prepare(const brdffit_samples *s, const brdffit_model *models, int nmodels)
+{
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    for (int k = 0; k < nmodels; k++)
+        (void)brdffit_samples_prepare(s, models[k], &err);
 }
 
 void prefetch_drop(table_prefetch *P)
@@ -32,7 +42,7 @@ void prefetch_drop(table_prefetch *P)
 }
 
 void prefetch_start(table_prefetch *P, const char *path, const brdffit_sample_options *sample,
-                    int identify)
+                    int identify, const brdffit_model *models, int nmodels)
 {
     prefetch_drop(P);
     if (strlen(path) >= sizeof P->path)
@@ -40,6 +50,8 @@ void prefetch_start(table_prefetch *P, const char *path, const brdffit_sample_op
     memcpy(P->path, path, strlen(path) + 1);
     P->sample = *sample;
     P->identify = identify;
+    P->nmodels = nmodels < BRDFFIT_MODEL_COUNT ? nmodels : BRDFFIT_MODEL_COUNT;
+    memcpy(P->models, models, (size_t)P->nmodels * sizeof *models);
     P->running = pthread_create(&P->thread, NULL, prefetch_main, P) == 0;
     if (!P->running)
         P->path[0] = '\0';

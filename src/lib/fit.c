@@ -24,6 +24,7 @@
 #include "pass.h"
 #include "registry.h"
 #include "samples.h"
+#include "subsets.h"
 
 #include <cminpack.h>
 #include <math.h>
@@ -532,10 +533,6 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
     return BRDFFIT_OK;
 }
 
-/* Below this many samples in the subset, a model's screen_stride (or
- * screen_bins) is not used. */
-#define SCREEN_MIN_SAMPLES 4096
-
 /* Whether kept start a comes before b in screen_starts' order: the `refine`
  * cheapest first (head: by cost, then by number), then the others by round. */
 static int kept_before(const start *a, int a_head, const start *b, int b_head)
@@ -571,25 +568,14 @@ static void keep_order(start *keep, int nkeep, int refine)
     }
 }
 
-/* screen_starts on the model's bin subset (registry screen_bins), then the
- * kept starts taken again on S->ps's samples and ordered as a screening
- * there orders them; *done = 0 (nothing screened) when the model has no bin
- * subset or it has too few samples. */
-static brdffit_status screen_on_bins(lmstate *S, brdffit_context *ctx,
-                                     const brdffit_samples *samples, int nstarts, int refine,
-                                     start *keep, int *nkeep, int *done)
+/* screen_starts on the model's bin subset (bins: bf_screen_subsets), then
+ * the kept starts taken again on S->ps's samples and ordered as a screening
+ * there orders them. */
+static brdffit_status screen_on_bins(lmstate *S, brdffit_context *ctx, const brdffit_samples *bins,
+                                     int nstarts, int refine, start *keep, int *nkeep)
 {
-    const bf_model_def *def = bf_model_def_get(S->fm.model);
-    *done = 0;
-    if (!(def->screen_bins[0] > 0 && def->screen_bins[1] > 0 && def->screen_bins[2] > 0))
-        return BRDFFIT_OK;
-    brdffit_samples *bins = NULL;
     bf_pass_driver bd, *on = S->ps;
-    memset(&bd, 0, sizeof bd);
-    brdffit_status st = bf_samples_bins(samples, def->screen_bins, &bins, S->err);
-    if (st != BRDFFIT_OK || bins->n < SCREEN_MIN_SAMPLES)
-        goto done;
-    st = bf_driver_open(&bd, ctx, bins, S->fm.model, S->err);
+    brdffit_status st = bf_driver_open(&bd, ctx, bins, S->fm.model, S->err);
     if (st != BRDFFIT_OK)
         goto done;
     S->ps = &bd;
@@ -597,46 +583,44 @@ static brdffit_status screen_on_bins(lmstate *S, brdffit_context *ctx,
     S->ps = on;
     for (int k = 0; k < *nkeep && st == BRDFFIT_OK; k++)
         st = screen_start(S, keep[k].p, &keep[k]); /* its index and round stay */
-    if (st == BRDFFIT_OK) {
+    if (st == BRDFFIT_OK)
         keep_order(keep, *nkeep, refine);
-        *done = 1;
-    }
     S->passes_aside = bd.passes;
     S->seconds_aside = bd.seconds;
 done:
     bf_driver_close(&bd);
-    brdffit_samples_free(bins);
     return st;
 }
 
-/* screen_starts on every screen_stride-th sample (registry) when the model
- * has one, into *sub (opened here, closed by the caller), or first on its
- * bin subset (screen_on_bins).  A model that refines on the subset
- * (registry: refine_on_subset) keeps S->sub = sd and its kept starts as the
- * subset left them; otherwise the kept starts' cost and d, s are taken again
- * on all samples, so that each is refined from exactly where a screening on
+/* screen_starts on the model's screening subsets (bf_screen_subsets: every
+ * screen_stride-th sample through *sd, opened here and closed by the
+ * caller; first on the bin subset when it has one), or on all samples when
+ * it has none.  A model that refines on the subset (registry:
+ * refine_on_subset) keeps S->sub = sd and its kept starts as the subset
+ * left them; otherwise the kept starts' cost and d, s are taken again on
+ * all samples, so that each is refined from exactly where a screening on
  * all samples would have left it. */
 static brdffit_status screen_kept(lmstate *S, brdffit_context *ctx, const brdffit_samples *samples,
                                   int nstarts, int refine, start *keep, int *nkeep,
-                                  bf_pass_driver *sd, brdffit_samples **sub)
+                                  bf_pass_driver *sd)
 {
-    const bf_model_def *def = bf_model_def_get(S->fm.model);
-    size_t stride = (size_t)def->screen_stride;
-    if (stride <= 1 || samples->n / stride < SCREEN_MIN_SAMPLES)
+    const brdffit_samples *sub = NULL, *bins = NULL;
+    brdffit_status st = bf_screen_subsets(samples, S->fm.model, &sub, &bins, S->err);
+    if (st != BRDFFIT_OK)
+        return st;
+    if (!sub)
         return screen_starts(S, nstarts, refine, keep, nkeep);
     bf_pass_driver *all = S->ps;
-    brdffit_status st = bf_samples_every(samples, stride, sub, S->err);
-    if (st == BRDFFIT_OK)
-        st = bf_driver_open(sd, ctx, *sub, S->fm.model, S->err);
+    st = bf_driver_open(sd, ctx, sub, S->fm.model, S->err);
     if (st != BRDFFIT_OK)
         return st;
     S->ps = sd;
-    int done = 0;
-    st = screen_on_bins(S, ctx, samples, nstarts, refine, keep, nkeep, &done);
-    if (st == BRDFFIT_OK && !done)
+    if (bins)
+        st = screen_on_bins(S, ctx, bins, nstarts, refine, keep, nkeep);
+    else
         st = screen_starts(S, nstarts, refine, keep, nkeep);
     S->ps = all;
-    if (def->refine_on_subset) {
+    if (bf_model_def_get(S->fm.model)->refine_on_subset) {
         S->sub = sd;
         return st;
     }
@@ -1171,7 +1155,6 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
 
     bf_pass_driver ps, sd; /* all samples; the screening's subset */
     memset(&sd, 0, sizeof sd);
-    brdffit_samples *sub = NULL;
     st = bf_driver_open(&ps, ctx, samples, model, err);
     if (st != BRDFFIT_OK)
         goto done;
@@ -1191,7 +1174,7 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     start keep[MAX_KEEP];
     int nkeep = 0, refine = o.refine < MAX_KEEP ? o.refine : MAX_KEEP;
     int nstarts = o.starts ? o.starts : brdffit_model_get(model)->default_starts;
-    st = screen_kept(&S, ctx, samples, nstarts, refine, keep, &nkeep, &sd, &sub);
+    st = screen_kept(&S, ctx, samples, nstarts, refine, keep, &nkeep, &sd);
     if (st != BRDFFIT_OK)
         goto done;
     lmrun best = { .rr = INFINITY };
@@ -1219,7 +1202,6 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     bf_ok(err);
 done:
     bf_driver_close(&sd);
-    brdffit_samples_free(sub);
     bf_driver_close(&ps);
     return st;
 }

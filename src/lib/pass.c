@@ -10,6 +10,7 @@
 #include "bf_lobe.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,10 +51,11 @@ static cl_int open_bins(bf_pass_driver *dr)
         return rc;
     }
     dr->bhd = clCreateBuffer(cl, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
-                            dr->samples->npad * sizeof(double), b->hd, &rc);
+                            dr->samples->npad * sizeof(double), (void *)(uintptr_t)b->hd, &rc);
     if (dr->bhd)
         dr->btable = clCreateBuffer(cl, CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR,
-                                   (size_t)BF_BFIELDS * BF_NHD_PAD * sizeof(double), b->table, &rc);
+                                   (size_t)BF_BFIELDS * BF_NHD_PAD * sizeof(double),
+                                   (void *)(uintptr_t)b->table, &rc);
     if (dr->btable)
         dr->brows = clCreateBuffer(cl, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR,
                                    (size_t)BF_BK_FIELDS * (size_t)b->nrows * sizeof(double), b->rows,

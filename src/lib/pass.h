@@ -17,17 +17,21 @@
 /* The bin table of a sample set (BF_B_* in kernels/bf_he_rows.h) and room for a pass's
  * bin rows, for a model whose pass makes them (He); all NULL: none. */
 typedef struct bf_pass_bins {
-    double *hd;     /* npad: each sample's bin hd (padding: the last one's) */
-    double *table;  /* BF_BFIELDS x BF_NHD_PAD                             */
-    double *rows;   /* BF_BK_FIELDS x nrows: the host loop's rows          */
-    int nrows;      /* rows per field: room for row_runs runs of bins      */
+    const double *hd;    /* npad: each sample's bin hd (padding: the last one's) */
+    const double *table; /* BF_BFIELDS x BF_NHD_PAD                             */
+    double *rows;        /* BF_BK_FIELDS x nrows: the host loop's rows          */
+    int nrows;           /* rows per field: room for row_runs runs of bins      */
 } bf_pass_bins;
 
 /* The bin table of s, with nrows for row_runs runs of bins (the kernel's
- * work-items; 1 for the host loop). */
+ * work-items; 1 for the host loop).  hd and table are kept with s (made by
+ * the first driver of s that asks: bf_derived_get) and live as long as s;
+ * rows are b's own, freed by bf_pass_bins_free. */
 brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass_bins *b,
                                  brdffit_error *err);
 void bf_pass_bins_free(bf_pass_bins *b);
+/* s's bin table made now (and kept with s) if it was not. */
+brdffit_status bf_pass_bins_prepare(const brdffit_samples *s, brdffit_error *err);
 
 /* A sample set bound to a context for a series of passes of one model. */
 typedef struct bf_pass_driver {

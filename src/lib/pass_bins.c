@@ -2,7 +2,8 @@
 /* pass_bins.c -- the bin table of a sample set (BF_B_* in kernels/bf_he_rows.h) for a
  * model whose pass makes bin rows (He: bf_he_bin_rows in kernels/bf_he_rows.h):
  * each sample's (theta_h, theta_d) bin, one geometry per bin and its
- * flatness bounds, and room for the host loop's rows. */
+ * flatness bounds (made once and kept with the set), and a driver's room
+ * for the rows. */
 #include "pass.h"
 #include "grid.h"
 #include "samples.h"
@@ -18,10 +19,25 @@ _Static_assert(BF_F_VH - BF_F_IX == 7 && BF_B_VH - BF_B_IX == 7 && BF_F_OZ - BF_
 
 void bf_pass_bins_free(bf_pass_bins *b)
 {
-    free(b->hd);
-    free(b->table);
-    free(b->rows);
+    free(b->rows); /* hd and table are the sample set's */
     memset(b, 0, sizeof *b);
+}
+
+/* A sample set's bin table: each sample's bin (hd) and the bins' geometry
+ * and flatness bounds (table); kept with the set (bf_derived_get). */
+typedef struct bin_table {
+    double *hd;    /* npad */
+    double *table; /* BF_BFIELDS x BF_NHD_PAD */
+} bin_table;
+
+static void bin_table_free(void *data)
+{
+    bin_table *t = data;
+    if (!t)
+        return;
+    free(t->hd);
+    free(t->table);
+    free(t);
 }
 
 /* Every bin the pad geometry (wi = wo = the normal: finite everywhere) and
@@ -38,19 +54,10 @@ static void table_clear(double *t)
             t[f * BF_NHD_PAD + h] = pad[f];
 }
 
-brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass_bins *b,
-                                 brdffit_error *err)
+/* The samples' bins into b->hd and each bin's first geometry and its
+ * largest and smallest min(cos ti, cos to) into b->table. */
+static brdffit_status table_fill(const brdffit_samples *s, bin_table *b, brdffit_error *err)
 {
-    memset(b, 0, sizeof b[0]);
-    b->nrows = BF_NHD_PAD + 8 * (row_runs > 0 ? row_runs : 1);
-    b->hd = malloc(s->npad * sizeof *b->hd);
-    b->table = malloc((size_t)BF_BFIELDS * BF_NHD_PAD * sizeof *b->table);
-    b->rows = calloc((size_t)BF_BK_FIELDS * (size_t)b->nrows, sizeof *b->rows);
-    if (!b->hd || !b->table || !b->rows) {
-        bf_pass_bins_free(b);
-        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "out of memory for the bin table");
-    }
-    table_clear(b->table);
     const double *F = s->data;
     const size_t np = s->npad;
     char seen[BF_NHD] = { 0 };
@@ -61,11 +68,9 @@ brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass
             hd = s->bin[i] / BF_NPD;
             lo = hd * BF_NPD;
         }
-        if (s->bin[i] < 0 || hd >= BF_NHD) { /* every set comes from a table: cannot happen */
-            bf_pass_bins_free(b);
+        if (s->bin[i] < 0 || hd >= BF_NHD) /* every set comes from a table: cannot happen */
             return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "sample %zu has no MERL bin (%d)", i,
                            s->bin[i]);
-        }
         double *t = b->table;
         /* the largest and smallest min(cos ti, cos to) for now: their
          * cotangents below */
@@ -97,5 +102,63 @@ brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass
         double *cot = b->table + BF_B_COT * BF_NHD_PAD + (int)hl;
         *cot = fmax(*cot, bf_he_cot_of_cos(1.0));
     }
+    return BRDFFIT_OK;
+}
+
+static brdffit_status bin_table_make(const brdffit_samples *s, const int key[3], void **out,
+                                     brdffit_error *err)
+{
+    (void)key;
+    *out = NULL;
+    bin_table *b = calloc(1, sizeof *b);
+    if (b) {
+        b->hd = malloc(s->npad * sizeof *b->hd);
+        b->table = malloc((size_t)BF_BFIELDS * BF_NHD_PAD * sizeof *b->table);
+    }
+    if (!b || !b->hd || !b->table) {
+        bin_table_free(b);
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "out of memory for the bin table");
+    }
+    table_clear(b->table);
+    brdffit_status st = table_fill(s, b, err);
+    if (st != BRDFFIT_OK) {
+        bin_table_free(b);
+        return st;
+    }
+    *out = b;
+    return BRDFFIT_OK;
+}
+
+static brdffit_status bin_table_kept(const brdffit_samples *s, const bin_table **out,
+                                     brdffit_error *err)
+{
+    static const int key[3] = { 0, 0, 0 };
+    const void *kept = NULL;
+    brdffit_status st = bf_derived_get(s, BF_DERIVED_BIN_TABLE, key, bin_table_make, bin_table_free,
+                                       &kept, err);
+    *out = kept;
+    return st;
+}
+
+brdffit_status bf_pass_bins_prepare(const brdffit_samples *s, brdffit_error *err)
+{
+    const bin_table *t;
+    return bin_table_kept(s, &t, err);
+}
+
+brdffit_status bf_pass_bins_make(const brdffit_samples *s, int row_runs, bf_pass_bins *b,
+                                 brdffit_error *err)
+{
+    memset(b, 0, sizeof b[0]);
+    const bin_table *t = NULL;
+    brdffit_status st = bin_table_kept(s, &t, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    b->nrows = BF_NHD_PAD + 8 * (row_runs > 0 ? row_runs : 1);
+    b->rows = calloc((size_t)BF_BK_FIELDS * (size_t)b->nrows, sizeof *b->rows);
+    if (!b->rows)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "out of memory for the bin rows");
+    b->hd = t->hd;
+    b->table = t->table;
     return BRDFFIT_OK;
 }

@@ -28,6 +28,7 @@ void brdffit_samples_free(brdffit_samples *samples)
 {
     if (!samples)
         return;
+    bf_derived_free(samples);
     bf_free_aligned(samples->data);
     free(samples->w);
     free(samples->bin);
@@ -229,6 +230,7 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
     brdffit_samples *samples = calloc(1, sizeof *samples);
     if (!samples)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "brdffit_samples_create: out of memory");
+    bf_derived_init(samples);
     samples->opt = o;
     samples->masked = masked;
     gt = malloc(sizeof *gt);
@@ -355,6 +357,7 @@ static brdffit_status samples_take(const brdffit_samples *src, const size_t *idx
     brdffit_samples *sub = calloc(1, sizeof *sub);
     if (!sub)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
+    bf_derived_init(sub);
     brdffit_status st = alloc_samples(sub, n, err);
     if (st != BRDFFIT_OK) {
         brdffit_samples_free(sub);

@@ -6,6 +6,7 @@
 
 #include "brdffit.h"
 
+#include <pthread.h>
 #include <stddef.h>
 
 #include "bf_layout.h"
@@ -29,6 +30,12 @@ struct brdffit_samples {
     double *data;                /* BF_NFIELDS * npad doubles, aligned */
     double *w;                   /* n solid-angle weights */
     int *bin;                    /* n bin indices k + 180*(j + 90*i) */
+    /* What fits derive from the set and every fit of it can share (its
+     * screening subsets, He's bin table: samples_derived.c), made by the
+     * first fit that asks and kept until the set is freed.  The set is
+     * otherwise read-only after it is made; derived_lock guards the list. */
+    pthread_mutex_t derived_lock;
+    struct bf_derived *derived;
 };
 
 /* The geometry of a padding sample: wi = wo = N, derived (bf_geom_derive).
@@ -56,5 +63,38 @@ brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdff
  * has screen_bins (bf_model_def). */
 brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
                                brdffit_samples **out, brdffit_error *err);
+
+/* ---- derived data kept with a set (samples_derived.c) */
+
+/* The kinds of derived data (the key's meaning is the kind's). */
+enum { BF_DERIVED_EVERY = 1, BF_DERIVED_BINS = 2, BF_DERIVED_BIN_TABLE = 3 };
+
+/* Makes the data of (kind, key) from s into *out; frees it. */
+typedef brdffit_status (*bf_derive_fn)(const brdffit_samples *s, const int key[3], void **out,
+                                       brdffit_error *err);
+typedef void (*bf_derived_free_fn)(void *data);
+
+/* The lock and list of a set just made, and their end when it is freed
+ * (freeing every derived datum). */
+void bf_derived_init(brdffit_samples *s);
+void bf_derived_free(brdffit_samples *s);
+
+/* The datum of (kind, key) kept with s: made by make the first time (under
+ * s's lock, so that two threads fitting s at once make it once), then the
+ * same pointer until s is freed.  A failure of make is returned and nothing
+ * is kept. */
+brdffit_status bf_derived_get(const brdffit_samples *s, int kind, const int key[3],
+                              bf_derive_fn make, bf_derived_free_fn free_fn, const void **out,
+                              brdffit_error *err);
+
+/* How many data s keeps (for the tests: that each is made once). */
+size_t bf_derived_count(const brdffit_samples *s);
+
+/* bf_samples_every and bf_samples_bins of src, kept with src (the same
+ * samples to the bit; freed with src, not by the caller). */
+brdffit_status bf_samples_every_kept(const brdffit_samples *src, size_t stride,
+                                     const brdffit_samples **out, brdffit_error *err);
+brdffit_status bf_samples_bins_kept(const brdffit_samples *src, const int step[3],
+                                    const brdffit_samples **out, brdffit_error *err);
 
 #endif /* BRDFFIT_SAMPLES_H */

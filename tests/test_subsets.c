@@ -12,6 +12,7 @@
 #include "subsets.h"
 
 #include <check.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* A synthetic table (Ward-Duer lobe + Lambertian, every bin above the
@@ -202,6 +203,45 @@ START_TEST(prepare_refuses_and_small_sets)
 }
 END_TEST
 
+/* A derived datum whose making fails: its status and message come back,
+ * nothing is kept, and the next ask makes it (a failure is not remembered). */
+static int fail_next = 1;
+enum { TEST_KIND = 99 }; /* a kind of the test's own */
+
+static brdffit_status make_or_fail(const brdffit_samples *s, const int key[3], void **out,
+                                   brdffit_error *err)
+{
+    (void)s;
+    if (fail_next)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "no memory for datum %d", key[0]);
+    int *v = malloc(sizeof *v);
+    if (!v)
+        return bf_fail(err, BRDFFIT_E_NO_MEMORY, "no memory");
+    *v = key[0];
+    *out = v;
+    return BRDFFIT_OK;
+}
+
+START_TEST(failed_make_keeps_nothing)
+{
+    brdffit_samples *s = full_samples();
+    brdffit_error err;
+    const int key[3] = { 7, 0, 0 };
+    const void *d = (const void *)&err;
+    fail_next = 1;
+    ck_assert_int_eq(bf_derived_get(s, TEST_KIND, key, make_or_fail, free, &d, &err),
+                     BRDFFIT_E_NO_MEMORY);
+    ck_assert_ptr_null(d);
+    ck_assert_str_eq(err.message, "no memory for datum 7");
+    ck_assert_uint_eq(bf_derived_count(s), 0);
+    fail_next = 0;
+    ck_assert_int_eq(bf_derived_get(s, TEST_KIND, key, make_or_fail, free, &d, &err), BRDFFIT_OK);
+    ck_assert(d && *(const int *)d == 7);
+    ck_assert_uint_eq(bf_derived_count(s), 1);
+    brdffit_samples_free(s); /* frees the datum with free() */
+}
+END_TEST
+
 Suite *subsets_suite(void)
 {
     Suite *s = suite_create("subsets");
@@ -212,6 +252,7 @@ Suite *subsets_suite(void)
     tcase_add_test(tc, prepare_makes_what_fits_use);
     tcase_add_loop_test(tc, prepared_fit_is_fresh_fit, 0, 2);
     tcase_add_test(tc, prepare_refuses_and_small_sets);
+    tcase_add_test(tc, failed_make_keeps_nothing);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -93,12 +93,15 @@ static void print_times(fit_times *T, int nmat, double wall)
            "  %.1f s outside them (start-up, reading %d tables, their sample sets, output)\n",
            T->fits, wall, T->in_fits, T->builds, outside, nmat);
     printf("  median fit seconds:");
+    double med[BRDFFIT_MODEL_COUNT] = { 0 };
     for (int m = 0; m < brdffit_model_count(); m++)
         if (T->n[m]) {
-            double med = median(T->seconds[m], T->n[m]);
-            sum_med += med;
-            printf(" %s %.2f", brdffit_model_get((brdffit_model)m)->name, med);
+            med[m] = median(T->seconds[m], T->n[m]);
+            sum_med += med[m];
+            printf(" %s %.3f", brdffit_model_get((brdffit_model)m)->name, med[m]);
         }
+    if (med[BRDFFIT_HE] > 0 && med[BRDFFIT_COOK_TORRANCE] > 0)
+        printf("\n  he / cook-torrance, medians: %.1fx", med[BRDFFIT_HE] / med[BRDFFIT_COOK_TORRANCE]);
     double per_table = (wall - T->builds) / nmat;
     printf("\n  projected to the %d tables: %.0f s = %d x %.2f s per table (all but the builds)\n"
            "  + %.1f s of builds once; from the medians: %d x (%.2f s of fits + %.2f s outside)\n"

@@ -35,7 +35,7 @@ static void bin_table_free(void *data)
     bin_table *t = data;
     if (!t)
         return;
-    free(t->hd);
+    bf_free_aligned(t->hd);
     free(t->table);
     free(t);
 }
@@ -112,7 +112,7 @@ static brdffit_status bin_table_make(const brdffit_samples *s, const int key[3],
     *out = NULL;
     bin_table *b = calloc(1, sizeof *b);
     if (b) {
-        b->hd = malloc(s->npad * sizeof *b->hd);
+        b->hd = bf_alloc_aligned(s->npad * sizeof *b->hd); /* a kernel buffer's host memory */
         b->table = malloc((size_t)BF_BFIELDS * BF_NHD_PAD * sizeof *b->table);
     }
     if (!b || !b->hd || !b->table) {

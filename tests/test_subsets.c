@@ -15,21 +15,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A synthetic table (Ward-Duer lobe + Lambertian, every bin above the
- * horizon), all its samples within the default cutoff: large enough for
- * every model's screening subsets; no ../shared. */
+/* The synthetic table's set at the default cutoff (~1e6 samples): large
+ * enough for every model's screening subsets; no ../shared. */
 static brdffit_samples *full_samples(void)
 {
     brdffit_error err;
-    brdffit_table *t = NULL;
     brdffit_samples *s = NULL;
-    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
-    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
-    ck_assert_msg(brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err) ==
-                      BRDFFIT_OK,
-                  "%s", err.message);
-    ck_assert_msg(brdffit_samples_create(t, NULL, &s, &err) == BRDFFIT_OK, "%s", err.message);
-    brdffit_table_free(t);
+    ck_assert_msg(tu_ward_duer_samples(0, &s, &err) == BRDFFIT_OK, "%s", err.message);
     return s;
 }
 
@@ -184,16 +176,8 @@ START_TEST(prepare_refuses_and_small_sets)
     ck_assert_uint_eq(bf_derived_count(s), 0);
     brdffit_samples_free(s);
 
-    brdffit_table *t = NULL;
-    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
-    ck_assert_int_eq(brdffit_table_create(&t, &err), BRDFFIT_OK);
-    ck_assert_int_eq(brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err),
-                     BRDFFIT_OK);
-    brdffit_sample_options so;
-    brdffit_sample_options_default(&so);
-    so.cutoff_deg = 6; /* a few thousand samples: fewer than 8 x 4096 */
-    ck_assert_int_eq(brdffit_samples_create(t, &so, &s, &err), BRDFFIT_OK);
-    brdffit_table_free(t);
+    /* a few thousand samples: fewer than 8 x 4096 */
+    ck_assert_int_eq(tu_ward_duer_samples(6, &s, &err), BRDFFIT_OK);
     ck_assert_uint_lt(s->n, 8 * BF_SCREEN_MIN_SAMPLES);
     ck_assert_int_eq(brdffit_samples_prepare(s, BRDFFIT_WARD, &err), BRDFFIT_OK);
     ck_assert_uint_eq(bf_derived_count(s), 0);

@@ -31,23 +31,13 @@ typedef struct worker {
     char message[512];
 } worker;
 
-/* A synthetic table (Ward-Duer lobe + Lambertian) cut to a small sample set:
- * the host path is one thread and TSan is slow. */
+/* The synthetic table's sample set within 25 deg (a small one: the host
+ * path is one thread and TSan is slow), or NULL. */
 static brdffit_samples *small_samples(void)
 {
-    brdffit_error err;
-    brdffit_table *t = NULL;
     brdffit_samples *s = NULL;
-    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
-    if (brdffit_table_create(&t, &err) != BRDFFIT_OK ||
-        brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err) != BRDFFIT_OK)
-        return NULL;
-    brdffit_sample_options so;
-    brdffit_sample_options_default(&so);
-    so.cutoff_deg = 25;
-    brdffit_status st = brdffit_samples_create(t, &so, &s, &err);
-    brdffit_table_free(t);
-    return st == BRDFFIT_OK ? s : NULL;
+    brdffit_error err;
+    return tu_ward_duer_samples(25, &s, &err) == BRDFFIT_OK ? s : NULL;
 }
 
 static void fit_options(brdffit_fit_options *fo)
@@ -92,6 +82,26 @@ static void *thread_main(void *arg)
     return NULL;
 }
 
+/* The workers' fits (want, model and samples set) in NTHREADS threads that
+ * start at one moment; 0 when every thread was started. */
+static int fit_in_threads(worker *ws)
+{
+    pthread_barrier_t start;
+    pthread_barrier_init(&start, NULL, NTHREADS);
+    pthread_t tid[NTHREADS];
+    int started[NTHREADS], rc = 0;
+    for (int i = 0; i < NTHREADS; i++) {
+        ws[i].start = &start;
+        started[i] = pthread_create(&tid[i], NULL, thread_main, &ws[i]) == 0;
+        rc |= !started[i];
+    }
+    for (int i = 0; i < NTHREADS; i++)
+        if (started[i])
+            pthread_join(tid[i], NULL);
+    pthread_barrier_destroy(&start);
+    return rc;
+}
+
 /* Child results: the threads', then the same fits one after the other. */
 typedef struct threads_seen {
     int setup_ok;
@@ -119,22 +129,13 @@ static void run_threads(void *arg, void *out, size_t len)
     brdffit_samples *s = small_samples();
     if (!s)
         return;
-    r->setup_ok = 1;
-    pthread_barrier_t start;
-    pthread_barrier_init(&start, NULL, NTHREADS);
-    pthread_t tid[NTHREADS];
     for (int i = 0; i < NTHREADS; i++) {
         worker *w = &r->threaded[i];
         w->want = asked[i];
         w->model = fitted[i];
         w->samples = s;
-        w->start = &start;
-        if (pthread_create(&tid[i], NULL, thread_main, w) != 0)
-            r->setup_ok = 0;
     }
-    for (int i = 0; i < NTHREADS; i++)
-        pthread_join(tid[i], NULL);
-    pthread_barrier_destroy(&start);
+    r->setup_ok = fit_in_threads(r->threaded) == 0;
     for (int i = 0; i < NTHREADS; i++) {
         worker *w = &r->sequential[i];
         w->want = asked[i];
@@ -213,20 +214,13 @@ START_TEST(contexts_made_and_freed_in_four_threads)
 }
 END_TEST
 
-/* A synthetic table's sample set at the default cutoff (~1e6 samples): large
- * enough for every model's screening subsets. */
+/* The synthetic table's sample set at the default cutoff (~1e6 samples):
+ * large enough for every model's screening subsets; or NULL. */
 static brdffit_samples *large_samples(void)
 {
-    brdffit_error err;
-    brdffit_table *t = NULL;
     brdffit_samples *s = NULL;
-    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
-    if (brdffit_table_create(&t, &err) != BRDFFIT_OK ||
-        brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err) != BRDFFIT_OK)
-        return NULL;
-    brdffit_status st = brdffit_samples_create(t, NULL, &s, &err);
-    brdffit_table_free(t);
-    return st == BRDFFIT_OK ? s : NULL;
+    brdffit_error err;
+    return tu_ward_duer_samples(0, &s, &err) == BRDFFIT_OK ? s : NULL;
 }
 
 /* Two He fits (every 12th sample, the bin subset, three bin tables) and
@@ -248,22 +242,13 @@ static void run_shared(void *arg, void *out, size_t len)
     brdffit_samples *s = large_samples(), *fresh = large_samples();
     if (!s || !fresh)
         goto done;
-    r->setup_ok = 1;
-    pthread_barrier_t start;
-    pthread_barrier_init(&start, NULL, NTHREADS);
-    pthread_t tid[NTHREADS];
     for (int i = 0; i < NTHREADS; i++) {
         worker *w = &r->threaded[i];
         w->want = BRDFFIT_BACKEND_OPENCL;
         w->model = shared_fitted[i];
         w->samples = s;
-        w->start = &start;
-        if (pthread_create(&tid[i], NULL, thread_main, w) != 0)
-            r->setup_ok = 0;
     }
-    for (int i = 0; i < NTHREADS; i++)
-        pthread_join(tid[i], NULL);
-    pthread_barrier_destroy(&start);
+    r->setup_ok = fit_in_threads(r->threaded) == 0;
     r->kept = bf_derived_count(s);
     for (int i = 0; i < NTHREADS; i++) { /* each on a set of its own, made afresh */
         worker *w = &r->sequential[i];

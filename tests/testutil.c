@@ -186,6 +186,24 @@ brdffit_status tu_merl_samples(const char *material, const brdffit_sample_option
     return st;
 }
 
+brdffit_status tu_ward_duer_samples(double cutoff_deg, brdffit_samples **out, brdffit_error *err)
+{
+    brdffit_table *t = NULL;
+    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
+    brdffit_sample_options so;
+    brdffit_sample_options_default(&so);
+    if (cutoff_deg > 0)
+        so.cutoff_deg = cutoff_deg;
+    *out = NULL;
+    brdffit_status st = brdffit_table_create(&t, err);
+    if (st == BRDFFIT_OK)
+        st = brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, err);
+    if (st == BRDFFIT_OK)
+        st = brdffit_samples_create(t, &so, out, err);
+    brdffit_table_free(t);
+    return st;
+}
+
 brdffit_status tu_context(brdffit_backend backend, brdffit_context **out, brdffit_error *err)
 {
     brdffit_context_options co;

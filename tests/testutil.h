@@ -99,6 +99,10 @@ brdffit_status tu_merl_read(const char *material, brdffit_table **out, brdffit_e
 /* Its sample set with options opt (NULL: the defaults). */
 brdffit_status tu_merl_samples(const char *material, const brdffit_sample_options *opt,
                                brdffit_samples **out, brdffit_error *err);
+/* The sample set of a synthetic table (a Ward-Duer lobe, alpha 0.15, over a
+ * Lambertian term; every bin above the horizon filled), within cutoff_deg
+ * (<= 0: the default cutoff): no ../shared needed. */
+brdffit_status tu_ward_duer_samples(double cutoff_deg, brdffit_samples **out, brdffit_error *err);
 /* A context on backend (device: the default). */
 brdffit_status tu_context(brdffit_backend backend, brdffit_context **out, brdffit_error *err);
 

@@ -74,6 +74,15 @@ static void create_and_fit(worker *w)
     brdffit_context_free(ctx);
 }
 
+/* What w will ask for: a context of backend want, and a fit of model on s. */
+static void worker_ask(worker *w, brdffit_backend want, brdffit_model model,
+                       const brdffit_samples *s)
+{
+    w->want = want;
+    w->model = model;
+    w->samples = s;
+}
+
 static void *thread_main(void *arg)
 {
     worker *w = arg;
@@ -129,19 +138,12 @@ static void run_threads(void *arg, void *out, size_t len)
     brdffit_samples *s = small_samples();
     if (!s)
         return;
-    for (int i = 0; i < NTHREADS; i++) {
-        worker *w = &r->threaded[i];
-        w->want = asked[i];
-        w->model = fitted[i];
-        w->samples = s;
-    }
+    for (int i = 0; i < NTHREADS; i++)
+        worker_ask(&r->threaded[i], asked[i], fitted[i], s);
     r->setup_ok = fit_in_threads(r->threaded) == 0;
     for (int i = 0; i < NTHREADS; i++) {
-        worker *w = &r->sequential[i];
-        w->want = asked[i];
-        w->model = fitted[i];
-        w->samples = s;
-        create_and_fit(w);
+        worker_ask(&r->sequential[i], asked[i], fitted[i], s);
+        create_and_fit(&r->sequential[i]);
     }
     brdffit_samples_free(s);
 }
@@ -242,20 +244,13 @@ static void run_shared(void *arg, void *out, size_t len)
     brdffit_samples *s = large_samples(), *fresh = large_samples();
     if (!s || !fresh)
         goto done;
-    for (int i = 0; i < NTHREADS; i++) {
-        worker *w = &r->threaded[i];
-        w->want = BRDFFIT_BACKEND_OPENCL;
-        w->model = shared_fitted[i];
-        w->samples = s;
-    }
+    for (int i = 0; i < NTHREADS; i++)
+        worker_ask(&r->threaded[i], BRDFFIT_BACKEND_OPENCL, shared_fitted[i], s);
     r->setup_ok = fit_in_threads(r->threaded) == 0;
     r->kept = bf_derived_count(s);
     for (int i = 0; i < NTHREADS; i++) { /* each on a set of its own, made afresh */
-        worker *w = &r->sequential[i];
-        w->want = BRDFFIT_BACKEND_OPENCL;
-        w->model = shared_fitted[i];
-        w->samples = fresh;
-        create_and_fit(w);
+        worker_ask(&r->sequential[i], BRDFFIT_BACKEND_OPENCL, shared_fitted[i], fresh);
+        create_and_fit(&r->sequential[i]);
         brdffit_samples_free(fresh);
         fresh = i + 1 < NTHREADS ? large_samples() : NULL;
     }

@@ -365,15 +365,18 @@ brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
  * are written). */
 brdffit_status brdffit_samples_options(const brdffit_samples *samples,
                                        brdffit_sample_options *out, brdffit_error *err);
-/* Make now what fits of `model` derive from the set and share: the subsets
- * its starts are screened on (every 8th sample, He: every 12th and a bin
- * subset) and, for He, the bin tables of the set and of those subsets.  A
- * set keeps them until it is freed, and every fit of it (any context, any
- * thread) uses the same ones, so that a fit need not read the whole set to
- * make them (~8 ms for a MERL table on the machine of README's figures).
- * Optional: without it the first fit that needs one makes it, and that
- * fit's `seconds` include it.  Memory: up to ~1/3 of the set's own for all
- * the models (README: How a fit works, Starts).  Safe while other threads fit the set.
+/* Make now what fits of `model` derive from the set and share: the mirror
+ * set its passes on all samples read (each pair of samples at phi_d and
+ * pi - phi_d, which every model gives one value, merged into one: README,
+ * How a fit works), the subsets its starts are screened on (every 8th
+ * sample, He: every 12th and a bin subset) and, for He, the bin tables of
+ * the mirror set and of those subsets.  A set keeps them until it is freed,
+ * and every fit of it (any context, any thread) uses the same ones, so that
+ * a fit need not read the whole set to make them (~8 ms each for a MERL
+ * table on the machine of README's figures).  Optional: without it the
+ * first fit that needs one makes it, and that fit's `seconds` include it.
+ * Memory: ~0.8 of the set's own for all the models (README: How a fit
+ * works, Starts).  Safe while other threads fit the set.
  * BRDFFIT_E_INVALID_ARGUMENT (NULL samples), BRDFFIT_E_UNKNOWN_MODEL,
  * BRDFFIT_E_NO_MEMORY (nothing is kept then). */
 brdffit_status brdffit_samples_prepare(const brdffit_samples *samples, brdffit_model model,
@@ -479,8 +482,9 @@ typedef struct brdffit_fit_result {
                                 on the screening's subset included           */
     double seconds;          /* wall time of brdffit_fit: checks, the kernel
                                 build if the fit made it (seconds_build),
-                                the set's screening subsets if the fit made
-                                them (brdffit_samples_prepare), screening the
+                                the set's mirror set and screening subsets if
+                                the fit made them (brdffit_samples_prepare),
+                                screening the
                                 starts, the LM runs                         */
     double seconds_solver;   /* of which inside cminpack (not the passes)   */
     double seconds_passes;   /* of which in data passes                     */

@@ -198,6 +198,130 @@ START_TEST(subset_of_bins)
 }
 END_TEST
 
+/* A MERL table's sample set whose pairs of mirror bins (i, j, k) and
+ * (i, j, 180 - k) differ (each value times 1 + up to 20%, a hash of its bin
+ * and channel) and every 7th bin masked, so that some samples' partners are
+ * missing. */
+static brdffit_samples *mirror_test_samples(const char *material)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    ck_assert_msg(tu_merl_read(material, &t, &err) == BRDFFIT_OK, "%s", err.message);
+    double *v = brdffit_table_values(t);
+    for (size_t b = 0; b < BF_NBINS; b++)
+        for (int c = 0; c < 3; c++) {
+            double *x = &v[(size_t)c * BF_NBINS + b];
+            unsigned h = (unsigned)(b * 2654435761u) ^ (unsigned)(c * 40503u);
+            h ^= h >> 15;
+            *x = b % 7 == 0 ? -1.0 : *x >= 0.0 ? *x * (1.0 + 0.2 * (h % 1000) / 1000.0) : *x;
+        }
+    brdffit_samples *s = NULL;
+    ck_assert_msg(brdffit_samples_create(t, NULL, &s, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_table_free(t);
+    return s;
+}
+
+/* The mirror set (bf_samples_mirror): every sample at k <= 90 and every one
+ * at k > 90 whose partner 180 - k is not in the set, in table order, each at
+ * its own directions; a merged sample's weight the pair's sum and its value
+ * their weighted mean; the set's sums of the weights; and what the pairs
+ * hold beyond their merged values (pair_see) their sum of
+ * a2_1 a2_2 (rho_1 - rho_2)^2 / (a2_1 + a2_2), counted here sample by sample. */
+START_TEST(mirror_set_merges_pairs)
+{
+    brdffit_samples *s = mirror_test_samples("blue-rubber"), *m = NULL;
+    brdffit_error err;
+    ck_assert_msg(bf_samples_mirror(s, &m, &err) == BRDFFIT_OK, "%s", err.message);
+    long *at = malloc(BF_NBINS * sizeof *at);
+    ck_assert_ptr_nonnull(at);
+    for (size_t b = 0; b < BF_NBINS; b++)
+        at[b] = -1;
+    for (size_t i = 0; i < s->n; i++)
+        at[s->bin[i]] = (long)i;
+    size_t q = 0, pairs = 0;
+    double see[3] = { 0 }, a2sum = 0.0;
+    for (size_t i = 0; i < s->n; i++) {
+        int h, j, k;
+        bf_bin_ijk((size_t)s->bin[i], &h, &j, &k);
+        long p = k == 0 || k == 90 ? -1 : at[s->bin[i] - k + (180 - k)];
+        if (k > 90 && p >= 0)
+            continue; /* merged into its partner */
+        ck_assert_uint_lt(q, m->n);
+        ck_assert_int_eq(m->bin[q], s->bin[i]);
+        for (int f = BF_F_IX; f <= BF_F_VH; f++)
+            ck_assert(m->data[f * m->npad + q] == s->data[f * s->npad + i]);
+        const double a1 = s->data[BF_F_A2 * s->npad + i];
+        const double a2 = p >= 0 ? s->data[BF_F_A2 * s->npad + p] : 0.0;
+        ck_assert(m->data[BF_F_A2 * m->npad + q] == a1 + a2);
+        for (int c = 0; c < 3; c++) {
+            const double r1 = s->data[(BF_F_R + c) * s->npad + i];
+            const double r2 = p >= 0 ? s->data[(BF_F_R + c) * s->npad + p] : 0.0;
+            ck_assert(tu_reldiff(m->data[(BF_F_R + c) * m->npad + q], (a1 * r1 + a2 * r2) / (a1 + a2)) <= 1e-15);
+            see[c] += a1 * a2 * (r1 - r2) * (r1 - r2) / (a1 + a2);
+        }
+        a2sum += a1 + a2;
+        pairs += p >= 0;
+        q++;
+    }
+    ck_assert_uint_eq(m->n, q);
+    ck_assert_uint_eq(m->n + pairs, s->n);
+    ck_assert_msg(pairs > 0.4 * (double)s->n && m->n < 0.6 * (double)s->n, "%zu pairs of %zu samples",
+                  pairs, s->n);
+    ck_assert_msg(pairs < s->n / 2, "every sample paired: the masked bins left none alone");
+    for (int c = 0; c < 3; c++)
+        ck_assert_msg(see[c] > 0.0 && tu_reldiff(m->pair_see[c], see[c]) <= 1e-12,
+                      "channel %d: pair_see %.17g, counted %.17g", c, m->pair_see[c], see[c]);
+    ck_assert(tu_reldiff(a2sum, s->sum_a2) <= 1e-12 && m->sum_a2 == s->sum_a2);
+    ck_assert(s->pair_see[0] == 0.0 && s->pair_see[1] == 0.0 && s->pair_see[2] == 0.0);
+    for (size_t r = m->n; r < m->npad; r++)
+        ck_assert(m->data[BF_F_A2 * m->npad + r] == 0.0);
+    free(at);
+    brdffit_samples_free(m);
+    brdffit_samples_free(s);
+}
+END_TEST
+
+/* A pass over the mirror set (bf_driver_run, which adds pair_see) gives the
+ * set's own sums, by the host C loop over the set itself, to 1e-9 relative:
+ * every model, value and full passes, both backends.  The pairs' values
+ * differ, so pair_see is a share of sum a2 e^2 that the check would see
+ * missing. */
+START_TEST(mirror_sums_are_the_sets)
+{
+    brdffit_model model = (brdffit_model)_i;
+    brdffit_samples *s = mirror_test_samples("gold-metallic-paint");
+    const brdffit_samples *m = NULL;
+    brdffit_error err;
+    ck_assert_msg(bf_samples_mirror_kept(s, &m, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_par pp;
+    some_point(model, &pp);
+    for (int backend = 0; backend < 2; backend++) {
+        brdffit_context *ctx = NULL;
+        ck_assert_msg(tu_context(backend ? BRDFFIT_BACKEND_HOST : BRDFFIT_BACKEND_OPENCL, &ctx, &err)
+                          == BRDFFIT_OK, "%s", err.message);
+        bf_pass_driver dr;
+        ck_assert_msg(bf_driver_open(&dr, ctx, m, model, &err) == BRDFFIT_OK, "%s", err.message);
+        bf_pass_bins bins;
+        ck_assert_msg(bf_pass_bins_make(s, 1, &bins, &err) == BRDFFIT_OK, "%s", err.message);
+        for (int full = 0; full <= 1; full++) {
+            int np = full ? dr.np : 0, nmom = bf_nmom(dr.nk, np);
+            double k[BF_NMOM_MAX], h[BF_NMOM_MAX];
+            ck_assert_msg(bf_driver_run(&dr, full, &pp, k, &err) == BRDFFIT_OK, "%s", err.message);
+            bf_host_loop(s, bf_lobe_has_own_fd((int)model) ? &bins : NULL, model, dr.nk, np, &pp, h);
+            for (int i = 0; i < nmom; i++)
+                ck_assert_msg(tu_reldiff(k[i], h[i]) <= 1e-9, "%s backend %d full=%d moment %d: mirror %.17g set %.17g",
+                              brdffit_model_get(model)->name, backend, full, i, k[i], h[i]);
+            const double see = h[bf_mom_chan(0, dr.nk, np) + BF_MC_SEE];
+            ck_assert_msg(m->pair_see[0] > 1e-6 * see, "pair_see %.3g of %.3g", m->pair_see[0], see);
+        }
+        bf_pass_bins_free(&bins);
+        bf_driver_close(&dr);
+        brdffit_context_free(ctx);
+    }
+    brdffit_samples_free(s);
+}
+END_TEST
+
 /* He's full pass with the pass state (its memos, its bin rows and bf_fold,
  * which sums the vectors a bin's row serves once per bin) against
  * bf_accumulate sample by sample with none: every moment within 1e-8
@@ -625,6 +749,8 @@ Suite *pass_suite(void)
     tcase_add_test(tc, subset_every_8th);
     tcase_add_test(tc, fold_equals_plain);
     tcase_add_test(tc, kernel_equals_host_on_stride_subset);
+    tcase_add_test(tc, mirror_set_merges_pairs);
+    tcase_add_loop_test(tc, mirror_sums_are_the_sets, 0, brdffit_model_count());
     tcase_add_loop_test(tc, subset_of_bins, 0, (int)(sizeof bins_steps / sizeof bins_steps[0]));
     suite_add_tcase(s, tc);
     TCase *tl = tcase_create("layout");

@@ -3,7 +3,7 @@
  * subsets.c): the screening subsets kept with the set are the subsets made
  * afresh, to the bit, and made once; He's bin table is shared by every
  * driver of the set, each with rows of its own; brdffit_samples_prepare
- * makes exactly what a fit would, and a fit of a prepared set is the fit of
+ * makes exactly what a fit would (the mirror set among it), and a fit of a prepared set is the fit of
  * a fresh one.  (Fits of one set from several threads at once: test_threads.c.) */
 #include "testutil.h"
 #include "pass.h"
@@ -95,16 +95,19 @@ START_TEST(bin_table_shared_rows_own)
 END_TEST
 
 /* brdffit_samples_prepare makes what a fit of the model uses (the fit then
- * makes nothing), once; for He also the bin tables of the set and of its
- * two subsets. */
+ * makes nothing), once: the mirror set its passes on all samples read, the
+ * screening subsets, and for He the bin tables of the mirror set and of its
+ * two subsets (none of the set's own). */
 START_TEST(prepare_makes_what_fits_use)
 {
     brdffit_samples *s = full_samples();
     brdffit_error err;
     ck_assert_msg(brdffit_samples_prepare(s, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_int_eq(err.status, BRDFFIT_OK);
-    const brdffit_samples *every = NULL, *bins = NULL;
-    ck_assert_uint_eq(bf_derived_count(s), 3); /* every 12th, the bin subset, the bin table */
+    const brdffit_samples *every = NULL, *bins = NULL, *mirror = NULL;
+    ck_assert_uint_eq(bf_derived_count(s), 3); /* the mirror set, every 12th, the bin subset */
+    ck_assert_msg(bf_samples_mirror_kept(s, &mirror, &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert_uint_eq(bf_derived_count(mirror), 1); /* its bin table */
     ck_assert_msg(bf_screen_subsets(s, BRDFFIT_HE, &every, &bins, &err) == BRDFFIT_OK, "%s",
                   err.message);
     ck_assert(every && bins);
@@ -129,6 +132,7 @@ START_TEST(prepare_makes_what_fits_use)
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_COOK_TORRANCE, NULL, &r, &err) == BRDFFIT_OK, "%s",
                   err.message);
     ck_assert_uint_eq(bf_derived_count(s), 4); /* the fits made nothing more */
+    ck_assert_uint_eq(bf_derived_count(mirror), 1);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
 }
@@ -162,7 +166,8 @@ START_TEST(prepared_fit_is_fresh_fit)
 END_TEST
 
 /* Bad arguments: a clear status and message, nothing kept; a set too small
- * for a screening subset keeps none (He: only its own bin table). */
+ * for a screening subset keeps only its mirror set (He: and that set's bin
+ * table). */
 START_TEST(prepare_refuses_and_small_sets)
 {
     brdffit_error err;
@@ -180,9 +185,13 @@ START_TEST(prepare_refuses_and_small_sets)
     ck_assert_int_eq(tu_ward_duer_samples(6, &s, &err), BRDFFIT_OK);
     ck_assert_uint_lt(s->n, 8 * BF_SCREEN_MIN_SAMPLES);
     ck_assert_int_eq(brdffit_samples_prepare(s, BRDFFIT_WARD, &err), BRDFFIT_OK);
-    ck_assert_uint_eq(bf_derived_count(s), 0);
+    ck_assert_uint_eq(bf_derived_count(s), 1);
+    const brdffit_samples *mirror = NULL;
+    ck_assert_int_eq(bf_samples_mirror_kept(s, &mirror, &err), BRDFFIT_OK);
+    ck_assert_uint_eq(bf_derived_count(mirror), 0);
     ck_assert_int_eq(brdffit_samples_prepare(s, BRDFFIT_HE, &err), BRDFFIT_OK);
     ck_assert_uint_eq(bf_derived_count(s), 1);
+    ck_assert_uint_eq(bf_derived_count(mirror), 1);
     brdffit_samples_free(s);
 }
 END_TEST

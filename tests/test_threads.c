@@ -225,14 +225,16 @@ static brdffit_samples *large_samples(void)
     return tu_ward_duer_samples(0, &s, &err) == BRDFFIT_OK ? s : NULL;
 }
 
-/* Two He fits (every 12th sample, the bin subset, three bin tables) and
- * two of models screened on every 8th sample, at once on one set. */
+/* Two He fits (the mirror set, every 12th sample, the bin subset, three
+ * bin tables) and two of models screened on every 8th sample, at once on
+ * one set. */
 static const brdffit_model shared_fitted[NTHREADS] = { BRDFFIT_HE, BRDFFIT_COOK_TORRANCE,
                                                        BRDFFIT_HE, BRDFFIT_WARD_DUER };
 
 typedef struct shared_seen {
     int setup_ok;
-    size_t kept;      /* what the set keeps after the threads' fits */
+    size_t kept;        /* what the set keeps after the threads' fits */
+    size_t kept_mirror; /* and what its mirror set keeps */
     worker threaded[NTHREADS], sequential[NTHREADS];
 } shared_seen;
 
@@ -248,6 +250,9 @@ static void run_shared(void *arg, void *out, size_t len)
         worker_ask(&r->threaded[i], BRDFFIT_BACKEND_OPENCL, shared_fitted[i], s);
     r->setup_ok = fit_in_threads(r->threaded) == 0;
     r->kept = bf_derived_count(s);
+    const brdffit_samples *mirror = NULL;
+    brdffit_error err;
+    r->kept_mirror = bf_samples_mirror_kept(s, &mirror, &err) == BRDFFIT_OK ? bf_derived_count(mirror) : 0;
     for (int i = 0; i < NTHREADS; i++) { /* each on a set of its own, made afresh */
         worker_ask(&r->sequential[i], BRDFFIT_BACKEND_OPENCL, shared_fitted[i], fresh);
         create_and_fit(&r->sequential[i]);
@@ -265,8 +270,9 @@ START_TEST(one_set_fitted_in_four_threads)
     int rc = tu_in_child(run_shared, NULL, &r, sizeof r);
     ck_assert_msg(rc == 0, "the child process failed (%d): a crash or a ThreadSanitizer report", rc);
     ck_assert_msg(r.setup_ok, "no sample set or no threads");
-    /* every 12th, He's bin subset, its bin table, every 8th: each made once */
+    /* the mirror set, every 12th, He's bin subset, every 8th: each made once */
     ck_assert_uint_eq(r.kept, 4);
+    ck_assert_uint_eq(r.kept_mirror, 1); /* the mirror set's bin table, once */
     for (int i = 0; i < NTHREADS; i++) {
         const worker *t = &r.threaded[i], *q = &r.sequential[i];
         ck_assert_msg(t->st_context == BRDFFIT_OK && t->st_fit == BRDFFIT_OK, "thread %d: %d/%d %s",

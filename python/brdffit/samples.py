@@ -79,8 +79,9 @@ class Samples:
 
     def prepare(self, *models):
         """Make now what fits of these models (names, ids or Models; none:
-        every model) derive from the set and share: their screening subsets
-        and He's bin tables, kept with the set, so that no fit's ``seconds``
+        every model) derive from the set and share: the mirror set their
+        passes on all samples read, their screening subsets and He's bin
+        tables, kept with the set, so that no fit's ``seconds``
         include making them (without this the first fit that needs one makes
         it).  Returns self."""
         from .models import model as _model, models as _models

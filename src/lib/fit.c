@@ -18,6 +18,10 @@
  * problem.  Each evaluated point caches both (lmder pairs a trial's residual
  * with the Jacobian it asks for next).  H may carry a secant estimate of the
  * residuals' curvature (secant_correct), which Gauss-Newton leaves out.
+ *
+ * The passes on all samples read the set's mirror set (samples_mirror.c:
+ * the same sums from about half the samples); the screening's subsets are
+ * made from the set itself.
  */
 #define _DEFAULT_SOURCE /* M_PI, M_SQRT2, M_SQRT1_2 */
 #include "linear.h"
@@ -1153,9 +1157,13 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     if (st != BRDFFIT_OK)
         return st;
 
-    bf_pass_driver ps, sd; /* all samples; the screening's subset */
+    bf_pass_driver ps, sd; /* all samples (their mirror set); the screening's subset */
+    memset(&ps, 0, sizeof ps);
     memset(&sd, 0, sizeof sd);
-    st = bf_driver_open(&ps, ctx, samples, model, err);
+    const brdffit_samples *all = NULL;
+    st = bf_samples_mirror_kept(samples, &all, err);
+    if (st == BRDFFIT_OK)
+        st = bf_driver_open(&ps, ctx, all, model, err);
     if (st != BRDFFIT_OK)
         goto done;
     lmstate S;
@@ -1216,7 +1224,11 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
     if (st != BRDFFIT_OK)
         return st;
     bf_pass_driver ps;
-    st = bf_driver_open(&ps, ctx, samples, model, err);
+    memset(&ps, 0, sizeof ps);
+    const brdffit_samples *all = NULL;
+    st = bf_samples_mirror_kept(samples, &all, err); /* as brdffit_fit's passes */
+    if (st == BRDFFIT_OK)
+        st = bf_driver_open(&ps, ctx, all, model, err);
     if (st == BRDFFIT_OK) {
         bf_pass_par pp;
         memset(&pp, 0, sizeof pp);

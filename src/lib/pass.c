@@ -173,6 +173,8 @@ brdffit_status bf_driver_run(bf_pass_driver *dr, int full, const bf_pass_par *pp
     dr->passes++;
     if (st != BRDFFIT_OK)
         return st;
+    for (int c = 0; c < 3; c++) /* a mirror set's pairs (samples_mirror.c) */
+        mom[bf_mom_chan(c, dr->nk, np) + BF_MC_SEE] += dr->samples->pair_see[c];
     for (int m = 0; m < nmom; m++)
         if (!isfinite(mom[m]))
             return bf_fail(err, BRDFFIT_E_FIT_FAILED, "a data pass gave a non-finite sum (moment %d)", m);

@@ -345,13 +345,11 @@ size_t bf_samples_geometries(const brdffit_samples *samples, size_t need)
     return found;
 }
 
-/* A sample set of src's samples idx[0..n-1] (increasing: table order), with
- * src's metric weights a2 (its sums are a sample of src's).  Field by field,
- * one of src's arrays at a time.  A strided subset still reads most of
+/* Field by field, one of src's arrays at a time.  A strided subset still reads most of
  * src's cache lines: every 12th sample of a full table takes ~11 ms (sample
  * by sample, with the keep test made twice a sample, ~17 ms). */
-static brdffit_status samples_take(const brdffit_samples *src, const size_t *idx, size_t n,
-                                   brdffit_samples **out, brdffit_error *err)
+brdffit_status bf_samples_take(const brdffit_samples *src, const size_t *idx, size_t n,
+                               brdffit_samples **out, brdffit_error *err)
 {
     *out = NULL;
     brdffit_samples *sub = calloc(1, sizeof *sub);
@@ -368,8 +366,11 @@ static brdffit_status samples_take(const brdffit_samples *src, const size_t *idx
     for (int q = 0; q < BF_NFIELDS; q++) {
         const double *from = src->data + (size_t)q * src->npad;
         double *to = sub->data + (size_t)q * sub->npad;
-        for (size_t m = 0; m < n; m++)
-            to[m] = from[idx[m]];
+        for (size_t m = 0, e; m < n; m = e) { /* a run of consecutive samples at a time */
+            for (e = m + 1; e < n && idx[e] == idx[e - 1] + 1; e++)
+                ;
+            memcpy(to + m, from + idx[m], (e - m) * sizeof *to);
+        }
     }
     for (size_t m = 0; m < n; m++) {
         sub->w[m] = src->w[idx[m]];
@@ -403,7 +404,7 @@ brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdff
         return BRDFFIT_E_NO_MEMORY;
     for (size_t m = 0; m < n; m++)
         idx[m] = m * stride;
-    brdffit_status st = samples_take(src, idx, n, out, err);
+    brdffit_status st = bf_samples_take(src, idx, n, out, err);
     free(idx);
     return st;
 }
@@ -443,7 +444,7 @@ brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
                     idx[n++] = q;
         i = e;
     }
-    brdffit_status st = samples_take(src, idx, n, out, err);
+    brdffit_status st = bf_samples_take(src, idx, n, out, err);
     free(idx);
     return st;
 }

@@ -27,6 +27,9 @@ struct brdffit_samples {
     brdffit_sample_options opt;
     double sum_w;                /* sum of the solid-angle weights of the n samples */
     double sum_a2;               /* sum of the metric weights a2 of the n samples */
+    double pair_see[3];          /* per channel, what a pass adds to its sum a2 e^2:
+                                  * a mirror set's pairs' share of it beyond their
+                                  * merged samples' (bf_samples_mirror); 0 else */
     double *data;                /* BF_NFIELDS * npad doubles, aligned */
     double *w;                   /* n solid-angle weights */
     int *bin;                    /* n bin indices k + 180*(j + 90*i) */
@@ -64,10 +67,22 @@ brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdff
 brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
                                brdffit_samples **out, brdffit_error *err);
 
+/* A sample set of src's samples idx[0..n-1] (increasing: table order), with
+ * src's metric weights a2 (its sums are a sample of src's). */
+brdffit_status bf_samples_take(const brdffit_samples *src, const size_t *idx, size_t n,
+                               brdffit_samples **out, brdffit_error *err);
+
+/* The mirror set of src (samples_mirror.c): each pair of samples in the MERL
+ * bins (i, j, k) and (i, j, 180 - k) merged into one sample at bin k, with
+ * the same sums in every data pass (pair_see): what a fit's passes on all
+ * samples read, about half of src's samples. */
+brdffit_status bf_samples_mirror(const brdffit_samples *src, brdffit_samples **out,
+                                 brdffit_error *err);
+
 /* ---- derived data kept with a set (samples_derived.c) */
 
 /* The kinds of derived data (the key's meaning is the kind's). */
-enum { BF_DERIVED_EVERY = 1, BF_DERIVED_BINS = 2, BF_DERIVED_BIN_TABLE = 3 };
+enum { BF_DERIVED_EVERY = 1, BF_DERIVED_BINS = 2, BF_DERIVED_BIN_TABLE = 3, BF_DERIVED_MIRROR = 4 };
 
 /* Makes the data of (kind, key) from s into *out; frees it. */
 typedef brdffit_status (*bf_derive_fn)(const brdffit_samples *s, const int key[3], void **out,
@@ -90,11 +105,13 @@ brdffit_status bf_derived_get(const brdffit_samples *s, int kind, const int key[
 /* How many data s keeps (for the tests: that each is made once). */
 size_t bf_derived_count(const brdffit_samples *s);
 
-/* bf_samples_every and bf_samples_bins of src, kept with src (the same
- * samples to the bit; freed with src, not by the caller). */
+/* bf_samples_every, bf_samples_bins and bf_samples_mirror of src, kept with
+ * src (the same samples to the bit; freed with src, not by the caller). */
 brdffit_status bf_samples_every_kept(const brdffit_samples *src, size_t stride,
                                      const brdffit_samples **out, brdffit_error *err);
 brdffit_status bf_samples_bins_kept(const brdffit_samples *src, const int step[3],
                                     const brdffit_samples **out, brdffit_error *err);
+brdffit_status bf_samples_mirror_kept(const brdffit_samples *src, const brdffit_samples **out,
+                                      brdffit_error *err);
 
 #endif /* BRDFFIT_SAMPLES_H */

@@ -103,6 +103,16 @@ static brdffit_status make_bins(const brdffit_samples *s, const int key[3], void
     return st;
 }
 
+static brdffit_status make_mirror(const brdffit_samples *s, const int key[3], void **out,
+                                  brdffit_error *err)
+{
+    (void)key;
+    brdffit_samples *m = NULL;
+    brdffit_status st = bf_samples_mirror(s, &m, err);
+    *out = m;
+    return st;
+}
+
 brdffit_status bf_samples_every_kept(const brdffit_samples *src, size_t stride,
                                      const brdffit_samples **out, brdffit_error *err)
 {
@@ -118,6 +128,17 @@ brdffit_status bf_samples_bins_kept(const brdffit_samples *src, const int step[3
 {
     const void *d = NULL;
     brdffit_status st = bf_derived_get(src, BF_DERIVED_BINS, step, make_bins, samples_free_any, &d, err);
+    *out = d;
+    return st;
+}
+
+brdffit_status bf_samples_mirror_kept(const brdffit_samples *src, const brdffit_samples **out,
+                                      brdffit_error *err)
+{
+    const int key[3] = { 0, 0, 0 };
+    const void *d = NULL;
+    brdffit_status st = bf_derived_get(src, BF_DERIVED_MIRROR, key, make_mirror, samples_free_any, &d,
+                                       err);
     *out = d;
     return st;
 }

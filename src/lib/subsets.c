@@ -41,8 +41,10 @@ brdffit_status brdffit_samples_prepare(const brdffit_samples *samples, brdffit_m
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_samples_prepare: NULL samples");
     if (!brdffit_model_get(model))
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
-    const brdffit_samples *sets[3] = { samples, NULL, NULL };
-    brdffit_status st = bf_screen_subsets(samples, model, &sets[1], &sets[2], err);
+    const brdffit_samples *sets[3] = { NULL, NULL, NULL }; /* all samples' mirror set, subsets */
+    brdffit_status st = bf_samples_mirror_kept(samples, &sets[0], err);
+    if (st == BRDFFIT_OK)
+        st = bf_screen_subsets(samples, model, &sets[1], &sets[2], err);
     for (int i = 0; i < 3 && st == BRDFFIT_OK; i++)
         if (sets[i] && sets[i]->n > 0 && bf_lobe_has_own_fd((int)model))
             st = bf_pass_bins_prepare(sets[i], err);

@@ -82,12 +82,14 @@ static int rgba_index(const char *name)
     return -1;
 }
 
-/* The part's header: one scanline part of float R, G, B, A, ZIP-compressed. */
+/* The part's header: one scanline part of float R, G, B, A, RLE-compressed (lossless; ZIP
+ * made the files 18% smaller, but its deflate took ~0.1 s of the ~0.26 s that a material's
+ * renders, plots and files take: the batch's renders then outlasted the next fits). */
 static exr_result_t write_header(exr_context_t f, int width, int height, int *part)
 {
     exr_result_t rv = exr_add_part(f, "rgba", EXR_STORAGE_SCANLINE, part);
     if (rv == EXR_ERR_SUCCESS)
-        rv = exr_initialize_required_attr_simple(f, *part, width, height, EXR_COMPRESSION_ZIP);
+        rv = exr_initialize_required_attr_simple(f, *part, width, height, EXR_COMPRESSION_RLE);
     static const char *const order[4] = { "R", "G", "B", "A" };
     for (int c = 0; c < 4 && rv == EXR_ERR_SUCCESS; c++)
         rv = exr_add_channel(f, *part, order[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1);

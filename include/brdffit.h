@@ -484,8 +484,7 @@ typedef struct brdffit_fit_result {
                                 build if the fit made it (seconds_build),
                                 the set's mirror set and screening subsets if
                                 the fit made them (brdffit_samples_prepare),
-                                screening the
-                                starts, the LM runs                         */
+                                screening the starts, the LM runs           */
     double seconds_solver;   /* of which inside cminpack (not the passes)   */
     double seconds_passes;   /* of which in data passes                     */
     size_t samples;          /* samples fitted                              */

@@ -240,6 +240,61 @@ START_TEST(material_files_read_back)
 }
 END_TEST
 
+/* Five fits, written by the two writer threads (models alternately): the
+ * files listed in the models' order (the reference's, then each model's
+ * EXR, PNG and difference PNG with its index), each model's image error its
+ * own; then with models 1 and 3 refused (a parameter out of range), the
+ * error is model 1's, the first in order, whichever thread met it. */
+START_TEST(model_files_in_order)
+{
+    char dir[512];
+    tmpdir(dir, sizeof dir);
+    brdffit_table *t = ct_table();
+    const brdffit_model models[5] = { BRDFFIT_COOK_TORRANCE, BRDFFIT_WARD, BRDFFIT_GGX,
+                                      BRDFFIT_BLINN_PHONG, BRDFFIT_WARD_DUER };
+    /* ct_params' (F0, m) = (0.6, 0.3) serve Cook-Torrance and GGX (F0, alpha); the others' p[0] */
+    const double p0[5] = { 0.6, 0.2, 0.6, 50, 0.2 };
+    rf_fit fits[5];
+    memset(fits, 0, sizeof fits);
+    for (int k = 0; k < 5; k++) {
+        fits[k].model = models[k];
+        fits[k].params = ct_params();
+        fits[k].params.p[0] = p0[k];
+        fits[k].error = NAN;
+    }
+    rf_settings s;
+    rf_settings_default(&s, BRDFFIT_SCALE_STANDARD);
+    s.render_opt.width = 32;
+    s.plot = 0;
+    rf_result r;
+    brdffit_error err;
+    ck_assert_msg(rf_write_material(dir, "order", t, fits, 5, &s, &r, &err) == 0, "%s", err.message);
+    ck_assert_int_eq(r.nfiles, 2 + 3 * 5 + 1); /* and renders.json */
+    ck_assert_str_eq(r.files[0].file, "reference.exr");
+    ck_assert_str_eq(r.files[1].file, "reference.png");
+    for (int k = 0; k < 5; k++) {
+        const char *stem = brdffit_model_get(models[k])->name, *suffix[3] = { ".exr", ".png", "-diff.png" };
+        for (int q = 0; q < 3; q++) {
+            char want[64];
+            snprintf(want, sizeof want, "%s%s", stem, suffix[q]);
+            ck_assert_str_eq(r.files[2 + 3 * k + q].file, want);
+            ck_assert_int_eq(r.files[2 + 3 * k + q].fit, k);
+        }
+        ck_assert_msg(isfinite(r.image_error[k]) && r.image_error[k] >= 0, "model %d: image error %g",
+                      k, r.image_error[k]);
+    }
+    ck_assert(r.image_error[0] < r.image_error[1]); /* the exact model beats Ward */
+    fits[1].params.p[0] = -1.0;
+    fits[3].params.p[0] = -1.0;
+    memset(&err, 0, sizeof err);
+    ck_assert_int_eq(rf_write_material(dir, "order", t, fits, 5, &s, &r, &err), -1);
+    ck_assert_int_eq(err.status, BRDFFIT_E_PARAM_RANGE);
+    ck_assert_msg(strstr(err.message, "render ward:") != NULL, "%s", err.message);
+    brdffit_table_free(t);
+    rm_tree(dir);
+}
+END_TEST
+
 START_TEST(unwritable_directory)
 {
     char dir[512], path[1024];
@@ -413,6 +468,7 @@ Suite *render_files_suite(void)
     TCase *tc = tcase_create("render_files");
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, material_files_read_back);
+    tcase_add_test(tc, model_files_in_order);
     tcase_add_test(tc, unwritable_directory);
     tcase_add_test(tc, env_exr_reading);
     tcase_add_test(tc, srgb_and_false_colour);

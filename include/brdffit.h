@@ -535,12 +535,14 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
 /* The "ngan-l2" Error (the metric, into *error) of given parameters on a
  * sample set; a failure is the returned status, explained in err.
  *
- * Fits and Errors come from data passes over the sample set (OpenCL kernel
- * or host loop).  For He a pass walks the samples in table order and, where
- * a sample's g and a agree with the previous one's to 1e-12 (relative: the
- * same theta_h, theta_d bin on a surface smooth enough that sigma = sigma0),
- * reuses that series carried to first order; its K then agrees with
- * brdffit_eval's to ~1e-13 relative (tested), not bit for bit. */
+ * Fits and Errors come from data passes (OpenCL kernel or host loop) over
+ * the sample set's mirror set: each pair of samples at phi_d and pi - phi_d,
+ * which every model gives one value, merged into one sample, with the same
+ * sums up to rounding (README: How a fit works).  For He a pass takes a
+ * flat sample's K from its (theta_h, theta_d) bin's row and the others'
+ * series from their bin's table; its K then agrees with brdffit_eval's to
+ * ~1e-12 relative (tested), not bit for bit, and a flat sample's K below
+ * e^-60 of K at normal incidence counts as 0 (README: Conventions). */
 brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *samples,
                                 brdffit_model model, const brdffit_params *params,
                                 double *error, brdffit_error *err);

@@ -1136,6 +1136,19 @@ static brdffit_status check_enough_samples(const brdffit_samples *samples, brdff
                    bf_model_ncoords(model), bf_model_ncoords(model) == 1 ? "" : "s");
 }
 
+/* The driver of a fit's (and brdffit_error_of's) passes on all samples: over
+ * the set's mirror set (samples_mirror.c), so that a fit's Error is
+ * brdffit_error_of's to the bit.  Close it whatever this returns. */
+static brdffit_status open_all_samples(bf_pass_driver *ps, brdffit_context *ctx,
+                                       const brdffit_samples *samples, brdffit_model model,
+                                       brdffit_error *err)
+{
+    memset(ps, 0, sizeof *ps);
+    const brdffit_samples *all = NULL;
+    brdffit_status st = bf_samples_mirror_kept(samples, &all, err);
+    return st == BRDFFIT_OK ? bf_driver_open(ps, ctx, all, model, err) : st;
+}
+
 brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples, brdffit_model model,
                            const brdffit_fit_options *opt, brdffit_fit_result *result,
                            brdffit_error *err)
@@ -1158,12 +1171,8 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
         return st;
 
     bf_pass_driver ps, sd; /* all samples (their mirror set); the screening's subset */
-    memset(&ps, 0, sizeof ps);
     memset(&sd, 0, sizeof sd);
-    const brdffit_samples *all = NULL;
-    st = bf_samples_mirror_kept(samples, &all, err);
-    if (st == BRDFFIT_OK)
-        st = bf_driver_open(&ps, ctx, all, model, err);
+    st = open_all_samples(&ps, ctx, samples, model, err);
     if (st != BRDFFIT_OK)
         goto done;
     lmstate S;
@@ -1224,11 +1233,7 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
     if (st != BRDFFIT_OK)
         return st;
     bf_pass_driver ps;
-    memset(&ps, 0, sizeof ps);
-    const brdffit_samples *all = NULL;
-    st = bf_samples_mirror_kept(samples, &all, err); /* as brdffit_fit's passes */
-    if (st == BRDFFIT_OK)
-        st = bf_driver_open(&ps, ctx, all, model, err);
+    st = open_all_samples(&ps, ctx, samples, model, err);
     if (st == BRDFFIT_OK) {
         bf_pass_par pp;
         memset(&pp, 0, sizeof pp);

@@ -26,11 +26,10 @@
 
 #include <stdlib.h>
 
-/* The bin of the mirror partner of bin b (its own for k = 0 and 90). */
-static int partner_bin(int b)
+/* The phi_d index of the mirror partner of index k (its own for k = 0 and 90). */
+static int partner_k(int k)
 {
-    int k = b % BF_NPD;
-    return k == 0 ? b : b - k + (BF_NPD - k);
+    return k == 0 ? 0 : BF_NPD - k;
 }
 
 /* Of the samples of src, which the mirror set takes (keep[0..*n-1], table
@@ -49,7 +48,7 @@ static void choose_pairs(const brdffit_samples *src, size_t *keep, long *mate, s
         for (; e < src->n && src->bin[e] / BF_NPD == row; e++)
             at[src->bin[e] % BF_NPD] = (long)e;
         for (size_t q = i; q < e; q++) {
-            const int k = src->bin[q] % BF_NPD, kp = partner_bin(src->bin[q]) % BF_NPD;
+            const int k = src->bin[q] % BF_NPD, kp = partner_k(k);
             if (k > BF_NPD / 2 && at[kp] >= 0)
                 continue; /* taken along by its partner */
             keep[*n] = q;

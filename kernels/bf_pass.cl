@@ -22,6 +22,13 @@
 #ifndef BF_MODEL
 #error "build with -DBF_MODEL=<model id>"
 #endif
+/* BF_ROWS: 1 when the model's pass has bin rows (bf_lobe_has_own_fd: He).
+ * The whole-bin code is compiled only into such a kernel: the others keep
+ * the loop they had (Cook-Torrance's full pass was ~5% slower with it
+ * compiled in and never run, the same to the bit). */
+#ifndef BF_ROWS
+#error "build with -DBF_ROWS=<1 for a model with bin rows, else 0>"
+#endif
 
 #if BF_WIDTH == 8
 #define BF_VLOAD(i, p) vload8((i), (p))
@@ -63,6 +70,19 @@ BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, cons
         bf_lobe_rows(BF_MODEL, bins, (int)hd[v0 * BF_WIDTH], (int)hd[v1 * BF_WIDTH - 1], pp.p, np,
                      pp.lam, rows + (ulong)run * BF_WIDTH, nrows, &state.lobe);
     for (ulong v = v0; v < v1; v++) {
+#if BF_ROWS
+        BF_REAL keep = BF_R(1.0); /* 0: a lane summed with its bin */
+        if (nrows > 0) {
+            const BF_REAL vhd = BF_VLOAD(v, hd);
+            long skip;
+            if (bf_pass_bins_take(BF_NK, np, &pp, vhd, hd, (long)(v * BF_WIDTH), &keep, acc, &state,
+                                  &skip)) {
+                v += (ulong)skip; /* every lane summed with its bin */
+                continue;
+            }
+            bf_lobe_bins(&state.lobe, vhd);
+        }
+#endif
         bf_geom g;
         g.ix = BF_VLOAD(v, data + BF_F_IX * npad);
         g.iy = BF_VLOAD(v, data + BF_F_IY * npad);
@@ -77,8 +97,12 @@ BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, cons
         rho[1] = BF_VLOAD(v, data + BF_F_G * npad);
         rho[2] = BF_VLOAD(v, data + BF_F_B * npad);
         BF_REAL a2 = BF_VLOAD(v, data + BF_F_A2 * npad);
+#if BF_ROWS
+        a2 = BF_SEL(a2, BF_R(0.0), keep == 0.0);
+#else
         if (nrows > 0)
             bf_lobe_bins(&state.lobe, BF_VLOAD(v, hd));
+#endif
         bf_accumulate(BF_MODEL, BF_NK, np, &pp, &g, rho, a2, acc, &state);
     }
     bf_accumulate_end(BF_NK, np, &pp, acc, &state);

@@ -124,6 +124,87 @@ BF_FN_INLINE void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_p
     }
 }
 
+/* A value v in the first lane alone (a vector's sum, BF_HSUM, is then v). */
+#define BF_LANE0(v) BF_SEL(BF_R(0.0), BF_R(v), BF_IOTA == 0.0)
+
+/* Bin hd, summed whole (bf_lobe_bin_whole), into acc: its fold from the bin
+ * table's sums (BF_B_* in bf_he_rows.h) as bf_fold_add would have made it
+ * from its samples, every one factored with the bin's row F and its own q.
+ * With e = rho - b - m q (b = d / pi, m = s F[0]) and the bin's line
+ * rho = RBAR + BETA (q - qbar) + r, e = r + D0 + D1 (q - qbar),
+ * D0 = RBAR - b - m qbar, D1 = BETA - m, so
+ *     sum a^2 e   = R + D0 SA + D1 SQ1,
+ *     sum a^2 e q = RQC + D0 SQ1 + D1 SQC + qbar sum a^2 e,
+ *     sum a^2 e^2 = RR + 2 (D0 R + D1 RQC) + D0^2 SA + 2 D0 D1 SQ1 + D1^2 SQC:
+ * no term cancels more than the residuals themselves do (R, SQ1 are 0 but
+ * for rounding), so a bin that the model fits closely keeps its small
+ * sum of a^2 e^2 (tests/test_pass.c, whole_bins_*). */
+BF_FN_INLINE void bf_fold_bin(bf_pass_state *ps, int nk, int np, const bf_pass_par *pp, int hd,
+                              BF_REAL *acc)
+{
+    BF_GLOBAL const double *t = bf_lobe_bin_table(&ps->lobe) + hd;
+    bf_fold *f = &ps->fold;
+    bf_fold_flush(f, nk, np, pp, acc);
+    bf_lobe_bin_factors(&ps->lobe, hd, np);
+    f->gen = bf_lobe_factor_gen(&ps->lobe);
+    for (int j = 0; j <= np; j++)
+        for (int c = 0; c < 3; c++)
+            f->F[j][c] = bf_lobe_factor(&ps->lobe, j, c);
+    const double sa = t[BF_B_SA * BF_NHD_PAD], qbar = t[BF_B_QBAR * BF_NHD_PAD];
+    const double sq1 = t[BF_B_SQ1 * BF_NHD_PAD], sqc = t[BF_B_SQC * BF_NHD_PAD];
+    acc[BF_MOM_A] += BF_LANE0(sa);
+    f->sq = BF_LANE0(t[BF_B_SAQ * BF_NHD_PAD]);
+    f->sqq = BF_LANE0(t[BF_B_SAQQ * BF_NHD_PAD]);
+    for (int c = 0; c < 3; c++) {
+        BF_GLOBAL const double *line = t + (BF_B_LINE + c * BF_BL_FIELDS) * BF_NHD_PAD;
+        const double m = pp->s[c] * f->F[0][nk > 1 ? c : 0];
+        const double d0 = line[BF_BL_RBAR * BF_NHD_PAD] - pp->d[c] * (1.0 / BF_PI) - m * qbar;
+        const double d1 = line[BF_BL_BETA * BF_NHD_PAD] - m;
+        const double r = line[BF_BL_R * BF_NHD_PAD], rqc = line[BF_BL_RQC * BF_NHD_PAD];
+        const double se = r + d0 * sa + d1 * sq1;
+        f->se[c] = BF_LANE0(se);
+        f->seq[c] = BF_LANE0((rqc + d0 * sq1 + d1 * sqc) + qbar * se);
+        f->see[c] = BF_LANE0(line[BF_BL_RR * BF_NHD_PAD] + 2.0 * (d0 * r + d1 * rqc)
+                             + (d0 * d0) * sa + 2.0 * (d0 * d1) * sq1 + (d1 * d1) * sqc);
+    }
+    bf_fold_flush(f, nk, np, pp, acc);
+}
+
+/* The lanes of the vector of samples i0 .. i0 + BF_NLANES - 1 (bins vhd)
+ * whose bin is summed whole: each such bin whose first sample is among them
+ * added to acc (bf_fold_bin), and 0 put into *keep in all of them (the
+ * caller then gives them a^2 = 0: their terms are 0 in bf_accumulate).  Returns 1 when every lane is such,
+ * with *skip the number of the next vectors that hold only samples of the
+ * last lane's bin, which the caller then passes by; 0 otherwise.  A run of
+ * vectors of a set sums each whole bin once: where its first sample is. */
+BF_FN_INLINE int bf_pass_bins_take(int nk, int np, const bf_pass_par *pp, BF_REAL vhd,
+                                   BF_GLOBAL const double *hd, long i0, BF_REAL *keep, BF_REAL *acc,
+                                   bf_pass_state *ps, long *skip)
+{
+    *skip = 0;
+    BF_REAL whole = bf_lobe_bin_whole(&ps->lobe, vhd);
+    if (!BF_ANY(whole > 0.0))
+        return 0;
+    BF_GLOBAL const double *t = bf_lobe_bin_table(&ps->lobe);
+    BF_REAL start1 = BF_GATHERG(t + BF_B_START1 * BF_NHD_PAD, vhd);
+    BF_REAL lane1 = BF_R((double)(i0 + 1)) + BF_IOTA;
+    if (BF_ANY((whole > 0.0) && (start1 == lane1)))
+        for (int l = 0; l < BF_NLANES; l++) {
+            const int h = (int)hd[i0 + l];
+            if (t[BF_B_START1 * BF_NHD_PAD + h] == (double)(i0 + l + 1)
+                && BF_ANY(bf_lobe_bin_whole(&ps->lobe, BF_R((double)h)) > 0.0))
+                bf_fold_bin(ps, nk, np, pp, h, acc);
+        }
+    *keep = BF_SEL(*keep, BF_R(0.0), whole > 0.0);
+    if (BF_ANY(whole <= 0.0))
+        return 0;
+    const int hl = (int)BF_LAST(vhd);
+    const long end = (long)t[BF_B_START1 * BF_NHD_PAD + hl] - 1 + (long)t[BF_B_COUNT * BF_NHD_PAD + hl];
+    const long next = end / BF_NLANES, v = i0 / BF_NLANES;
+    *skip = next - v - 1 > 0 ? next - v - 1 : 0;
+    return 1;
+}
+
 /* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)].
  * ps: the state of the run of samples being walked in table order
  * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL.

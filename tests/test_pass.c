@@ -390,6 +390,167 @@ START_TEST(kernel_equals_host_on_stride_subset)
 }
 END_TEST
 
+/* The samples of s in bins that a He pass at pp sums whole from the bin
+ * table (bf_he_bin_whole: every sample flat for certain, one run). */
+static size_t samples_in_whole_bins(const brdffit_samples *s, const bf_pass_bins *bins,
+                                    const bf_pass_par *pp)
+{
+    const double cot_sure = bf_he_cot_sure(pp->p[0][0], pp->p[0][1]);
+    size_t n = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        const int h = (int)bins->hd[i];
+        n += bins->table[BF_B_START1 * BF_NHD_PAD + h] > 0.0
+             && bins->table[BF_B_COTLO * BF_NHD_PAD + h] >= cot_sure;
+    }
+    return n;
+}
+
+/* He's sums at pp sample by sample, with no memo, rows or bin sums. */
+static void he_plain_sums(const brdffit_samples *s, int np, const bf_pass_par *pp, double *mom)
+{
+    for (int m = 0; m < BF_NMOM_MAX; m++)
+        mom[m] = 0.0;
+    for (size_t i = 0; i < s->n; i++)
+        bf_host_sample(s, NULL, i, BRDFFIT_HE, 3, np, pp, mom, NULL);
+}
+
+/* He's pass sums the bins whose samples are all flat from the bin table's
+ * sums (bf_fold_bin) instead of their samples; the host loop and the kernel
+ * then equal the sums sample by sample with no rows to 1e-8 relative (as
+ * fold_equals_plain), value and full passes, on a set and on its mirror set
+ * (the fits' passes), at alum-bronze's fit, where most samples lie in such
+ * bins. */
+START_TEST(whole_bins_equal_plain)
+{
+    brdffit_samples *s = load_samples("alum-bronze");
+    const brdffit_samples *set = s;
+    brdffit_error err;
+    if (_i == 1)
+        ck_assert_msg(bf_samples_mirror_kept(s, &set, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_par pp;
+    he_at_alum_bronze_fit(&pp);
+    brdffit_context *ctx = NULL;
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_driver dr;
+    ck_assert_msg(bf_driver_open(&dr, ctx, set, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
+    size_t whole = samples_in_whole_bins(set, &dr.bins, &pp);
+    ck_assert_msg(whole >= set->n / 2, "%zu of %zu samples in whole bins", whole, set->n);
+    for (int full = 0; full <= 1; full++) {
+        const int np = full ? 3 : 0, nmom = bf_nmom(3, np);
+        double plain[BF_NMOM_MAX], host[BF_NMOM_MAX], kern[BF_NMOM_MAX];
+        he_plain_sums(set, np, &pp, plain);
+        bf_host_loop(set, &dr.bins, BRDFFIT_HE, 3, np, &pp, host);
+        ck_assert_msg(bf_driver_run(&dr, full, &pp, kern, &err) == BRDFFIT_OK, "%s", err.message);
+        for (int c = 0; c < 3; c++) /* the driver adds the mirror set's pair_see */
+            kern[bf_mom_chan(c, 3, np) + BF_MC_SEE] -= set->pair_see[c];
+        for (int i = 0; i < nmom; i++) {
+            ck_assert_msg(tu_reldiff(host[i], plain[i]) <= 1e-8, "set %d full %d moment %d: host %.17g plain %.17g",
+                          _i, full, i, host[i], plain[i]);
+            ck_assert_msg(tu_reldiff(kern[i], plain[i]) <= 1e-8, "set %d full %d moment %d: kernel %.17g plain %.17g",
+                          _i, full, i, kern[i], plain[i]);
+        }
+    }
+    bf_driver_close(&dr);
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+}
+END_TEST
+
+/* A set whose values are He's own at pp (rho = d / pi + s K, K sample by
+ * sample): the pass's sum of a^2 e^2 stays at the rounding of the residuals
+ * (below 1e-20 of the sum of a^2 rho^2 in every channel, host loop and
+ * kernel), as the bin sums take e about each bin's line of its values.
+ * Summed from the raw sums of a^2 rho^2, a^2 rho and a^2 rho q instead,
+ * it would keep the rounding of those, ~1e-16 of them. */
+START_TEST(whole_bins_keep_close_residuals)
+{
+    brdffit_samples *s = load_samples("alum-bronze");
+    bf_pass_par pp;
+    he_at_alum_bronze_fit(&pp);
+    double *F = s->data, srr[3] = { 0.0, 0.0, 0.0 };
+    for (size_t i = 0; i < s->n; i++) {
+        const size_t np = s->npad;
+        bf_geom g = { F[BF_F_IX * np + i], F[BF_F_IY * np + i], F[BF_F_IZ * np + i],
+                      F[BF_F_OX * np + i], F[BF_F_OY * np + i], F[BF_F_OZ * np + i],
+                      F[BF_F_NH * np + i], F[BF_F_VH * np + i] };
+        double K[3];
+        bf_lobe_fd(BRDFFIT_HE, &g, pp.p, 0, pp.lam, K, NULL, NULL);
+        for (int c = 0; c < 3; c++) {
+            const double rho = pp.d[c] * (1.0 / BF_PI) + pp.s[c] * K[c];
+            F[(BF_F_R + c) * np + i] = rho;
+            srr[c] += F[BF_F_A2 * np + i] * rho * rho;
+        }
+    }
+    brdffit_error err;
+    brdffit_context *ctx = NULL;
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_driver dr; /* its bin table made now, from the values above */
+    ck_assert_msg(bf_driver_open(&dr, ctx, s, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
+    size_t whole = samples_in_whole_bins(s, &dr.bins, &pp);
+    ck_assert_msg(whole >= s->n / 2, "%zu of %zu samples in whole bins", whole, s->n);
+    double host[BF_NMOM_MAX], kern[BF_NMOM_MAX];
+    bf_host_loop(s, &dr.bins, BRDFFIT_HE, 3, 0, &pp, host);
+    ck_assert_msg(bf_driver_run(&dr, 0, &pp, kern, &err) == BRDFFIT_OK, "%s", err.message);
+    for (int c = 0; c < 3; c++) {
+        const int see = bf_mom_chan(c, 3, 0) + BF_MC_SEE;
+        ck_assert_msg(srr[c] > 0.0 && fabs(host[see]) <= 1e-20 * srr[c], "channel %d: host see %.3g of %.3g",
+                      c, host[see], srr[c]);
+        ck_assert_msg(fabs(kern[see]) <= 1e-20 * srr[c], "channel %d: kernel see %.3g of %.3g", c,
+                      kern[see], srr[c]);
+    }
+    bf_driver_close(&dr);
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
+}
+END_TEST
+
+/* A bin whose samples are not one run of the set (the first sample of a
+ * bin moved past the next bin's) is never summed whole: its table entry has
+ * START1 0, the next bin's is still summed, and the host loop's sums equal
+ * those sample by sample to 1e-8 relative. */
+START_TEST(split_bin_summed_by_samples)
+{
+    brdffit_samples *s = load_samples("alum-bronze"), *t = NULL;
+    size_t *idx = malloc(s->n * sizeof *idx), f = s->n / 2, e, e2, n = 0;
+    ck_assert_ptr_nonnull(idx);
+    const int h = s->bin[f] / 180;
+    while (f > 0 && s->bin[f - 1] / 180 == h) /* the first sample of bin h */
+        f--;
+    for (e = f; e < s->n && s->bin[e] / 180 == h; e++) /* its end, and the next bin's */
+        ;
+    for (e2 = e; e2 < s->n && s->bin[e2] / 180 == s->bin[e] / 180; e2++)
+        ;
+    ck_assert(e - f > 1 && e2 > e && e2 < s->n);
+    for (size_t i = 0; i < s->n; i++) {
+        if (i != f)
+            idx[n++] = i;
+        if (i + 1 == e2)
+            idx[n++] = f;
+    }
+    brdffit_error err;
+    ck_assert_msg(bf_samples_take(s, idx, n, &t, &err) == BRDFFIT_OK, "%s", err.message);
+    bf_pass_bins bins;
+    ck_assert_msg(bf_pass_bins_make(t, 1, &bins, &err) == BRDFFIT_OK, "%s", err.message);
+    const int h2 = s->bin[e] / 180;
+    ck_assert(bins.table[BF_B_START1 * BF_NHD_PAD + h] == 0.0);
+    ck_assert(bins.table[BF_B_START1 * BF_NHD_PAD + h2] == (double)(e - 1) + 1.0);
+    bf_pass_par pp;
+    he_at_alum_bronze_fit(&pp);
+    const double cot_sure = bf_he_cot_sure(pp.p[0][0], pp.p[0][1]);
+    ck_assert(bins.table[BF_B_COTLO * BF_NHD_PAD + h] >= cot_sure); /* it would have been */
+    double plain[BF_NMOM_MAX], host[BF_NMOM_MAX];
+    he_plain_sums(t, 3, &pp, plain);
+    bf_host_loop(t, &bins, BRDFFIT_HE, 3, 3, &pp, host);
+    for (int i = 0; i < bf_nmom(3, 3); i++)
+        ck_assert_msg(tu_reldiff(host[i], plain[i]) <= 1e-8, "moment %d: host %.17g plain %.17g", i,
+                      host[i], plain[i]);
+    bf_pass_bins_free(&bins);
+    brdffit_samples_free(t);
+    free(idx);
+    brdffit_samples_free(s);
+}
+END_TEST
+
 /* The named moment offsets of kernels/bf_layout.h (used by the kernel, the
  * host loop and the fit alike) tile [0, bf_nmom(nk, np)) exactly: every
  * moment has one name and no two names share a slot, for every nk and np. */
@@ -749,6 +910,9 @@ Suite *pass_suite(void)
     tcase_add_test(tc, subset_every_8th);
     tcase_add_test(tc, fold_equals_plain);
     tcase_add_test(tc, kernel_equals_host_on_stride_subset);
+    tcase_add_loop_test(tc, whole_bins_equal_plain, 0, 2);
+    tcase_add_test(tc, whole_bins_keep_close_residuals);
+    tcase_add_test(tc, split_bin_summed_by_samples);
     tcase_add_test(tc, mirror_set_merges_pairs);
     tcase_add_loop_test(tc, mirror_sums_are_the_sets, 0, brdffit_model_count());
     tcase_add_loop_test(tc, subset_of_bins, 0, (int)(sizeof bins_steps / sizeof bins_steps[0]));

@@ -21,6 +21,8 @@
 
 #include "pocl_cache.h"
 
+#include "bf_lobe.h" /* bf_lobe_has_own_fd: a kernel's BF_ROWS */
+
 extern const char *const bf_kernel_sources[];
 extern const size_t bf_kernel_source_count;
 
@@ -390,8 +392,8 @@ static brdffit_status build_locked(brdffit_context *ctx, brdffit_model model,
      * (e.g. -DBF_WIDTH=4 to change the lane width). */
     const char *extra = ctx->cl_options;
     char opts[512];
-    snprintf(opts, sizeof opts, "-cl-std=CL1.2 -w -DBF_MODEL=%d -DBF_NP=%d -DBF_NK=%d %s %.200s",
-             (int)model, bf_model_ncoords(model), mi->chromatic ? 3 : 1,
+    snprintf(opts, sizeof opts, "-cl-std=CL1.2 -w -DBF_MODEL=%d -DBF_NP=%d -DBF_NK=%d -DBF_ROWS=%d %s %.200s",
+             (int)model, bf_model_ncoords(model), mi->chromatic ? 3 : 1, bf_lobe_has_own_fd((int)model),
              strstr(extra, "-DBF_WIDTH=") ? "" : ctx->width == 4 ? "-DBF_WIDTH=4" : "-DBF_WIDTH=8", extra);
     rc = clBuildProgram(prog, 1, &ctx->device, opts, NULL, NULL);
     if (rc != CL_SUCCESS) {

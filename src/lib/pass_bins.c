@@ -105,6 +105,100 @@ static brdffit_status table_fill(const brdffit_samples *s, bin_table *b, brdffit
     return BRDFFIT_OK;
 }
 
+/* q = 1 / (cos ti cos to) of sample i, as the rows serve it (bf_he_bin_q). */
+static double sample_q(const double *F, size_t np, size_t i)
+{
+    bf_geom g;
+    memset(&g, 0, sizeof g);
+    g.iz = F[BF_F_IZ * np + i];
+    g.oz = F[BF_F_OZ * np + i];
+    bf_he_flat f;
+    bf_he_flat_cos(&g, &f);
+    return bf_he_bin_q(&f);
+}
+
+#define T(f, h) t[(f) * BF_NHD_PAD + (h)]
+#define LINE(c, f) T(BF_B_LINE + (c) * BF_BL_FIELDS + (f), h)
+
+/* The sums of bin h from its run of samples lo .. hi - 1 (BF_B_START1 ..
+ * the lines: bf_he_rows.h), in three walks: the sums of a^2, a^2 q, a^2 q^2
+ * and a^2 rho; those about the means; the residuals of the lines. */
+static void run_sums(const brdffit_samples *s, size_t lo, size_t hi, double *t, int h)
+{
+    const double *F = s->data;
+    const size_t np = s->npad;
+    double sa = 0.0, saq = 0.0, saqq = 0.0, sr[3] = { 0.0, 0.0, 0.0 };
+    for (size_t i = lo; i < hi; i++) {
+        const double a2 = F[BF_F_A2 * np + i], q = sample_q(F, np, i);
+        sa += a2;
+        saq += a2 * q;
+        saqq += (a2 * q) * q;
+        for (int c = 0; c < 3; c++)
+            sr[c] += a2 * F[(BF_F_R + c) * np + i];
+    }
+    const double qbar = sa > 0.0 ? saq / sa : 0.0;
+    double rbar[3], sq1 = 0.0, sqc = 0.0, cov[3] = { 0.0, 0.0, 0.0 };
+    for (int c = 0; c < 3; c++)
+        rbar[c] = sa > 0.0 ? sr[c] / sa : 0.0;
+    for (size_t i = lo; i < hi; i++) {
+        const double a2 = F[BF_F_A2 * np + i], dq = sample_q(F, np, i) - qbar;
+        sq1 += a2 * dq;
+        sqc += (a2 * dq) * dq;
+        for (int c = 0; c < 3; c++)
+            cov[c] += (a2 * dq) * (F[(BF_F_R + c) * np + i] - rbar[c]);
+    }
+    double beta[3], r[3] = { 0.0, 0.0, 0.0 }, rqc[3] = { 0.0, 0.0, 0.0 }, rr[3] = { 0.0, 0.0, 0.0 };
+    for (int c = 0; c < 3; c++) {
+        beta[c] = sqc > 0.0 ? cov[c] / sqc : 0.0;
+        if (!isfinite(beta[c]))
+            beta[c] = 0.0;
+    }
+    for (size_t i = lo; i < hi; i++) {
+        const double a2 = F[BF_F_A2 * np + i], dq = sample_q(F, np, i) - qbar;
+        for (int c = 0; c < 3; c++) {
+            const double e = F[(BF_F_R + c) * np + i] - rbar[c] - beta[c] * dq;
+            r[c] += a2 * e;
+            rqc[c] += (a2 * e) * dq;
+            rr[c] += (a2 * e) * e;
+        }
+    }
+    T(BF_B_START1, h) = (double)lo + 1.0;
+    T(BF_B_COUNT, h) = (double)(hi - lo);
+    T(BF_B_SA, h) = sa;
+    T(BF_B_SAQ, h) = saq;
+    T(BF_B_SAQQ, h) = saqq;
+    T(BF_B_QBAR, h) = qbar;
+    T(BF_B_SQ1, h) = sq1;
+    T(BF_B_SQC, h) = sqc;
+    for (int c = 0; c < 3; c++) {
+        LINE(c, BF_BL_RBAR) = rbar[c];
+        LINE(c, BF_BL_BETA) = beta[c];
+        LINE(c, BF_BL_R) = r[c];
+        LINE(c, BF_BL_RQC) = rqc[c];
+        LINE(c, BF_BL_RR) = rr[c];
+    }
+}
+
+/* Every bin's sums from its run of samples (hd: each sample's bin); a bin
+ * whose samples lie in more than one run is left with START1 0 (never
+ * summed whole).  A set in table order has one run per bin. */
+static void table_sums(const brdffit_samples *s, const double *hd, double *t)
+{
+    char runs[BF_NHD] = { 0 };
+    for (size_t lo = 0, hi; lo < s->n; lo = hi) {
+        const int h = (int)hd[lo];
+        for (hi = lo + 1; hi < s->n && (int)hd[hi] == h; hi++)
+            ;
+        if (runs[h]++ == 0)
+            run_sums(s, lo, hi, t, h);
+        else
+            T(BF_B_START1, h) = 0.0;
+    }
+}
+
+#undef LINE
+#undef T
+
 static brdffit_status bin_table_make(const brdffit_samples *s, const int key[3], void **out,
                                      brdffit_error *err)
 {
@@ -121,6 +215,8 @@ static brdffit_status bin_table_make(const brdffit_samples *s, const int key[3],
     }
     table_clear(b->table);
     brdffit_status st = table_fill(s, b, err);
+    if (st == BRDFFIT_OK)
+        table_sums(s, b->hd, b->table);
     if (st != BRDFFIT_OK) {
         bin_table_free(b);
         return st;

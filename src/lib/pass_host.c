@@ -43,7 +43,16 @@ void bf_host_loop(const brdffit_samples *samples, const bf_pass_bins *bins, brdf
         mom[m] = 0.0;
     bf_pass_state state;
     bf_host_begin(samples, bins, model, np, pp, &state);
-    for (size_t i = 0; i < samples->n; i++)
+    const int rows = has_rows(samples, bins);
+    for (size_t i = 0; i < samples->n; i++) {
+        double keep = 1.0; /* one lane: all of it summed with its bin, or none */
+        long skip;
+        if (rows && bf_pass_bins_take(nk, np, pp, bins->hd[i], bins->hd, (long)i, &keep, mom, &state,
+                                      &skip)) {
+            i += (size_t)skip; /* the bin summed whole */
+            continue;
+        }
         bf_host_sample(samples, bins, i, model, nk, np, pp, mom, &state);
+    }
     bf_accumulate_end(nk, np, pp, mom, &state);
 }

@@ -19,9 +19,11 @@
  * BF_B_COTLO, the smallest (0 for a bin with no sample).  Then the bin's
  * samples as one run of the set, for a pass that sums a bin whose every
  * sample is flat from these sums instead of its samples (bf_he_bin_whole,
- * bf_fold_bin in bf_pass.h), with q = 1 / (cos ti cos to) of each sample
+ * bf_pass_whole_bins in bf_pass.h), with q = 1 / (cos ti cos to) of each sample
  * (bf_he_bin_q) and a^2 its weight: BF_B_START1, 1 + the index of its first
  * sample (0: no sample, or its samples not in one run: never summed so);
+ * BF_B_COTW, BF_B_COTLO where START1 > 0 and -1 elsewhere (one load tells
+ * whether a bin is summed whole: bf_he_bin_whole);
  * BF_B_COUNT, its samples; BF_B_SA, BF_B_SAQ, BF_B_SAQQ, the sums of a^2,
  * a^2 q and a^2 q^2; BF_B_QBAR = SAQ / SA; BF_B_SQ1 and BF_B_SQC, the sums
  * of a^2 (q - qbar) (0 but for rounding) and a^2 (q - qbar)^2; and per
@@ -34,7 +36,7 @@ enum { BF_BL_RBAR, BF_BL_BETA, BF_BL_R, BF_BL_RQC, BF_BL_RR, BF_BL_FIELDS };
 enum {
     BF_B_IX, BF_B_IY, BF_B_IZ, BF_B_OX, BF_B_OY, BF_B_OZ, BF_B_NH, BF_B_VH,
     BF_B_COT, BF_B_COTLO,
-    BF_B_START1, BF_B_COUNT, BF_B_SA, BF_B_SAQ, BF_B_SAQQ, BF_B_QBAR, BF_B_SQ1, BF_B_SQC,
+    BF_B_START1, BF_B_COTW, BF_B_COUNT, BF_B_SA, BF_B_SAQ, BF_B_SAQQ, BF_B_QBAR, BF_B_SQ1, BF_B_SQC,
     BF_B_LINE,
     BF_BFIELDS = BF_B_LINE + 3 * BF_BL_FIELDS
 };
@@ -103,19 +105,19 @@ BF_FN int bf_he_flat_sure(const bf_geom *g, BF_GLOBAL const double *bins, BF_REA
 }
 
 /* 1 in the lanes whose bin hd (vhd) a pass sums whole from the bin table's
- * sums (bf_fold_bin in bf_pass.h): every sample of the bin flat at p0 for
- * certain (BF_B_COTLO, as bf_he_flat_sure) and its samples one run of the
- * set (BF_B_START1).  Every such sample would be served by the rows
- * (bf_he_fd_factored: the bin's row times its own q), so the bin's moments
- * follow from its row and the sums of a^2 q^k and of its values' line.
- * 0 everywhere when the pass has no rows. */
+ * sums (bf_pass_whole_bins in bf_pass.h): every sample of the bin flat at
+ * p0 for certain (BF_B_COTLO, as bf_he_flat_sure) and its samples one run
+ * of the set (BF_B_START1), so BF_B_COTW at least cot_sure.  Every such
+ * sample would be served by the rows (bf_he_fd_factored: the bin's row
+ * times its own q), so the bin's moments follow from its row and the sums
+ * of a^2 q^k and of its values' line.  0 everywhere when the pass has no
+ * rows. */
 BF_FN BF_REAL bf_he_bin_whole(const bf_he_memo *m, BF_REAL vhd)
 {
     if (!m->rows)
         return BF_R(0.0);
-    BF_REAL cotlo = BF_GATHERG(m->bins + BF_B_COTLO * BF_NHD_PAD, vhd);
-    BF_REAL start1 = BF_GATHERG(m->bins + BF_B_START1 * BF_NHD_PAD, vhd);
-    return BF_SEL(BF_R(0.0), BF_R(1.0), (cotlo >= m->cot_sure) && (start1 > 0.0));
+    BF_REAL cotw = BF_GATHERG(m->bins + BF_B_COTW * BF_NHD_PAD, vhd);
+    return BF_SEL(BF_R(0.0), BF_R(1.0), cotw >= m->cot_sure);
 }
 
 /* The factor q = 1 / (cos ti cos to) of a vector the rows serve: its K at

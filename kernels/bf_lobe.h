@@ -204,7 +204,8 @@ BF_FN void bf_lobe_bins(bf_lobe_state *st, BF_REAL hd)
 }
 
 /* 1 in the lanes (bins vhd) whose bin a pass sums whole from the bin
- * table's sums (He: bf_he_bin_whole); 0 for a lobe without rows. */
+ * table's sums (He: bf_he_bin_whole; bf_pass_whole_bins in bf_pass.h); 0
+ * for a lobe without rows. */
 BF_FN BF_REAL bf_lobe_bin_whole(const bf_lobe_state *st, BF_REAL vhd)
 {
     return bf_he_bin_whole(&st->he, vhd);
@@ -216,11 +217,11 @@ BF_FN BF_GLOBAL const double *bf_lobe_bin_table(const bf_lobe_state *st)
     return st->he.bins;
 }
 
-/* Bin hd's row as the factors (bf_lobe_factor) of the next summed bin. */
-BF_FN void bf_lobe_bin_factors(bf_lobe_state *st, int hd, int np)
+/* Field 3 j + c of the pass's rows (K cos ti cos to at p[j], channel c) of
+ * the bins h .. h + BF_NLANES - 1. */
+BF_FN BF_REAL bf_lobe_bin_row(const bf_lobe_state *st, int j, int c, int h)
 {
-    if (st->he.bgen != 1.0 + (double)hd)
-        bf_he_bin_load(&st->he, hd, np);
+    return BF_LOADG(st->he.rows + (3 * j + c) * st->he.nrows + h);
 }
 
 BF_FN double bf_lobe_factor_gen(const bf_lobe_state *st)

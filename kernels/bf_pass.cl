@@ -66,17 +66,22 @@ BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, cons
     const ulong nvec = npad / BF_WIDTH;
     ulong v0 = (ulong)run * vec_per_item;
     ulong v1 = min(v0 + vec_per_item, nvec);
-    if (nrows > 0 && v0 < v1)
-        bf_lobe_rows(BF_MODEL, bins, (int)hd[v0 * BF_WIDTH], (int)hd[v1 * BF_WIDTH - 1], pp.p, np,
-                     pp.lam, rows + (ulong)run * BF_WIDTH, nrows, &state.lobe);
+    if (nrows > 0 && v0 < v1) {
+        const int h0 = (int)hd[v0 * BF_WIDTH], h1 = (int)hd[v1 * BF_WIDTH - 1];
+        bf_lobe_rows(BF_MODEL, bins, h0, h1, pp.p, np, pp.lam, rows + (ulong)run * BF_WIDTH, nrows,
+                     &state.lobe);
+#if BF_ROWS
+        bf_pass_whole_bins(BF_NK, np, &pp, &state, h0, h1, (long)(v0 * BF_WIDTH),
+                           (long)(v1 * BF_WIDTH), acc);
+#endif
+    }
     for (ulong v = v0; v < v1; v++) {
 #if BF_ROWS
         BF_REAL keep = BF_R(1.0); /* 0: a lane summed with its bin */
         if (nrows > 0) {
             const BF_REAL vhd = BF_VLOAD(v, hd);
             long skip;
-            if (bf_pass_bins_take(BF_NK, np, &pp, vhd, hd, (long)(v * BF_WIDTH), &keep, acc, &state,
-                                  &skip)) {
+            if (bf_pass_bins_skip(&state, vhd, (long)(v * BF_WIDTH), &keep, &skip)) {
                 v += (ulong)skip; /* every lane summed with its bin */
                 continue;
             }

@@ -124,80 +124,102 @@ BF_FN_INLINE void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_p
     }
 }
 
-/* A value v in the first lane alone (a vector's sum, BF_HSUM, is then v). */
-#define BF_LANE0(v) BF_SEL(BF_R(0.0), BF_R(v), BF_IOTA == 0.0)
-
-/* Bin hd, summed whole (bf_lobe_bin_whole), into acc: its fold from the bin
- * table's sums (BF_B_* in bf_he_rows.h) as bf_fold_add would have made it
- * from its samples, every one factored with the bin's row F and its own q.
- * With e = rho - b - m q (b = d / pi, m = s F[0]) and the bin's line
- * rho = RBAR + BETA (q - qbar) + r, e = r + D0 + D1 (q - qbar),
- * D0 = RBAR - b - m qbar, D1 = BETA - m, so
+/* The whole bins (bf_lobe_bin_whole) among bins h0 .. h1 whose first
+ * sample is one of i_lo .. i_hi - 1 (a work-item's run: each whole bin is
+ * summed once, by the run that holds its first sample) into acc, BF_NLANES
+ * bins at a time, one bin a lane: each bin's moments as bf_fold_add would
+ * have summed its samples, every one factored with the bin's row F (the
+ * pass's rows, bf_lobe_bin_row) and its own q, from the bin table's sums
+ * (BF_B_* in bf_he_rows.h).  With e = rho - b - m q (b = d / pi,
+ * m = s F[0]) and the bin's line rho = RBAR + BETA (q - qbar) + r,
+ * e = r + D0 + D1 (q - qbar), D0 = RBAR - b - m qbar, D1 = BETA - m, so
  *     sum a^2 e   = R + D0 SA + D1 SQ1,
  *     sum a^2 e q = RQC + D0 SQ1 + D1 SQC + qbar sum a^2 e,
  *     sum a^2 e^2 = RR + 2 (D0 R + D1 RQC) + D0^2 SA + 2 D0 D1 SQ1 + D1^2 SQC:
  * no term cancels more than the residuals themselves do (R, SQ1 are 0 but
  * for rounding), so a bin that the model fits closely keeps its small
- * sum of a^2 e^2 (tests/test_pass.c, whole_bins_*). */
-BF_FN_INLINE void bf_fold_bin(bf_pass_state *ps, int nk, int np, const bf_pass_par *pp, int hd,
-                              BF_REAL *acc)
+ * sum of a^2 e^2 (tests/test_pass.c, whole_bins_*).  The lobe moments are
+ * bf_fold_flush's with sum a^2 q = SAQ and sum a^2 q^2 = SAQQ.  The pass
+ * then leaves these bins' samples out (bf_pass_bins_skip). */
+BF_FN_INLINE void bf_pass_whole_bins(int nk, int np, const bf_pass_par *pp, const bf_pass_state *ps,
+                                     int h0, int h1, long i_lo, long i_hi, BF_REAL *acc)
 {
-    BF_GLOBAL const double *t = bf_lobe_bin_table(&ps->lobe) + hd;
-    bf_fold *f = &ps->fold;
-    bf_fold_flush(f, nk, np, pp, acc);
-    bf_lobe_bin_factors(&ps->lobe, hd, np);
-    f->gen = bf_lobe_factor_gen(&ps->lobe);
-    for (int j = 0; j <= np; j++)
-        for (int c = 0; c < 3; c++)
-            f->F[j][c] = bf_lobe_factor(&ps->lobe, j, c);
-    const double sa = t[BF_B_SA * BF_NHD_PAD], qbar = t[BF_B_QBAR * BF_NHD_PAD];
-    const double sq1 = t[BF_B_SQ1 * BF_NHD_PAD], sqc = t[BF_B_SQC * BF_NHD_PAD];
-    acc[BF_MOM_A] += BF_LANE0(sa);
-    f->sq = BF_LANE0(t[BF_B_SAQ * BF_NHD_PAD]);
-    f->sqq = BF_LANE0(t[BF_B_SAQQ * BF_NHD_PAD]);
-    for (int c = 0; c < 3; c++) {
-        BF_GLOBAL const double *line = t + (BF_B_LINE + c * BF_BL_FIELDS) * BF_NHD_PAD;
-        const double m = pp->s[c] * f->F[0][nk > 1 ? c : 0];
-        const double d0 = line[BF_BL_RBAR * BF_NHD_PAD] - pp->d[c] * (1.0 / BF_PI) - m * qbar;
-        const double d1 = line[BF_BL_BETA * BF_NHD_PAD] - m;
-        const double r = line[BF_BL_R * BF_NHD_PAD], rqc = line[BF_BL_RQC * BF_NHD_PAD];
-        const double se = r + d0 * sa + d1 * sq1;
-        f->se[c] = BF_LANE0(se);
-        f->seq[c] = BF_LANE0((rqc + d0 * sq1 + d1 * sqc) + qbar * se);
-        f->see[c] = BF_LANE0(line[BF_BL_RR * BF_NHD_PAD] + 2.0 * (d0 * r + d1 * rqc)
-                             + (d0 * d0) * sa + 2.0 * (d0 * d1) * sq1 + (d1 * d1) * sqc);
+    BF_GLOBAL const double *t = bf_lobe_bin_table(&ps->lobe);
+    if (!t)
+        return;
+#define BF_TB(f) BF_LOADG(t + (f) * BF_NHD_PAD + h)
+    for (int h = h0; h <= h1; h += BF_NLANES) {
+        const BF_REAL vh = BF_R((double)h) + BF_IOTA;
+        const BF_REAL first = BF_TB(BF_B_START1) - 1.0;
+        const BF_REAL take = BF_SEL(BF_R(0.0), BF_R(1.0),
+                                    (bf_lobe_bin_whole(&ps->lobe, vh) > 0.0) && (first >= (double)i_lo)
+                                        && (first < (double)i_hi) && (vh <= (double)h1));
+        if (!BF_ANY(take > 0.0))
+            continue;
+        const BF_REAL sa = BF_SEL(BF_R(0.0), BF_TB(BF_B_SA), take > 0.0);
+        const BF_REAL sq = BF_SEL(BF_R(0.0), BF_TB(BF_B_SAQ), take > 0.0);
+        const BF_REAL sqq = BF_SEL(BF_R(0.0), BF_TB(BF_B_SAQQ), take > 0.0);
+        const BF_REAL sq1 = BF_SEL(BF_R(0.0), BF_TB(BF_B_SQ1), take > 0.0);
+        const BF_REAL sqc = BF_SEL(BF_R(0.0), BF_TB(BF_B_SQC), take > 0.0);
+        const BF_REAL qbar = BF_SEL(BF_R(0.0), BF_TB(BF_B_QBAR), take > 0.0);
+        BF_REAL f0[3], gam[3][BF_MAX_NP];
+        for (int k = 0; k < nk; k++) {
+            f0[k] = BF_SEL(BF_R(0.0), bf_lobe_bin_row(&ps->lobe, 0, k, h), take > 0.0);
+            for (int j = 0; j < np; j++)
+                gam[k][j] = (BF_SEL(BF_R(0.0), bf_lobe_bin_row(&ps->lobe, 1 + j, k, h), take > 0.0) - f0[k])
+                            * pp->inv_h[j];
+            BF_REAL *m = acc + bf_mom_lobe(k, np);
+            m[BF_MK_SK] += f0[k] * sq;
+            m[BF_MK_SKK] += (f0[k] * f0[k]) * sqq;
+            for (int j = 0; j < np; j++) {
+                m[bf_mk_sg(j)] += gam[k][j] * sq;
+                m[bf_mk_skg(np, j)] += (f0[k] * gam[k][j]) * sqq;
+                for (int l = j; l < np; l++)
+                    m[bf_mk_sgg(np, j, l)] += (gam[k][j] * gam[k][l]) * sqq;
+            }
+        }
+        acc[BF_MOM_A] += sa;
+        for (int c = 0; c < 3; c++) {
+            const int k = nk > 1 ? c : 0;
+            const int line = BF_B_LINE + c * BF_BL_FIELDS;
+            const BF_REAL r = BF_SEL(BF_R(0.0), BF_TB(line + BF_BL_R), take > 0.0);
+            const BF_REAL rqc = BF_SEL(BF_R(0.0), BF_TB(line + BF_BL_RQC), take > 0.0);
+            const BF_REAL rr = BF_SEL(BF_R(0.0), BF_TB(line + BF_BL_RR), take > 0.0);
+            const BF_REAL mc = pp->s[c] * f0[k];
+            const BF_REAL d0 = BF_SEL(BF_R(0.0), BF_TB(line + BF_BL_RBAR), take > 0.0)
+                               - pp->d[c] * (1.0 / BF_PI) - mc * qbar;
+            const BF_REAL d1 = BF_SEL(BF_R(0.0), BF_TB(line + BF_BL_BETA), take > 0.0) - mc;
+            const BF_REAL se = r + d0 * sa + d1 * sq1;
+            const BF_REAL seq = (rqc + d0 * sq1 + d1 * sqc) + qbar * se;
+            BF_REAL *m = acc + bf_mom_chan(c, nk, np);
+            m[BF_MC_SE] += se;
+            m[BF_MC_SKE] += f0[k] * seq;
+            m[BF_MC_SEE] += rr + 2.0 * (d0 * r + d1 * rqc) + (d0 * d0) * sa + 2.0 * (d0 * d1) * sq1
+                            + (d1 * d1) * sqc;
+            for (int j = 0; j < np; j++)
+                m[bf_mc_sge(j)] += gam[k][j] * seq;
+        }
     }
-    bf_fold_flush(f, nk, np, pp, acc);
+#undef BF_TB
 }
 
-/* The lanes of the vector of samples i0 .. i0 + BF_NLANES - 1 (bins vhd)
- * whose bin is summed whole: each such bin whose first sample is among them
- * added to acc (bf_fold_bin), and 0 put into *keep in all of them (the
- * caller then gives them a^2 = 0: their terms are 0 in bf_accumulate).  Returns 1 when every lane is such,
- * with *skip the number of the next vectors that hold only samples of the
- * last lane's bin, which the caller then passes by; 0 otherwise.  A run of
- * vectors of a set sums each whole bin once: where its first sample is. */
-BF_FN_INLINE int bf_pass_bins_take(int nk, int np, const bf_pass_par *pp, BF_REAL vhd,
-                                   BF_GLOBAL const double *hd, long i0, BF_REAL *keep, BF_REAL *acc,
-                                   bf_pass_state *ps, long *skip)
+/* The lanes of the vector of samples at i0 (bins vhd) whose bin is summed
+ * whole (bf_pass_whole_bins): 0 put into *keep in them (the caller then
+ * gives them a^2 = 0: their terms are 0 in bf_accumulate).  Returns 1 when
+ * every lane is such, with *skip the number of the next vectors that hold
+ * only samples of the last lane's bin, which the caller then passes by; 0
+ * otherwise. */
+BF_FN_INLINE int bf_pass_bins_skip(const bf_pass_state *ps, BF_REAL vhd, long i0, BF_REAL *keep,
+                                   long *skip)
 {
     *skip = 0;
-    BF_REAL whole = bf_lobe_bin_whole(&ps->lobe, vhd);
+    const BF_REAL whole = bf_lobe_bin_whole(&ps->lobe, vhd);
     if (!BF_ANY(whole > 0.0))
         return 0;
-    BF_GLOBAL const double *t = bf_lobe_bin_table(&ps->lobe);
-    BF_REAL start1 = BF_GATHERG(t + BF_B_START1 * BF_NHD_PAD, vhd);
-    BF_REAL lane1 = BF_R((double)(i0 + 1)) + BF_IOTA;
-    if (BF_ANY((whole > 0.0) && (start1 == lane1)))
-        for (int l = 0; l < BF_NLANES; l++) {
-            const int h = (int)hd[i0 + l];
-            if (t[BF_B_START1 * BF_NHD_PAD + h] == (double)(i0 + l + 1)
-                && BF_ANY(bf_lobe_bin_whole(&ps->lobe, BF_R((double)h)) > 0.0))
-                bf_fold_bin(ps, nk, np, pp, h, acc);
-        }
     *keep = BF_SEL(*keep, BF_R(0.0), whole > 0.0);
     if (BF_ANY(whole <= 0.0))
         return 0;
+    BF_GLOBAL const double *t = bf_lobe_bin_table(&ps->lobe);
     const int hl = (int)BF_LAST(vhd);
     const long end = (long)t[BF_B_START1 * BF_NHD_PAD + hl] - 1 + (long)t[BF_B_COUNT * BF_NHD_PAD + hl];
     const long next = end / BF_NLANES, v = i0 / BF_NLANES;

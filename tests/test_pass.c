@@ -400,7 +400,8 @@ static size_t samples_in_whole_bins(const brdffit_samples *s, const bf_pass_bins
     for (size_t i = 0; i < s->n; i++) {
         const int h = (int)bins->hd[i];
         n += bins->table[BF_B_START1 * BF_NHD_PAD + h] > 0.0
-             && bins->table[BF_B_COTLO * BF_NHD_PAD + h] >= cot_sure;
+             && bins->table[BF_B_COTLO * BF_NHD_PAD + h] >= cot_sure
+             && bins->table[BF_B_COTW * BF_NHD_PAD + h] == bins->table[BF_B_COTLO * BF_NHD_PAD + h];
     }
     return n;
 }
@@ -415,7 +416,7 @@ static void he_plain_sums(const brdffit_samples *s, int np, const bf_pass_par *p
 }
 
 /* He's pass sums the bins whose samples are all flat from the bin table's
- * sums (bf_fold_bin) instead of their samples; the host loop and the kernel
+ * sums (bf_pass_whole_bins) instead of their samples; the host loop and the kernel
  * then equal the sums sample by sample with no rows to 1e-8 relative (as
  * fold_equals_plain), value and full passes, on a set and on its mirror set
  * (the fits' passes), at alum-bronze's fit, where most samples lie in such
@@ -533,6 +534,7 @@ START_TEST(split_bin_summed_by_samples)
     ck_assert_msg(bf_pass_bins_make(t, 1, &bins, &err) == BRDFFIT_OK, "%s", err.message);
     const int h2 = s->bin[e] / 180;
     ck_assert(bins.table[BF_B_START1 * BF_NHD_PAD + h] == 0.0);
+    ck_assert(bins.table[BF_B_COTW * BF_NHD_PAD + h] < 0.0);
     ck_assert(bins.table[BF_B_START1 * BF_NHD_PAD + h2] == (double)(e - 1) + 1.0);
     bf_pass_par pp;
     he_at_alum_bronze_fit(&pp);

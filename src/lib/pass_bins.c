@@ -40,14 +40,15 @@ static void bin_table_free(void *data)
     free(t);
 }
 
-/* Every bin the pad geometry (wi = wo = the normal: finite everywhere) and
- * COT 0 (never flat), until a sample says otherwise. */
+/* Every bin the pad geometry (wi = wo = the normal: finite everywhere),
+ * COT 0 (never flat) and COTW -1, until a sample says otherwise. */
 static void table_clear(double *t)
 {
     bf_geom pg;
     bf_samples_pad_geom(&pg);
     const double pad[BF_BFIELDS] = {
         [BF_B_IZ] = 1, [BF_B_OZ] = 1, [BF_B_NH] = pg.nh, [BF_B_VH] = pg.vh,
+        [BF_B_COTW] = -1, /* never summed whole (bf_he_bin_whole) */
     };
     for (int f = 0; f < BF_BFIELDS; f++)
         for (int h = 0; h < BF_NHD_PAD; h++)
@@ -163,6 +164,7 @@ static void run_sums(const brdffit_samples *s, size_t lo, size_t hi, double *t, 
         }
     }
     T(BF_B_START1, h) = (double)lo + 1.0;
+    T(BF_B_COTW, h) = T(BF_B_COTLO, h);
     T(BF_B_COUNT, h) = (double)(hi - lo);
     T(BF_B_SA, h) = sa;
     T(BF_B_SAQ, h) = saq;
@@ -180,8 +182,8 @@ static void run_sums(const brdffit_samples *s, size_t lo, size_t hi, double *t, 
 }
 
 /* Every bin's sums from its run of samples (hd: each sample's bin); a bin
- * whose samples lie in more than one run is left with START1 0 (never
- * summed whole).  A set in table order has one run per bin. */
+ * whose samples lie in more than one run is left with START1 0 and COTW -1
+ * (never summed whole).  A set in table order has one run per bin. */
 static void table_sums(const brdffit_samples *s, const double *hd, double *t)
 {
     char runs[BF_NHD] = { 0 };
@@ -189,10 +191,12 @@ static void table_sums(const brdffit_samples *s, const double *hd, double *t)
         const int h = (int)hd[lo];
         for (hi = lo + 1; hi < s->n && (int)hd[hi] == h; hi++)
             ;
-        if (runs[h]++ == 0)
+        if (runs[h]++ == 0) {
             run_sums(s, lo, hi, t, h);
-        else
+        } else {
             T(BF_B_START1, h) = 0.0;
+            T(BF_B_COTW, h) = -1.0;
+        }
     }
 }
 

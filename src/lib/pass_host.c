@@ -44,11 +44,13 @@ void bf_host_loop(const brdffit_samples *samples, const bf_pass_bins *bins, brdf
     bf_pass_state state;
     bf_host_begin(samples, bins, model, np, pp, &state);
     const int rows = has_rows(samples, bins);
+    if (rows)
+        bf_pass_whole_bins(nk, np, pp, &state, (int)bins->hd[0], (int)bins->hd[samples->n - 1], 0,
+                           (long)samples->n, mom);
     for (size_t i = 0; i < samples->n; i++) {
         double keep = 1.0; /* one lane: all of it summed with its bin, or none */
         long skip;
-        if (rows && bf_pass_bins_take(nk, np, pp, bins->hd[i], bins->hd, (long)i, &keep, mom, &state,
-                                      &skip)) {
+        if (rows && bf_pass_bins_skip(&state, bins->hd[i], (long)i, &keep, &skip)) {
             i += (size_t)skip; /* the bin summed whole */
             continue;
         }

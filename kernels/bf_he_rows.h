@@ -21,7 +21,7 @@
  * sample is flat from these sums instead of its samples (bf_he_bin_whole,
  * bf_pass_whole_bins in bf_pass.h), with q = 1 / (cos ti cos to) of each sample
  * (bf_he_bin_q) and a^2 its weight: BF_B_START1, 1 + the index of its first
- * sample (0: no sample, or its samples not in one run: never summed so);
+ * sample (0: no sample, or a set not in table order: never summed so);
  * BF_B_COTW, BF_B_COTLO where START1 > 0 and -1 elsewhere (one load tells
  * whether a bin is summed whole: bf_he_bin_whole);
  * BF_B_COUNT, its samples; BF_B_SA, BF_B_SAQ, BF_B_SAQQ, the sums of a^2,
@@ -107,7 +107,7 @@ BF_FN int bf_he_flat_sure(const bf_geom *g, BF_GLOBAL const double *bins, BF_REA
 /* 1 in the lanes whose bin hd (vhd) a pass sums whole from the bin table's
  * sums (bf_pass_whole_bins in bf_pass.h): every sample of the bin flat at
  * p0 for certain (BF_B_COTLO, as bf_he_flat_sure) and its samples one run
- * of the set (BF_B_START1), so BF_B_COTW at least cot_sure.  Every such
+ * of a set in table order (BF_B_START1), so BF_B_COTW at least cot_sure.  Every such
  * sample would be served by the rows (bf_he_fd_factored: the bin's row
  * times its own q), so the bin's moments follow from its row and the sums
  * of a^2 q^k and of its values' line.  0 everywhere when the pass has no

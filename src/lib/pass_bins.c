@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* pass_bins.c -- the bin table of a sample set (BF_B_* in kernels/bf_he_rows.h) for a
  * model whose pass makes bin rows (He: bf_he_bin_rows in kernels/bf_he_rows.h):
- * each sample's (theta_h, theta_d) bin, one geometry per bin and its
- * flatness bounds (made once and kept with the set), and a driver's room
- * for the rows. */
+ * each sample's (theta_h, theta_d) bin, one geometry per bin, its
+ * flatness bounds and the sums a pass takes a wholly flat bin from (made
+ * once and kept with the set), and a driver's room for the rows. */
 #include "pass.h"
 #include "grid.h"
 #include "samples.h"
@@ -181,22 +181,20 @@ static void run_sums(const brdffit_samples *s, size_t lo, size_t hi, double *t, 
     }
 }
 
-/* Every bin's sums from its run of samples (hd: each sample's bin); a bin
- * whose samples lie in more than one run is left with START1 0 and COTW -1
- * (never summed whole).  A set in table order has one run per bin. */
+/* Every bin's sums from its run of samples (hd: each sample's bin, in
+ * table order: nondecreasing, so that each bin is one run, as the rows also
+ * need).  A set whose bins are out of that order (the library makes none)
+ * has no bin summed whole: START1 0 and COTW -1 everywhere. */
 static void table_sums(const brdffit_samples *s, const double *hd, double *t)
 {
-    char runs[BF_NHD] = { 0 };
+    for (size_t i = 1; i < s->n; i++)
+        if (hd[i] < hd[i - 1])
+            return;
     for (size_t lo = 0, hi; lo < s->n; lo = hi) {
         const int h = (int)hd[lo];
         for (hi = lo + 1; hi < s->n && (int)hd[hi] == h; hi++)
             ;
-        if (runs[h]++ == 0) {
-            run_sums(s, lo, hi, t, h);
-        } else {
-            T(BF_B_START1, h) = 0.0;
-            T(BF_B_COTW, h) = -1.0;
-        }
+        run_sums(s, lo, hi, t, h);
     }
 }
 

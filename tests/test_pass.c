@@ -418,16 +418,21 @@ static void he_plain_sums(const brdffit_samples *s, int np, const bf_pass_par *p
 /* He's pass sums the bins whose samples are all flat from the bin table's
  * sums (bf_pass_whole_bins) instead of their samples; the host loop and the kernel
  * then equal the sums sample by sample with no rows to 1e-8 relative (as
- * fold_equals_plain), value and full passes, on a set and on its mirror set
- * (the fits' passes), at alum-bronze's fit, where most samples lie in such
- * bins. */
+ * fold_equals_plain), value and full passes, on a set, on its mirror set
+ * (the fits' passes) and on He's screening subset (every 3rd theta_h and
+ * theta_d: a work-item's bins far apart), at alum-bronze's fit, where most
+ * samples lie in such bins. */
 START_TEST(whole_bins_equal_plain)
 {
     brdffit_samples *s = load_samples("alum-bronze");
     const brdffit_samples *set = s;
     brdffit_error err;
+    static const int screen_bins[3] = { 3, 3, 12 }; /* He's screening subset: sparse bins */
     if (_i == 1)
         ck_assert_msg(bf_samples_mirror_kept(s, &set, &err) == BRDFFIT_OK, "%s", err.message);
+    if (_i == 2)
+        ck_assert_msg(bf_samples_bins_kept(s, screen_bins, &set, &err) == BRDFFIT_OK, "%s",
+                      err.message);
     bf_pass_par pp;
     he_at_alum_bronze_fit(&pp);
     brdffit_context *ctx = NULL;
@@ -914,7 +919,7 @@ Suite *pass_suite(void)
     tcase_add_test(tc, subset_every_8th);
     tcase_add_test(tc, fold_equals_plain);
     tcase_add_test(tc, kernel_equals_host_on_stride_subset);
-    tcase_add_loop_test(tc, whole_bins_equal_plain, 0, 2);
+    tcase_add_loop_test(tc, whole_bins_equal_plain, 0, 3);
     tcase_add_test(tc, whole_bins_keep_close_residuals);
     tcase_add_test(tc, unordered_set_summed_by_samples);
     tcase_add_test(tc, mirror_set_merges_pairs);

@@ -69,6 +69,39 @@ BF_FN void bf_lobe_fd_partials(BF_REAL k0, const BF_REAL *dK, const double (*p)[
         Kj[j][0] = Kj[j][1] = Kj[j][2] = k0 + bf_dk_step(dK, p[0], p[1 + j]);
 }
 
+/* The value and partials of a lobe whose fd is BF_FD_GRAD (bf_<model>_vdk)
+ * or BF_FD_SCHLICK (K = F(F0, V.H) R(p[1]): F0's partial from Schlick's
+ * factor, p[1]'s from bf_<model>_rest_vdk).  The value is bit for bit
+ * bf_lobe's. */
+#define BF_VDK_BF_FD_POINTWISE(name)
+#define BF_VDK_BF_FD_OWN(name)
+#define BF_VDK_BF_FD_GRAD(name) return bf_##name##_vdk(g, p, dK);
+#define BF_VDK_BF_FD_SCHLICK(name)                              \
+    {                                                           \
+        BF_REAL dr = BF_R(0.0);                                 \
+        BF_REAL r0 = bf_##name##_rest_vdk(g, p[1], &dr);        \
+        BF_REAL f0 = bf_schlick(p[0], g->vh);                   \
+        dK[0] = (1.0 - bf_schlick(0.0, g->vh)) * r0;            \
+        dK[1] = f0 * dr;                                        \
+        return f0 * r0;                                         \
+    }
+
+/* A lobe's value K(p) and its partials dK[i] = dK / dp_i, for the lobes
+ * that have them (bf_lobe_fd_kind BF_FD_KIND_PARTIALS); dK is 0 where a
+ * lobe has fewer parameters, and K and dK are 0 for the other lobes. */
+BF_FN_INLINE BF_REAL bf_lobe_vdk(int model, const bf_geom *g, const double *p, BF_REAL *dK)
+{
+    dK[0] = dK[1] = dK[2] = BF_R(0.0);
+    switch (model) {
+#define BF_LOBE_VDK_CASE(id, name, fd) \
+    case id: { BF_VDK_##fd(name) } break;
+        BF_MODEL_LOBES(BF_LOBE_VDK_CASE)
+#undef BF_LOBE_VDK_CASE
+    default: break;
+    }
+    return BF_R(0.0);
+}
+
 /* The kinds of forward differences a BF_MODEL_LOBES entry names. */
 #define BF_FD_POINTWISE(name)                                   \
     bf_lobe_##name(g, p[0], lam, K0);                           \
@@ -78,25 +111,11 @@ BF_FN void bf_lobe_fd_partials(BF_REAL k0, const BF_REAL *dK, const double (*p)[
     if (np == 0)                                                \
         bf_lobe_##name(g, p[0], lam, K0);                       \
     else {                                                      \
-        BF_REAL dk[3] = { BF_R(0.0), BF_R(0.0), BF_R(0.0) };    \
-        BF_REAL k0 = bf_##name##_vdk(g, p[0], dk);              \
+        BF_REAL dk[3];                                          \
+        BF_REAL k0 = bf_lobe_vdk(model, g, p[0], dk);           \
         bf_lobe_fd_partials(k0, dk, p, np, K0, Kj);             \
     }
-#define BF_FD_SCHLICK(name)                                     \
-    {                                                           \
-        BF_REAL dr = BF_R(0.0), r0;                             \
-        if (np == 0)                                            \
-            r0 = bf_##name##_rest(g, p[0][1]);                  \
-        else                                                    \
-            r0 = bf_##name##_rest_vdk(g, p[0][1], &dr);         \
-        BF_REAL f0 = bf_schlick(p[0][0], g->vh);                \
-        BF_REAL dk[3] = { BF_R(0.0), BF_R(0.0), BF_R(0.0) };    \
-        if (np > 0) {                                           \
-            dk[0] = (1.0 - bf_schlick(0.0, g->vh)) * r0;        \
-            dk[1] = f0 * dr;                                    \
-        }                                                       \
-        bf_lobe_fd_partials(f0 * r0, dk, p, np, K0, Kj);        \
-    }
+#define BF_FD_SCHLICK(name) BF_FD_GRAD(name)
 #define BF_FD_OWN(name) bf_lobe_fd_##name(g, p, np, lam, K0, Kj, st);
 
 /* K at p[0] and at the np forward-difference neighbours p[1..np] of a data

@@ -560,6 +560,91 @@ START_TEST(unordered_set_summed_by_samples)
 }
 END_TEST
 
+/* Model m's sums at pp sample by sample, each lobe moment written out here
+ * from bf_lobe_fd's K(p_0) and neighbours K(p_j), G_j = (K(p_j) - K(p_0)) /
+ * h_j: the forward differences as a pass of a lobe without partials takes
+ * them (one lobe, nk = 1). */
+static void neighbour_sums(const brdffit_samples *s, brdffit_model m, int np, const bf_pass_par *pp,
+                           double *mom)
+{
+    const size_t P = s->npad;
+    for (int i = 0; i < BF_NMOM_MAX; i++)
+        mom[i] = 0.0;
+    for (size_t i = 0; i < s->n; i++) {
+        const double *f = s->data + i;
+        bf_geom g = { f[BF_F_IX * P], f[BF_F_IY * P], f[BF_F_IZ * P], f[BF_F_OX * P],
+                      f[BF_F_OY * P], f[BF_F_OZ * P], f[BF_F_NH * P], f[BF_F_VH * P] };
+        const double a2 = f[BF_F_A2 * P], rho[3] = { f[BF_F_R * P], f[BF_F_G * P], f[BF_F_B * P] };
+        double K0[3], Kj[BF_MAX_NP][3], G[BF_MAX_NP];
+        bf_lobe_fd((int)m, &g, pp->p, np, pp->lam, K0, Kj, NULL);
+        for (int j = 0; j < np; j++)
+            G[j] = (Kj[j][0] - K0[0]) * pp->inv_h[j];
+        double *L = mom + bf_mom_lobe(0, np);
+        mom[BF_MOM_A] += a2;
+        L[BF_MK_SK] += a2 * K0[0];
+        L[BF_MK_SKK] += a2 * K0[0] * K0[0];
+        for (int j = 0; j < np; j++) {
+            L[bf_mk_sg(j)] += a2 * G[j];
+            L[bf_mk_skg(np, j)] += a2 * K0[0] * G[j];
+            for (int l = j; l < np; l++)
+                L[bf_mk_sgg(np, j, l)] += a2 * G[j] * G[l];
+        }
+        for (int c = 0; c < 3; c++) {
+            double e = rho[c] - (pp->d[c] / BF_PI + pp->s[c] * K0[0]), *C = mom + bf_mom_chan(c, 1, np);
+            C[BF_MC_SE] += a2 * e;
+            C[BF_MC_SKE] += a2 * K0[0] * e;
+            C[BF_MC_SEE] += a2 * e * e;
+            for (int j = 0; j < np; j++)
+                C[bf_mc_sge(j)] += a2 * G[j] * e;
+        }
+    }
+}
+
+/* A full pass of a lobe with partials takes G_j from them,
+ * dK . (p_j - p_0) / h_j (bf_pass_partials), not from its neighbours; its
+ * sums, host loop and kernel, equal those taken from the neighbours
+ * (neighbour_sums) to 1e-8 relative: the difference quotient rounds at
+ * ~1e-16 K / h ~ 1e-10 of G at some_point's h = 1e-6.  Every model with
+ * partials (bf_lobe_fd_kind), on every 8th sample of gold-metallic-paint. */
+START_TEST(partials_equal_neighbours)
+{
+    brdffit_samples *s = load_samples("gold-metallic-paint"), *sub = NULL;
+    brdffit_error err;
+    ck_assert_msg(bf_samples_every(s, 8, &sub, &err) == BRDFFIT_OK, "%s", err.message);
+    brdffit_context *ctx = NULL;
+    ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
+    int models = 0;
+    for (int mi = 0; mi < brdffit_model_count(); mi++) {
+        const brdffit_model m = (brdffit_model)mi;
+        if (bf_lobe_fd_kind(mi) != BF_FD_KIND_PARTIALS)
+            continue;
+        models++;
+        bf_pass_par pp;
+        some_point(m, &pp);
+        bf_pass_driver dr;
+        ck_assert_msg(bf_driver_open(&dr, ctx, sub, m, &err) == BRDFFIT_OK, "%s", err.message);
+        const int np = dr.np, nmom = bf_nmom(1, np);
+        ck_assert_int_eq(dr.nk, 1);
+        ck_assert_int_ge(np, 1);
+        double want[BF_NMOM_MAX], host[BF_NMOM_MAX], kern[BF_NMOM_MAX];
+        neighbour_sums(sub, m, np, &pp, want);
+        bf_host_loop(sub, &dr.bins, m, 1, np, &pp, host);
+        ck_assert_msg(bf_driver_run(&dr, 1, &pp, kern, &err) == BRDFFIT_OK, "%s", err.message);
+        for (int i = 0; i < nmom; i++) {
+            ck_assert_msg(tu_reldiff(host[i], want[i]) <= 1e-8, "%s moment %d: host %.17g neighbours %.17g",
+                          brdffit_model_get(m)->name, i, host[i], want[i]);
+            ck_assert_msg(tu_reldiff(kern[i], want[i]) <= 1e-8, "%s moment %d: kernel %.17g neighbours %.17g",
+                          brdffit_model_get(m)->name, i, kern[i], want[i]);
+        }
+        bf_driver_close(&dr);
+    }
+    ck_assert_int_eq(models, brdffit_model_count() - 1); /* every model but He */
+    brdffit_context_free(ctx);
+    brdffit_samples_free(sub);
+    brdffit_samples_free(s);
+}
+END_TEST
+
 /* The named moment offsets of kernels/bf_layout.h (used by the kernel, the
  * host loop and the fit alike) tile [0, bf_nmom(nk, np)) exactly: every
  * moment has one name and no two names share a slot, for every nk and np. */
@@ -918,6 +1003,7 @@ Suite *pass_suite(void)
     tcase_add_test(tc, weights_normalised);
     tcase_add_test(tc, subset_every_8th);
     tcase_add_test(tc, fold_equals_plain);
+    tcase_add_test(tc, partials_equal_neighbours);
     tcase_add_test(tc, kernel_equals_host_on_stride_subset);
     tcase_add_loop_test(tc, whole_bins_equal_plain, 0, 3);
     tcase_add_test(tc, whole_bins_keep_close_residuals);

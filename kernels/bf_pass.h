@@ -65,35 +65,50 @@ BF_FN void bf_pass_state_clear(bf_pass_state *ps)
             ps->fold.F[j][c] = 0.0;
 }
 
+/* Add to acc the moments of samples whose K at p[j] is F[j][c] q (q per
+ * sample): f0 = F[0] and gam[k][j] = (F[1 + j][k] - F[0][k]) / h_j per
+ * lobe k, sq = sum a^2 q, sqq = sum a^2 q^2, and per channel se = sum a^2 e,
+ * seq = sum a^2 e q, see = sum a^2 e^2.  A = sum a^2 is the caller's.  The
+ * fold's flush (a run of factored vectors) and the whole bins (from the bin
+ * table's sums) both end here. */
+BF_FN_INLINE void bf_fold_moments(int nk, int np, const BF_REAL *f0, BF_REAL (*gam)[BF_MAX_NP],
+                                  BF_REAL sq, BF_REAL sqq, const BF_REAL *se, const BF_REAL *seq,
+                                  const BF_REAL *see, BF_REAL *acc)
+{
+    for (int k = 0; k < nk; k++) {
+        BF_REAL *m = acc + bf_mom_lobe(k, np);
+        m[BF_MK_SK] += f0[k] * sq;
+        m[BF_MK_SKK] += (f0[k] * f0[k]) * sqq;
+        for (int j = 0; j < np; j++) {
+            m[bf_mk_sg(j)] += gam[k][j] * sq;
+            m[bf_mk_skg(np, j)] += (f0[k] * gam[k][j]) * sqq;
+            for (int l = j; l < np; l++)
+                m[bf_mk_sgg(np, j, l)] += (gam[k][j] * gam[k][l]) * sqq;
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        const int k = nk > 1 ? c : 0;
+        BF_REAL *m = acc + bf_mom_chan(c, nk, np);
+        m[BF_MC_SE] += se[c];
+        m[BF_MC_SKE] += f0[k] * seq[c];
+        m[BF_MC_SEE] += see[c];
+        for (int j = 0; j < np; j++)
+            m[bf_mc_sge(j)] += gam[k][j] * seq[c];
+    }
+}
+
 /* Add the fold's run to acc and empty it. */
 BF_FN_INLINE void bf_fold_flush(bf_fold *f, int nk, int np, const bf_pass_par *pp, BF_REAL *acc)
 {
     if (f->gen < 0.0)
         return;
-    double gam[3][BF_MAX_NP];
+    BF_REAL f0[3], gam[3][BF_MAX_NP];
     for (int k = 0; k < nk; k++) {
-        const double f0 = f->F[0][k];
-        BF_REAL *m = acc + bf_mom_lobe(k, np);
+        f0[k] = BF_R(f->F[0][k]);
         for (int j = 0; j < np; j++)
-            gam[k][j] = (f->F[1 + j][k] - f0) * pp->inv_h[j];
-        m[BF_MK_SK] += f0 * f->sq;
-        m[BF_MK_SKK] += (f0 * f0) * f->sqq;
-        for (int j = 0; j < np; j++) {
-            m[bf_mk_sg(j)] += gam[k][j] * f->sq;
-            m[bf_mk_skg(np, j)] += (f0 * gam[k][j]) * f->sqq;
-            for (int l = j; l < np; l++)
-                m[bf_mk_sgg(np, j, l)] += (gam[k][j] * gam[k][l]) * f->sqq;
-        }
+            gam[k][j] = BF_R((f->F[1 + j][k] - f->F[0][k]) * pp->inv_h[j]);
     }
-    for (int c = 0; c < 3; c++) {
-        int k = nk > 1 ? c : 0;
-        BF_REAL *m = acc + bf_mom_chan(c, nk, np);
-        m[BF_MC_SE] += f->se[c];
-        m[BF_MC_SKE] += f->F[0][k] * f->seq[c];
-        m[BF_MC_SEE] += f->see[c];
-        for (int j = 0; j < np; j++)
-            m[bf_mc_sge(j)] += gam[k][j] * f->seq[c];
-    }
+    bf_fold_moments(nk, np, f0, gam, f->sq, f->sqq, f->se, f->seq, f->see, acc);
     bf_fold_zero(f);
 }
 
@@ -139,8 +154,8 @@ BF_FN_INLINE void bf_fold_add(bf_pass_state *ps, int nk, int np, const bf_pass_p
  *     sum a^2 e^2 = RR + 2 (D0 R + D1 RQC) + D0^2 SA + 2 D0 D1 SQ1 + D1^2 SQC:
  * no term cancels more than the residuals themselves do (R, SQ1 are 0 but
  * for rounding), so a bin that the model fits closely keeps its small
- * sum of a^2 e^2 (tests/test_pass.c, whole_bins_*).  The lobe moments are
- * bf_fold_flush's with sum a^2 q = SAQ and sum a^2 q^2 = SAQQ.  The pass
+ * sum of a^2 e^2 (tests/test_pass.c, whole_bins_*).  The moments are then
+ * bf_fold_moments', with sum a^2 q = SAQ and sum a^2 q^2 = SAQQ.  The pass
  * then leaves these bins' samples out (bf_pass_bins_skip). */
 BF_FN_INLINE void bf_pass_whole_bins(int nk, int np, const bf_pass_par *pp, const bf_pass_state *ps,
                                      int h0, int h1, long i_lo, long i_hi, BF_REAL *acc)
@@ -169,17 +184,9 @@ BF_FN_INLINE void bf_pass_whole_bins(int nk, int np, const bf_pass_par *pp, cons
             for (int j = 0; j < np; j++)
                 gam[k][j] = (BF_SEL(BF_R(0.0), bf_lobe_bin_row(&ps->lobe, 1 + j, k, h), take > 0.0) - f0[k])
                             * pp->inv_h[j];
-            BF_REAL *m = acc + bf_mom_lobe(k, np);
-            m[BF_MK_SK] += f0[k] * sq;
-            m[BF_MK_SKK] += (f0[k] * f0[k]) * sqq;
-            for (int j = 0; j < np; j++) {
-                m[bf_mk_sg(j)] += gam[k][j] * sq;
-                m[bf_mk_skg(np, j)] += (f0[k] * gam[k][j]) * sqq;
-                for (int l = j; l < np; l++)
-                    m[bf_mk_sgg(np, j, l)] += (gam[k][j] * gam[k][l]) * sqq;
-            }
         }
         acc[BF_MOM_A] += sa;
+        BF_REAL se[3], seq[3], see[3];
         for (int c = 0; c < 3; c++) {
             const int k = nk > 1 ? c : 0;
             const int line = BF_B_LINE + c * BF_BL_FIELDS;
@@ -190,16 +197,12 @@ BF_FN_INLINE void bf_pass_whole_bins(int nk, int np, const bf_pass_par *pp, cons
             const BF_REAL d0 = BF_SEL(BF_R(0.0), BF_TB(line + BF_BL_RBAR), take > 0.0)
                                - pp->d[c] * (1.0 / BF_PI) - mc * qbar;
             const BF_REAL d1 = BF_SEL(BF_R(0.0), BF_TB(line + BF_BL_BETA), take > 0.0) - mc;
-            const BF_REAL se = r + d0 * sa + d1 * sq1;
-            const BF_REAL seq = (rqc + d0 * sq1 + d1 * sqc) + qbar * se;
-            BF_REAL *m = acc + bf_mom_chan(c, nk, np);
-            m[BF_MC_SE] += se;
-            m[BF_MC_SKE] += f0[k] * seq;
-            m[BF_MC_SEE] += rr + 2.0 * (d0 * r + d1 * rqc) + (d0 * d0) * sa + 2.0 * (d0 * d1) * sq1
-                            + (d1 * d1) * sqc;
-            for (int j = 0; j < np; j++)
-                m[bf_mc_sge(j)] += gam[k][j] * seq;
+            se[c] = r + d0 * sa + d1 * sq1;
+            seq[c] = (rqc + d0 * sq1 + d1 * sqc) + qbar * se[c];
+            see[c] = rr + 2.0 * (d0 * r + d1 * rqc) + (d0 * d0) * sa + 2.0 * (d0 * d1) * sq1
+                     + (d1 * d1) * sqc;
         }
+        bf_fold_moments(nk, np, f0, gam, sq, sqq, se, seq, see, acc);
     }
 #undef BF_TB
 }

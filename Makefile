@@ -71,7 +71,7 @@ LIB_OBJ  = $(LIB_SRC:src/lib/%.c=$(BUILD)/lib/%.o) $(BUILD)/lib/kernel_source.o
 # The kernel sources in the order they are concatenated for
 # clCreateProgramWithSource (each after what it uses).  The one place that
 # order is written.
-KERNEL_SOURCES = kernels/bf_common.h kernels/bf_models.h \
+KERNEL_SOURCES = kernels/bf_common.h kernels/bf_exp.h kernels/bf_models.h \
                  kernels/bf_he_const.h kernels/bf_he_surface.h kernels/bf_he_series.h \
                  kernels/bf_he_tab.h kernels/bf_he_memo.h kernels/bf_he_stages.h kernels/bf_he_rows.h \
                  kernels/bf_he.h kernels/bf_lobe.h \

@@ -26,6 +26,7 @@
  *                     (v holds whole numbers >= 0), made in registers: a
  *                     vector loaded from private lanes stored one by one
  *                     waits for those stores (bf_he_bin_gather).
+ *   BF_GATHERC(p, v)  the same from a constant table (bf_he_dlog).
  *   BF_GLOBAL         the address space of buffers a pass writes and reads
  *                     (__global in the kernel, nothing on the host).
  *   BF_FN, BF_FN_INLINE  how the functions are declared; BF_FN_INLINE is
@@ -69,6 +70,11 @@ inline double4 bf_gatherg4(__global const double *p, int4 i)
 {
     return (double4)(p[i.s0], p[i.s1], p[i.s2], p[i.s3]);
 }
+#    define BF_GATHERC(p, v) bf_gatherc4((p), convert_int4(v))
+inline double4 bf_gatherc4(__constant const double *p, int4 i)
+{
+    return (double4)(p[i.s0], p[i.s1], p[i.s2], p[i.s3]);
+}
 #  elif BF_WIDTH == 8
 #    define BF_REAL double8
 #    define BF_LAST(v) ((v).s7)
@@ -81,6 +87,11 @@ inline double4 bf_gatherg4(__global const double *p, int4 i)
 #    define BF_HSUM(v) ((((v).s0 + (v).s1) + ((v).s2 + (v).s3)) + (((v).s4 + (v).s5) + ((v).s6 + (v).s7)))
 #    define BF_GATHERG(p, v) bf_gatherg8((p), convert_int8(v))
 inline double8 bf_gatherg8(__global const double *p, int8 i)
+{
+    return (double8)(p[i.s0], p[i.s1], p[i.s2], p[i.s3], p[i.s4], p[i.s5], p[i.s6], p[i.s7]);
+}
+#    define BF_GATHERC(p, v) bf_gatherc8((p), convert_int8(v))
+inline double8 bf_gatherc8(__constant const double *p, int8 i)
 {
     return (double8)(p[i.s0], p[i.s1], p[i.s2], p[i.s3], p[i.s4], p[i.s5], p[i.s6], p[i.s7]);
 }
@@ -121,6 +132,7 @@ inline double8 bf_gatherg8(__global const double *p, int8 i)
 #  define BF_STORE(v, p) (*(p) = (v))
 #  define BF_LOADG(p) (*(p))
 #  define BF_GATHERG(p, v) ((p)[(int)(v)])
+#  define BF_GATHERC(p, v) ((p)[(int)(v)])
 #  define BF_GLOBAL
 #  define BF_HSUM(v) (v)
 #endif

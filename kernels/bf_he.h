@@ -26,7 +26,8 @@
  *
  * Numerics.  The terms T_m of the series are log-concave in m (their log
  * ratios decrease), so per lane the peak m* is found exactly (a Newton
- * estimate, then a step or two on the sign of the log ratio).  K is computed
+ * estimate, then a step or two on the sign of the log ratio, from a table
+ * of ln(m m!): bf_he_dlog).  K is computed
  * as e^(ln T_m* + ln(pref F G S / (pi cos cos))) sum_m T_m / T_m*, so nothing
  * underflows unless K does: a lane whose peak term puts less than e^-760 into
  * K is 0 without summing (in a pass's bin rows, a higher floor:

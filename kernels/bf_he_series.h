@@ -11,7 +11,8 @@
 #endif
 
 /* bf_he_lkk[k] = ln(k k!) for k = 1..BF_HE_MMAX, correctly rounded (so that
- * a term of the series costs one exp and no log). */
+ * a term of the series costs one exp (bf_exp) and no log, and the peak
+ * search none: bf_he_dlog). */
 BF_HE_CONSTANT double bf_he_lkk[BF_HE_MMAX + 1] = {
     0.0, 0.0, 1.3862943611198906, 2.8903717578961645,
     4.564348191467836, 6.396929655216146, 8.371010681238156, 10.471071510120728,
@@ -225,28 +226,43 @@ BF_HE_CONSTANT double bf_he_rcp[BF_HE_MMAX + 1] = {
     0.0025
 };
 
-/* d(m) = ln(T_{m+1} / T_m), T_m = g^m e^-g / (m! m) e^(-a/m): decreasing in m. */
+/* d(m) = ln(T_{m+1} / T_m), T_m = g^m e^-g / (m! m) e^(-a/m): decreasing in m,
+ * for whole m in [1, BF_HE_MMAX - 1] (larger m read as BF_HE_MMAX - 1).
+ * ln((m + 1)^2 / m) is bf_he_lkk[m + 1] - bf_he_lkk[m], to ~5e-13 absolute
+ * (the table's rounding at ~2000): a lane's two logarithms were most of a
+ * peak search.  So the sign is exact but where two terms tie to within
+ * e^(5e-13) (either is then a peak: the sums agree to rounding). */
 BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
 {
-    return lng - log((m + 1.0) * (m + 1.0) / m) + a / (m * (m + 1.0));
+    BF_REAL mc = fmin(m, BF_R(BF_HE_MMAX - 1));
+    BF_REAL l0 = BF_GATHERC(bf_he_lkk, mc), l1 = BF_GATHERC(bf_he_lkk, mc + 1.0);
+    return lng - (l1 - l0) + a / (m * (m + 1.0));
 }
 
 /* The discrete peak m* of the terms T_m of bf_he_series_x for the lanes
  * where act > 0: d(m* - 1) > 0 >= d(m*) (or m* = 1, = BF_HE_MMAX), found
  * from the continuous peak of ln T_m ~ m ln(g/m) + m - a/m, ln(m/g) = a/m^2
- * (one Newton step in y = ln m from a first guess), then by single steps:
+ * (one Newton step in y = ln m from a first guess y0, where a e^(-2 y0) is
+ * known without an exp: the guess is ln g or (ln a - ln L) / 2, or a clamp
+ * of either), then by single steps:
  * over g in [1e-6, 19] and a in [0, 1e7] (a grid of 401 x 401) at most 3 of
  * them, 0.21 on average (three Newton steps left 0.17, each an exp a lane:
  * a stride-subset pass at brass's fit 5% faster with one, the peak and so
  * every sum the same).  *conv = 0 in a lane whose steps hit their cap (it is
  * then summed in full), else 1. */
-BF_FN_INLINE BF_REAL bf_he_series_peak(BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL act,
+BF_FN_INLINE BF_REAL bf_he_series_peak(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_REAL act,
                                        BF_REAL *conv)
 {
     const double mmax = (double)BF_HE_MMAX, lnmmax = BF_HE_LN_MMAX;
-    BF_REAL y = fmax(lng, 0.5 * (la - log(fmax(0.5 * la - lng, BF_R(1.0)))));
+    BF_REAL L = fmax(0.5 * la - lng, BF_R(1.0));
+    BF_REAL yb = 0.5 * (la - log(L));
+    BF_REAL y = fmax(lng, yb);
+    /* e = a e^(-2y): L where y = yb (la = ln a to rounding, and la only
+     * places the start), a / g^2 where y = ln g, a and a / mmax^2 at the clamps */
+    BF_REAL e = BF_SEL(a / (g * g), L, yb > lng);
+    e = BF_SEL(e, a, y < 0.0);
+    e = BF_SEL(e, a * (1.0 / (mmax * mmax)), y > lnmmax);
     y = fmin(fmax(y, 0.0), lnmmax);
-    BF_REAL e = a * exp(-2.0 * y);
     y = fmin(fmax(y - (y - lng - e) / (1.0 + 2.0 * e), 0.0), lnmmax);
     BF_REAL m = fmin(fmax(floor(exp(y) + 0.5), BF_R(1.0)), BF_R(mmax));
 
@@ -319,12 +335,10 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
     if (!BF_ANY(act > 0.0))
         return BF_R(0.0);
     BF_REAL conv;
-    BF_REAL m = bf_he_series_peak(lng, a, la, act, &conv);
+    BF_REAL m = bf_he_series_peak(g, lng, a, la, act, &conv);
 
-    /* ln T at the peak (ln m! to ~1e-3 is enough here): too small -> 0. */
-    BF_REAL x1 = m + 1.0;
-    BF_REAL lpk = m * lng - ((x1 - 0.5) * log(x1) - x1 + BF_HE_LN_SQRT_2PI + 1.0 / (12.0 * x1))
-                - g - a / m - log(m);
+    /* ln T at the peak (ln(m m!) from the table): too small -> 0. */
+    BF_REAL lpk = m * lng - BF_GATHERC(bf_he_lkk, m) - g - a / m;
     act = BF_SEL(act, BF_R(0.0), (conv > 0.0) && (lpk + lk < ldead));
     if (deriv)
         *lpko = lpk;
@@ -340,7 +354,7 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
     for (int k = bf_he_series_first(m, a, conv, act); k <= BF_HE_MMAX; k++) {
         double dk = (double)k, ik = bf_he_rcp[k];
         BF_REAL e = dk * lng - a * ik + (base - bf_he_lkk[k]);
-        BF_REAL t = exp(fmin(fmax(e, BF_R(-700.0)), BF_R(700.0)));
+        BF_REAL t = bf_exp(fmin(fmax(e, BF_R(-700.0)), BF_R(700.0)));
         sum = BF_SEL(sum, sum + t, act > 0.0);
         if (deriv) {
             s1 = BF_SEL(s1, s1 + t * dk, act > 0.0);

@@ -150,7 +150,7 @@ BF_FN void bf_he_tab_fill(bf_he_tab *t)
      * and k >= 1, so no later load reads a stored value */
     for (int j0 = 0; j0 <= mend - k; j0 += BF_NLANES) {
         BF_REAL mv = (double)(k + j0) + BF_IOTA;
-        BF_STORE(exp(BF_LOADP(t->c + (k - 1 + j0)) - lmax) / mv, t->c + j0);
+        BF_STORE(bf_exp(BF_LOADP(t->c + (k - 1 + j0)) - lmax) / mv, t->c + j0);
     }
     t->filled = 1.0;
 }
@@ -301,7 +301,7 @@ BF_FN void bf_he_series_point(double a, double g, double lkmax, double ldead, do
     for (int m0 = k - (k - 1) % BF_NLANES; m0 <= mend; m0 += BF_NLANES) {
         BF_REAL mv = (double)m0 + BF_IOTA;
         BF_REAL l = bf_he_tab_lv(m0, lng, a);
-        BF_REAL t = BF_SEL(BF_R(0.0), exp(fmin(l - top, BF_R(0.0))), (mv >= (double)k) && (mv <= (double)mend));
+        BF_REAL t = BF_SEL(BF_R(0.0), bf_exp(fmin(l - top, BF_R(0.0))), (mv >= (double)k) && (mv <= (double)mend));
         s0 += t;
         s1 += t * mv;
         si += t / mv;

@@ -18,7 +18,7 @@
 #define BF_MODELS_H
 
 #ifndef __OPENCL_VERSION__
-#include "bf_common.h"
+#include "bf_exp.h"
 #endif
 
 /* The geometry of a (wi, wo) pair: computed once per sample of a table. */
@@ -61,11 +61,13 @@ BF_FN BF_REAL bf_powu_log(BF_REAL x)
 /* bf_powu from lx = bf_powu_log(x), for a lobe that needs lx again. */
 BF_FN BF_REAL bf_powu_l(BF_REAL x, BF_REAL lx, double n)
 {
-    return BF_SEL(exp(n * lx), BF_R(0.0), x <= 0.0);
+    return BF_SEL(bf_exp_wide(n * lx), BF_R(0.0), x <= 0.0);
 }
 
-/* x^n for x >= 0 (at most 1 + rounding) and real n > 0: exp(n log x), 0 where
- * x <= 0.  Not clamped at 1: the reference values are not either. */
+/* x^n for x >= 0 (at most 1 + rounding) and real n > 0: e^(n log x) by
+ * bf_exp_wide (kernels/bf_exp.h: Lafortune's full pass 14% faster at a sharp
+ * lobe than with the OpenCL exp), 0 where x <= 0.  Not clamped at 1: the
+ * reference values are not either. */
 BF_FN BF_REAL bf_powu(BF_REAL x, double n)
 {
     return bf_powu_l(x, bf_powu_log(x), n);

@@ -900,7 +900,9 @@ END_TEST
 /* The series' peak (bf_he_series_peak) over g in [1e-6, 19] and a in
  * [0, 1e7] (a log grid of 201 x 201, and a = 0): the discrete peak m*,
  * d(m* - 1) > 0 >= d(m*) (or at 1 or BF_HE_MMAX), found without hitting the
- * single steps' cap (conv = 1), so every sum starts from its own peak. */
+ * single steps' cap (conv = 1), so every sum starts from its own peak; and,
+ * against every term's log in long double from lgammal, the largest term to
+ * within 1e-12 (bf_he_dlog's table can tie two terms that close). */
 START_TEST(series_peak_exact)
 {
     int checked = 0;
@@ -908,13 +910,23 @@ START_TEST(series_peak_exact)
         double g = 1e-6 * pow(19e6, i / 200.0), lng = log(g);
         for (int j = 0; j <= 201; j++) {
             double a = j == 0 ? 0.0 : 1e-4 * pow(1e11, (j - 1) / 200.0), conv = 0.0;
-            double m = bf_he_series_peak(lng, a, log(fmax(a, 1e-300)), 1.0, &conv);
+            double m = bf_he_series_peak(g, lng, a, log(fmax(a, 1e-300)), 1.0, &conv);
             ck_assert_msg(conv == 1.0, "g %g a %g: the steps hit their cap", g, a);
             ck_assert_msg(m >= 1.0 && m <= BF_HE_MMAX && m == floor(m), "g %g a %g: m %g", g, a, m);
             if (m < BF_HE_MMAX)
                 ck_assert_msg(bf_he_dlog(m, lng, a) <= 0.0, "g %g a %g: m %g is before the peak", g, a, m);
             if (m > 1.0)
                 ck_assert_msg(bf_he_dlog(m - 1.0, lng, a) > 0.0, "g %g a %g: m %g is past the peak", g, a, m);
+            long double top = -INFINITY, at = 0.0L;
+            for (int k = 1; k <= BF_HE_MMAX; k++) {
+                long double lt = k * logl(g) - lgammal(k + 1.0L) - logl(k) - a / k;
+                if (k == (int)m)
+                    at = lt;
+                if (lt > top)
+                    top = lt;
+            }
+            ck_assert_msg(at >= top - 1e-12L, "g %g a %g: T at m %g is %Lg below the largest", g, a,
+                          m, top - at);
             checked++;
         }
     }

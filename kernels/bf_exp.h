@@ -9,6 +9,8 @@
  *   bf_exp(x)       e^x for x in [-708, 709] (x is clamped to it).
  *   bf_exp_wide(x)  e^x for any x <= 709 (clamped there), subnormal results
  *                   included, and 0 below -745.2 (where exp rounds to 0).
+ * Neither is given a NaN by its callers (the host's would return NaN, the
+ * kernel's a clamp's value).
  *
  * The kernel's (bf_exp_poly, bf_exp_wide_poly, compiled on the host too for
  * tests/test_models.c, exp_function): Cody and Waite's reduction

@@ -60,7 +60,8 @@ static inline double bf_pow2i(double n)
 #  define BF_FMA(a, b, c) ((a) * (b) + (c))
 #endif
 
-/* e^r 2^-n for x = n ln 2 + r (n whole, |r| <= ln 2 / 2), x in [-800, 709]. */
+/* e^r, and n into *n, for x = n ln 2 + r (n whole, |r| <= ln 2 / 2; x in
+ * [-800, 709]): e^x = e^r 2^n. */
 BF_FN_INLINE BF_REAL bf_exp_reduced(BF_REAL x, BF_REAL *n)
 {
     BF_REAL k = (x * 1.44269504088896340736 + BF_EXP_SHIFT) - BF_EXP_SHIFT;

@@ -2,7 +2,8 @@
 /* test_models.c -- the closed-form lobes (every model of the registry whose
  * lobe is the same for the three channels; He has its own suite): reference
  * values, reciprocity, finiteness at the edges of the hemisphere and of the
- * parameter ranges; the registry itself and the ABI values it pins. */
+ * parameter ranges; the kernel's exp that the power lobes (and He's series)
+ * take; the registry itself and the ABI values it pins. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
 #include "bf_lobe.h"

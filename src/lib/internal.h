@@ -42,7 +42,10 @@ void bf_ok(brdffit_error *err);
 /* Wall-clock seconds from a monotonic clock. */
 double bf_now(void);
 
-/* 64-byte-aligned allocation (for OpenCL CL_MEM_USE_HOST_PTR); free with bf_free_aligned. */
+/* 64-byte-aligned allocation (for OpenCL CL_MEM_USE_HOST_PTR), on huge pages
+ * from 4 MB on (a hint; status.c); free with bf_free_aligned.  The library's
+ * large arrays take it: a table's values, a sample set's fields, weights and
+ * bins, and the index arrays its subsets and mirror set are made with. */
 void *bf_alloc_aligned(size_t bytes);
 void bf_free_aligned(void *p);
 

@@ -182,7 +182,9 @@ static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brd
     brdffit_status st = read_header(fd, path, err);
     if (st != BRDFFIT_OK)
         return st;
-    brdffit_table *t = malloc(sizeof *t);
+    /* huge pages, as brdffit_table_create's: read() into 4 KB pages faulted
+     * ~8,600 times a table, half the page faults of `brdffit fit` */
+    brdffit_table *t = bf_alloc_aligned(sizeof *t);
     if (!t)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY, "%s: cannot allocate %zu bytes for the table",
                        path, sizeof *t);
@@ -190,7 +192,7 @@ static brdffit_status read_fd(int fd, const char *path, brdffit_table **out, brd
     if (st == BRDFFIT_OK)
         st = check_values(t->v, path, err);
     if (st != BRDFFIT_OK) {
-        free(t);
+        bf_free_aligned(t);
         return st;
     }
     *out = t;

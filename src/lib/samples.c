@@ -30,8 +30,8 @@ void brdffit_samples_free(brdffit_samples *samples)
         return;
     bf_derived_free(samples);
     bf_free_aligned(samples->data);
-    free(samples->w);
-    free(samples->bin);
+    bf_free_aligned(samples->w);
+    bf_free_aligned(samples->bin);
     free(samples);
 }
 
@@ -93,8 +93,9 @@ static brdffit_status alloc_samples(brdffit_samples *samples, size_t cap, brdffi
 {
     samples->npad = padded(cap);
     samples->data = bf_alloc_aligned((size_t)BF_NFIELDS * samples->npad * sizeof(double));
-    samples->w = malloc((cap ? cap : 1) * sizeof *samples->w);
-    samples->bin = malloc((cap ? cap : 1) * sizeof *samples->bin);
+    /* each ~12 MB for a MERL table: huge pages, as the fields (page faults) */
+    samples->w = bf_alloc_aligned(cap * sizeof *samples->w);
+    samples->bin = bf_alloc_aligned(cap * sizeof *samples->bin);
     if (!samples->data || !samples->w || !samples->bin)
         return bf_fail(err, BRDFFIT_E_NO_MEMORY,
                        "brdffit_samples_create: cannot allocate %zu samples", cap);
@@ -387,7 +388,7 @@ brdffit_status bf_samples_take(const brdffit_samples *src, const size_t *idx, si
 /* Room for the indices of a subset of up to n samples. */
 static size_t *index_alloc(size_t n, brdffit_error *err)
 {
-    size_t *idx = malloc((n ? n : 1) * sizeof *idx);
+    size_t *idx = bf_alloc_aligned(n * sizeof *idx);
     if (!idx)
         bf_fail(err, BRDFFIT_E_NO_MEMORY, "a sample subset: out of memory");
     return idx;
@@ -406,7 +407,7 @@ brdffit_status bf_samples_every(const brdffit_samples *src, size_t stride, brdff
     for (size_t m = 0; m < n; m++)
         idx[m] = m * stride;
     brdffit_status st = bf_samples_take(src, idx, n, out, err);
-    free(idx);
+    bf_free_aligned(idx);
     return st;
 }
 
@@ -446,6 +447,6 @@ brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
         i = e;
     }
     brdffit_status st = bf_samples_take(src, idx, n, out, err);
-    free(idx);
+    bf_free_aligned(idx);
     return st;
 }

@@ -80,8 +80,8 @@ brdffit_status bf_samples_mirror(const brdffit_samples *src, brdffit_samples **o
                                  brdffit_error *err)
 {
     *out = NULL;
-    size_t *keep = malloc((src->n ? src->n : 1) * sizeof *keep), n = 0;
-    long *mate = malloc((src->n ? src->n : 1) * sizeof *mate);
+    size_t *keep = bf_alloc_aligned(src->n * sizeof *keep), n = 0;
+    long *mate = bf_alloc_aligned(src->n * sizeof *mate);
     brdffit_status st = BRDFFIT_OK;
     if (!keep || !mate) {
         st = bf_fail(err, BRDFFIT_E_NO_MEMORY, "the mirror set of %zu samples: out of memory",
@@ -98,7 +98,7 @@ brdffit_status bf_samples_mirror(const brdffit_samples *src, brdffit_samples **o
     (*out)->sum_w = src->sum_w; /* what its merged weights add up to, to rounding */
     (*out)->sum_a2 = src->sum_a2;
 done:
-    free(keep);
-    free(mate);
+    bf_free_aligned(keep);
+    bf_free_aligned(mate);
     return st;
 }

@@ -93,9 +93,11 @@
  *
  * In steps: with a memo that has rows, a vector whose lanes are all flat
  * takes them (bf_he_bin_serve when its lanes share a bin, else
- * bf_he_bin_gather); else bf_he_fd_lanes: bf_he_fd_base (the directions, S,
- * sigma, F), bf_he_fd_channel per channel (the value, through
- * bf_he_dblend), bf_he_fd_neighbour per neighbour.
+ * bf_he_bin_gather); else bf_he_fd_base (the directions, S, sigma, F), and
+ * a vector whose lanes are all flat or near them (sigma = sigma0) takes the
+ * rows times its own shadowing (bf_he_near_serve); else bf_he_fd_rest:
+ * bf_he_fd_channel per channel (the value, through bf_he_dblend),
+ * bf_he_fd_neighbour per neighbour (with no rows: bf_he_fd_lanes, the same).
  *
  * bf_he_fd_factored is bf_he_fd, and with q != NULL it returns a vector
  * whose lanes share a bin's row in factored form: 1, and *q (bf_he_bin_q),
@@ -130,6 +132,11 @@ BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, cons
                 bf_he_bin_serve(memo, qv, np, K0, Kj);
             return 1;
         }
+        bf_he_base b;
+        bf_he_fd_base(g, p[0], lam, pc, 0, &b);
+        if (!bf_he_near_serve(memo, &b, p, np, K0, Kj))
+            bf_he_fd_rest(&b, p, np, lam, pc, K0, Kj, memo);
+        return 0;
     }
     bf_he_fd_lanes(g, p, np, lam, pc, 0, K0, Kj, memo);
     return 0;

@@ -85,6 +85,8 @@ typedef struct bf_he_memo {
     BF_REAL vhd;                /* the bins hd of the vector's lanes         */
     double bk[1 + BF_HE_NP][3]; /* the row of the last bin served whole      */
     double bhits;               /* vectors served by the rows                */
+    double nhits;               /* vectors served by the rows and their own
+                                 * shadowing (bf_he_near_serve)             */
     double bsure;               /* of them, found flat by the bin table      */
     double bgen;                /* 1 + the bin of bk (0: none)               */
     /* the series tables (bf_he_tab), one per channel */
@@ -113,6 +115,7 @@ BF_FN void bf_he_memo_clear(bf_he_memo *m)
         for (int c = 0; c < 3; c++)
             m->bk[j][c] = 0.0;
     m->bhits = 0.0;
+    m->nhits = 0.0;
     m->bsure = 0.0;
     m->bgen = 0.0;
     for (int c = 0; c < 3; c++) /* the coefficients are read only up to n */

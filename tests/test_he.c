@@ -1071,6 +1071,7 @@ typedef struct memo_walk {
     double floor[3];    /* the rows' floor: BF_HE_MMAX e^-BF_HE_ROW_FLOOR K_normal */
     bf_he_memo memo;
     long nonzero, samples, flat, floored;
+    long near; /* not flat, u >= BF_HE_U_ROW both ways and sigma = sigma0 to the bit */
     int set;
 } memo_walk;
 
@@ -1082,6 +1083,14 @@ static void memo_visit(int hd, const bf_geom *g, void *arg)
     bf_he_flat fl;
     bf_he_flat_make(g, w->p[0][0], w->p[0][1], &fl);
     w->flat += fl.lanes > 0.0;
+    if (!(fl.lanes > 0.0)) {
+        /* u = tau cot t / (2 sigma0) of each direction, from its own components */
+        double k = w->p[0][0] / (2.0 * w->p[0][1]);
+        double ui = k * g->iz / sqrt(g->ix * g->ix + g->iy * g->iy);
+        double uo = k * g->oz / sqrt(g->ox * g->ox + g->oy * g->oy);
+        w->near += ui >= BF_HE_U_ROW && uo >= BF_HE_U_ROW &&
+                   bf_he_sigma(g, w->p[0][0], w->p[0][1]) == w->p[0][1];
+    }
     double K0[3], Kj[3][3], Kb[3], Kn[3][3];
     w->memo.vhd = (double)hd;
     bf_he_fd(g, (const double(*)[3])w->p, 3, default_lam, K0, Kj, &w->memo);
@@ -1140,6 +1149,13 @@ START_TEST(pass_memo)
      * (measured 12242 of 13540; the rest are near grazing, u < 6) */
     ck_assert_msg(w.memo.bhits == (double)w.flat, "set %d: the rows served %g of %ld flat", _i,
                   w.memo.bhits, w.flat);
+    /* and with their own shadowing exactly the samples near them
+     * (bf_he_near_serve), whose K and neighbours the loop checked above */
+    ck_assert_msg(w.memo.nhits == (double)w.near, "set %d: the rows served %g of %ld near flat",
+                  _i, w.memo.nhits, w.near);
+    if (P[0] == 37.44)
+        ck_assert_msg(w.near >= 0.02 * w.samples, "set %d: %ld of %ld near flat", _i, w.near,
+                      w.samples);
     if (P[0] == 37.44) {
         ck_assert_msg(w.flat >= 0.85 * w.samples, "set %d: %ld of %ld flat", _i, w.flat,
                       w.samples);

@@ -472,8 +472,9 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *sp)
  * d, s there, and the pass kept in it for the first evaluation of the LM run
  * that starts from it (seed_serves), which would take that same pass: one
  * value pass less per kept start (a value pass had taken its cost here, at
- * d = s = 0).  Measured over the 100 MERL tables, two rounds alternated:
- * each fit 0.88-0.97x its time before (median over the tables per model);
+ * d = s = 0).  Measured over the 100 MERL tables, four rounds alternated:
+ * each fit 0.92-0.99x its time before (median over the tables per model;
+ * Ward's 1.05, the first model on each table, beside the next one's set-up);
  * the closed-form fits moved by at most 7.5e-11 relative, He's 90 fits by
  * the rounding of the sums at the start (white-fabric2 to another point of
  * its flat valley, 1.1e-5 above the run before and below the stored run);

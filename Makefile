@@ -218,7 +218,7 @@ sanitize:
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	./build-san/test_brdffit
 
-# The threaded tests under ThreadSanitizer (clang; .ci/install-deps clang
+# The threaded tests (the threads suite, and the alloc suite's pool) under ThreadSanitizer (clang; .ci/install-deps clang
 # installs it), in their own build directory.  A report fails the test that
 # ran into it.  tests/tsan.supp names what is not ours (PoCL, LLVM).
 tsan:
@@ -226,9 +226,11 @@ tsan:
 	$(MAKE) BUILD=build-tsan CC=clang OPT=-O1 SAN="-fsanitize=thread -fno-omit-frame-pointer" \
 	    build-tsan/test_brdffit
 	@mkdir -p build-tsan/pocl-cache
-	POCL_CACHE_DIR="$(CURDIR)/build-tsan/pocl-cache" CK_RUN_SUITE=threads \
-	TSAN_OPTIONS=halt_on_error=1:suppressions=$(CURDIR)/tests/tsan.supp \
-	./build-tsan/test_brdffit
+	for suite in threads alloc; do \
+	    POCL_CACHE_DIR="$(CURDIR)/build-tsan/pocl-cache" CK_RUN_SUITE=$$suite \
+	    TSAN_OPTIONS=halt_on_error=1:suppressions=$(CURDIR)/tests/tsan.supp \
+	    ./build-tsan/test_brdffit || exit 1; \
+	done
 
 # The fuzz targets built with clang (libFuzzer + ASan + UBSan) in their own
 # build directory, each run for FUZZ_SECONDS from the seed corpus

@@ -43,11 +43,20 @@ void bf_ok(brdffit_error *err);
 double bf_now(void);
 
 /* 64-byte-aligned allocation (for OpenCL CL_MEM_USE_HOST_PTR), on huge pages
- * from 4 MB on (a hint; status.c); free with bf_free_aligned.  The library's
- * large arrays take it: a table's values, a sample set's fields, weights and
- * bins, and the index arrays its subsets and mirror set are made with. */
+ * from 4 MB on (a hint); free with bf_free_aligned, which keeps such an array
+ * in a process-wide pool for the next one of about its size (alloc.c; not
+ * zeroed: callers write what they read).  The library's large arrays take
+ * it: a table's values, a sample set's fields, weights and bins, and the
+ * index arrays its subsets and mirror set are made with. */
 void *bf_alloc_aligned(size_t bytes);
 void bf_free_aligned(void *p);
+/* The bytes the pool holds now (brdffit_release_memory empties it); whether
+ * this build pools at all (not under AddressSanitizer); and, for tests, every
+ * pooled array filled with `byte` (so that a reader of what it did not write
+ * sees that): the number of arrays filled. */
+size_t bf_alloc_pooled(void);
+int bf_alloc_pool_on(void);
+size_t bf_alloc_pool_fill(unsigned char byte);
 
 /* The channel factors of a scale mode; factors must hold 3. */
 void bf_scale_factors(brdffit_scale scale, double factors[3]);

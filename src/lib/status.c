@@ -1,6 +1,5 @@
 /* SPDX-License-Identifier: MIT */
 /* status.c -- status texts, error reports, and the small utilities every file uses. */
-#define _DEFAULT_SOURCE /* madvise's MADV_HUGEPAGE */
 #include "internal.h"
 
 #include <math.h>
@@ -8,7 +7,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <time.h>
 
 #define BF_STR_(x) #x
@@ -130,31 +128,4 @@ double bf_now(void)
 double brdffit_seconds(void)
 {
     return bf_now();
-}
-
-/* From this size on, bf_alloc_aligned asks for huge pages. */
-#define HUGE_FROM ((size_t)4 << 20)
-#define HUGE_PAGE ((size_t)2 << 20)
-
-void *bf_alloc_aligned(size_t bytes)
-{
-    void *p = NULL;
-    if (bytes == 0)
-        bytes = 64;
-    if (bytes < HUGE_FROM)
-        return posix_memalign(&p, 64, bytes) == 0 ? p : NULL;
-    if (posix_memalign(&p, HUGE_PAGE, bytes) != 0)
-        return NULL;
-#ifdef MADV_HUGEPAGE
-    /* before the first touch: a sample set's ~90 MB then takes ~45 page
-     * faults instead of ~22000, and a pass over it as many TLB entries;
-     * only a hint (no transparent huge pages: nothing changes) */
-    (void)madvise(p, bytes & ~(HUGE_PAGE - 1), MADV_HUGEPAGE);
-#endif
-    return p;
-}
-
-void bf_free_aligned(void *p)
-{
-    free(p);
 }

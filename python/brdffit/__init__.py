@@ -65,6 +65,16 @@ def library_version():
     return library().version
 
 
+def release_memory():
+    """Hand the large arrays the library keeps for reuse back to the system
+    (brdffit_release_memory): the bytes released.  The library keeps a freed
+    table's or sample set's arrays (4 MB and up; at most 16 and 1 GiB) for the
+    next ones of about their size."""
+    from ._lib import cdll
+
+    return int(cdll().brdffit_release_memory())
+
+
 __all__ = [
     "AtBound", "BrdffitError", "COVERAGE_MASKED", "CacheDirError", "Context", "FileDimsError",
     "FileEmptyError", "FileError", "FileNonfiniteError", "FileNotRegularError", "FileOpenError",
@@ -74,5 +84,6 @@ __all__ = [
     "OutOfMemoryError", "Param", "ParamRangeError", "Params", "Sample", "Samples", "Status", "Table",
     "TooFewSamplesError", "UnknownModelError", "ValueRangeError", "__version__",
     "default_lights", "error_of", "eval", "fit", "image_error", "incidence_curves",
-    "library_version", "load_library", "metric_name", "model", "models", "render", "scale_factors",
+    "library_version", "load_library", "metric_name", "model", "models", "release_memory", "render",
+    "scale_factors",
 ]

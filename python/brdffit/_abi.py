@@ -190,6 +190,7 @@ FUNCTIONS = {
     "brdffit_struct_offset": (C.c_size_t, [c_enum, C.c_char_p]),
     "brdffit_strerror": (C.c_char_p, [_status]),
     "brdffit_metric_name": (C.c_char_p, []),
+    "brdffit_release_memory": (C.c_size_t, []),
     # models
     "brdffit_model_count": (C.c_int, []),
     "brdffit_model_get": (C.POINTER(ModelInfo), [c_enum]),

@@ -72,3 +72,19 @@ def test_prepare(brdffit, ctx):
         prepared.prepare("nonesuch")
     with pytest.raises(brdffit.UnknownModelError):
         prepared.prepare(99)
+
+
+def test_release_memory(brdffit):
+    """A freed table's and sample set's large arrays are kept by the library
+    for the next ones; release_memory() hands them back once."""
+    import gc
+
+    brdffit.release_memory()
+    t = brdffit.Table.zeros()
+    s = brdffit.Samples(t)
+    assert s.count > 0
+    del t, s
+    gc.collect()
+    released = brdffit.release_memory()
+    assert released >= 90 * 90 * 180 * 3 * 8  # the table's values at least
+    assert brdffit.release_memory() == 0

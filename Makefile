@@ -218,9 +218,10 @@ sanitize:
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	./build-san/test_brdffit
 
-# The threaded tests (the threads suite, and the alloc suite's pool) under ThreadSanitizer (clang; .ci/install-deps clang
-# installs it), in their own build directory.  A report fails the test that
-# ran into it.  tests/tsan.supp names what is not ours (PoCL, LLVM).
+# The threaded tests (the threads suite, and the alloc suite's pool) under
+# ThreadSanitizer (clang; .ci/install-deps clang installs it), in their own
+# build directory.  A report fails the test that ran into it.  tests/tsan.supp
+# names what is not ours (PoCL, LLVM).
 tsan:
 	sh .ci/install-deps clang
 	$(MAKE) BUILD=build-tsan CC=clang OPT=-O1 SAN="-fsanitize=thread -fno-omit-frame-pointer" \

@@ -114,6 +114,18 @@ const char *brdffit_version(void);
  * the difference of two calls is wall time. */
 double brdffit_seconds(void);
 
+/* Memory.  The library's large arrays (4 MB and up: a table's values, a sample
+ * set's fields, weights and bins, its mirror set's and subsets') are not
+ * returned to the system when freed (brdffit_table_free, brdffit_samples_free)
+ * but kept, process-wide, for the next array of about their size: at most 16
+ * arrays and 1 GiB in all.  Reading and fitting one table after another then
+ * reuses the last table's memory instead of having the kernel map and zero
+ * ~200 MB of fresh pages a MERL table.  brdffit_release_memory returns what is
+ * kept to the system and gives its size in bytes; safe to call at any time,
+ * from any thread (arrays still in use are not touched).  Builds with
+ * AddressSanitizer keep nothing. */
+size_t brdffit_release_memory(void);
+
 /* ------------------------------------------------------------------ status */
 
 typedef enum brdffit_status {
@@ -352,18 +364,6 @@ brdffit_status brdffit_samples_create(const brdffit_table *table,
                                       const brdffit_sample_options *opt,
                                       brdffit_samples **out, brdffit_error *err);
 void brdffit_samples_free(brdffit_samples *samples);
-
-/* Memory.  The library's large arrays (4 MB and up: a table's values, a sample
- * set's fields, weights and bins, its mirror set's and subsets') are not
- * returned to the system when freed (brdffit_table_free, brdffit_samples_free)
- * but kept, process-wide, for the next array of about their size: at most 16
- * arrays and 1 GiB in all.  Reading and fitting one table after another then
- * reuses the last table's memory instead of having the kernel map and zero
- * ~200 MB of fresh pages a MERL table.  brdffit_release_memory returns what is
- * kept to the system and gives its size in bytes; safe to call at any time,
- * from any thread (arrays still in use are not touched).  Builds with
- * AddressSanitizer keep nothing. */
-size_t brdffit_release_memory(void);
 size_t brdffit_samples_count(const brdffit_samples *samples);
 /* Bins with a negative stored value in some channel (masked, not clamped). */
 size_t brdffit_samples_masked(const brdffit_samples *samples);

@@ -111,12 +111,8 @@ void *bf_alloc_aligned(size_t bytes)
     pthread_mutex_lock(&lock);
     p = pool_take(bytes, &got);
     pthread_mutex_unlock(&lock);
-    if (!p) {
-        got = bytes;
-        p = huge_new(bytes);
-        if (!p)
-            return NULL;
-    }
+    if (!p && !(p = huge_new(bytes)))
+        return NULL;
     pthread_mutex_lock(&lock);
     for (int i = 0; i < LIVE_MAX; i++)
         if (!live[i].p) {

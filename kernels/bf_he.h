@@ -93,11 +93,14 @@
  *
  * In steps: with a memo that has rows, a vector whose lanes are all flat
  * takes them (bf_he_bin_serve when its lanes share a bin, else
- * bf_he_bin_gather); else bf_he_fd_base (the directions, S, sigma, F), and
+ * bf_he_bin_gather); else bf_he_fd_surface (the directions but their
+ * logarithms, S, sigma, F: the sines and u from the test for flat lanes), and
  * a vector whose lanes are all flat or near them (sigma = sigma0) takes the
- * rows times its own shadowing (bf_he_near_serve); else bf_he_fd_rest:
- * bf_he_fd_channel per channel (the value, through bf_he_dblend),
- * bf_he_fd_neighbour per neighbour (with no rows: bf_he_fd_lanes, the same).
+ * rows times its own shadowing (bf_he_near_serve: no logarithm taken); else
+ * the directions' logarithms and the rough limit (bf_he_dir_logs,
+ * bf_he_fd_scale), then bf_he_fd_rest: bf_he_fd_channel per channel (the
+ * value, through bf_he_dblend), bf_he_fd_neighbour per neighbour (with no
+ * rows: bf_he_fd_lanes, the same: bf_he_fd_base, then bf_he_fd_rest).
  *
  * bf_he_fd_factored is bf_he_fd, and with q != NULL it returns a vector
  * whose lanes share a bin's row in factored form: 1, and *q (bf_he_bin_q),
@@ -133,9 +136,12 @@ BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, cons
             return 1;
         }
         bf_he_base b;
-        bf_he_fd_base(g, p[0], lam, pc, 0, &b);
-        if (!bf_he_near_serve(memo, &b, p, np, K0, Kj))
+        bf_he_fd_surface(g, p[0], 0, &fl.su, &b); /* fl made by bf_he_flat_make */
+        if (!bf_he_near_serve(memo, &b, p, np, K0, Kj)) {
+            bf_he_dir_logs(&b.d);
+            bf_he_fd_scale(p[0], lam, pc, &b);
             bf_he_fd_rest(&b, p, np, lam, pc, K0, Kj, memo);
+        }
         return 0;
     }
     bf_he_fd_lanes(g, p, np, lam, pc, 0, K0, Kj, memo);

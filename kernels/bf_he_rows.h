@@ -62,6 +62,7 @@ enum {
 typedef struct bf_he_flat {
     BF_REAL ci, co;   /* cos ti, cos to, floored as bf_he_dir_make floors them */
     BF_REAL lanes;    /* 1 in a lane whose shadowing is flat at p[0]            */
+    bf_he_su su;      /* the sines and u at p[0] (bf_he_flat_make only)        */
 } bf_he_flat;
 
 /* f's cosines, floored as bf_he_dir_make floors them. */
@@ -74,9 +75,8 @@ BF_FN void bf_he_flat_cos(const bf_geom *g, bf_he_flat *f)
 BF_FN void bf_he_flat_make(const bf_geom *g, double tau, double sigma0, bf_he_flat *f)
 {
     bf_he_flat_cos(g, f);
-    BF_REAL ui = bf_he_u(f->ci, sqrt(g->ix * g->ix + g->iy * g->iy), tau, sigma0);
-    BF_REAL uo = bf_he_u(f->co, sqrt(g->ox * g->ox + g->oy * g->oy), tau, sigma0);
-    f->lanes = BF_SEL(BF_R(0.0), BF_R(1.0), (ui >= BF_HE_U_FLAT) && (uo >= BF_HE_U_FLAT));
+    bf_he_su_make(g, tau, sigma0, &f->su);
+    f->lanes = BF_SEL(BF_R(0.0), BF_R(1.0), (f->su.ui >= BF_HE_U_FLAT) && (f->su.uo >= BF_HE_U_FLAT));
 }
 
 /* bf_he_flat_make's flags for a vector whose lanes all lie in one bin hd
@@ -274,7 +274,8 @@ BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc
     }
 }
 
-/* 1 when no lane of g (BF_NLANES bins' geometry) needs its row made at p0:
+/* 1 when no lane of d (BF_NLANES bins' directions, bf_he_dir_make: the
+ * rows then make theirs from the same d) needs its row made at p0:
  * each is either not read (live 0: no sample of its bin has u >= BF_HE_U_ROW) or dead in
  * every channel at every point for certain (0 in the rows, as
  * bf_he_fd_lanes would make it), from a bound that takes a few logarithms
@@ -286,14 +287,12 @@ BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc
  * both are at most e^-w, so lpk + lk <= ln V + lk <= ln 2 - 2 + ldead < ldead:
  * bf_he_series_x leaves the lane dead.  Only where g < 18 / BF_HE_FD_MARGIN,
  * so that no rough limit enters the value or a neighbour. */
-BF_FN int bf_he_rows_dead(const bf_geom *g, BF_REAL live, const double *p0, const double *lam,
+BF_FN int bf_he_rows_dead(const bf_he_dir *d, BF_REAL live, const double *p0, const double *lam,
                           const bf_he_pconst *pc)
 {
-    bf_he_dir d;
-    bf_he_dir_make(g, &d);
-    BF_REAL lscale = d.lg2 - log(BF_PI * (d.ci * d.co)); /* ln G / (pi ci co) */
-    BF_REAL vxy2 = d.vxy2, lnv2 = d.lvxy2;
-    BF_REAL s0v = p0[1] * d.vz, lns0v2 = 2.0 * log(s0v);
+    BF_REAL lscale = d->lg2 - log(BF_PI * (d->ci * d->co)); /* ln G / (pi ci co) */
+    BF_REAL vxy2 = d->vxy2, lnv2 = d->lvxy2;
+    BF_REAL s0v = p0[1] * d->vz, lns0v2 = 2.0 * log(s0v);
     BF_REAL dead = BF_SEL(BF_R(1.0), BF_R(0.0), live > 0.0);
     BF_REAL all = BF_R(1.0);
     for (int ch = 0; ch < 3; ch++) {
@@ -342,12 +341,16 @@ BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const do
         g.nh = BF_LOADG(bins + BF_B_NH * BF_NHD_PAD + h);
         g.vh = BF_LOADG(bins + BF_B_VH * BF_NHD_PAD + h);
         BF_REAL K0[3], Kj[BF_HE_NP][3];
-        if (bf_he_rows_dead(&g, live, p[0], lam, &pc)) {
+        bf_he_dir d;
+        bf_he_dir_make(&g, &d);
+        if (bf_he_rows_dead(&d, live, p[0], lam, &pc)) {
             for (int f = 0; f < 3 * (1 + np); f++)
                 BF_STORE(BF_R(0.0), rows + f * nrows + h);
             continue;
         }
-        bf_he_fd_lanes(&g, p, np, lam, &pc, 1, K0, Kj, (bf_he_memo *)0);
+        bf_he_base b; /* bf_he_fd_lanes with flat, from d */
+        bf_he_fd_base_dir(&d, p[0], lam, &pc, 1, &b);
+        bf_he_fd_rest(&b, p, np, lam, &pc, K0, Kj, (bf_he_memo *)0);
         BF_REAL cc = fmax(g.iz, BF_HE_COS_MIN) * fmax(g.oz, BF_HE_COS_MIN);
         for (int c = 0; c < 3; c++)
             BF_STORE(K0[c] * cc, rows + c * nrows + h);

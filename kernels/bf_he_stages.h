@@ -23,11 +23,27 @@ typedef struct bf_he_dir {
     BF_REAL lvxy2;          /* ln |v_xy|^2 (floored)                    */
 } bf_he_dir;
 
-BF_FN void bf_he_dir_make(const bf_geom *g, bf_he_dir *d)
+/* The sines of ti and to and their u = tau cot t / (2 sigma0) (bf_he_u):
+ * made once where a vector's flatness is tested (bf_he_flat_make) and
+ * taken from there by its shadowing (bf_he_fd_surface), the same to the bit. */
+typedef struct bf_he_su {
+    BF_REAL si, so, ui, uo;
+} bf_he_su;
+
+BF_FN void bf_he_su_make(const bf_geom *g, double tau, double sigma0, bf_he_su *su)
+{
+    su->si = sqrt(g->ix * g->ix + g->iy * g->iy);
+    su->so = sqrt(g->ox * g->ox + g->oy * g->oy);
+    su->ui = bf_he_u(fmax(g->iz, BF_HE_COS_MIN), su->si, tau, sigma0);
+    su->uo = bf_he_u(fmax(g->oz, BF_HE_COS_MIN), su->so, tau, sigma0);
+}
+
+/* What bf_he_dir_make computes but the two logarithms (lg2, lvxy2 left
+ * unset), with the sines si, so: all that a lane's shadowing and sigma need
+ * (bf_he_fd_surface). */
+BF_FN void bf_he_dir_cos(const bf_geom *g, BF_REAL si, BF_REAL so, bf_he_dir *d)
 {
     BF_REAL ci = fmax(g->iz, BF_HE_COS_MIN), co = fmax(g->oz, BF_HE_COS_MIN);
-    BF_REAL si = sqrt(g->ix * g->ix + g->iy * g->iy);
-    BF_REAL so = sqrt(g->ox * g->ox + g->oy * g->oy);
     BF_REAL vx = g->ix + g->ox, vy = g->iy + g->oy, vz = ci + co;
     BF_REAL vxy2 = vx * vx + vy * vy;
     BF_REAL vv = vxy2 + vz * vz;
@@ -38,8 +54,20 @@ BF_FN void bf_he_dir_make(const bf_geom *g, bf_he_dir *d)
     d->c = fmin(fmax(0.5 * sqrt(vv), BF_HE_COS_MIN), 1.0);
     d->vz = vz;
     d->vxy2 = vxy2;
-    d->lg2 = 2.0 * log(vv / vz);
-    d->lvxy2 = log(fmax(vxy2, BF_R(1e-300)));
+}
+
+/* The logarithms of d (made by bf_he_dir_cos): ln G and ln |v_xy|^2. */
+BF_FN void bf_he_dir_logs(bf_he_dir *d)
+{
+    BF_REAL vv = d->vxy2 + d->vz * d->vz;
+    d->lg2 = 2.0 * log(vv / d->vz);
+    d->lvxy2 = log(fmax(d->vxy2, BF_R(1e-300)));
+}
+
+BF_FN void bf_he_dir_make(const bf_geom *g, bf_he_dir *d)
+{
+    bf_he_dir_cos(g, sqrt(g->ix * g->ix + g->iy * g->iy), sqrt(g->ox * g->ox + g->oy * g->oy), d);
+    bf_he_dir_logs(d);
 }
 
 /* The geometrical factor G = (v.v / v_z)^2, v = wi + wo (see the header
@@ -70,10 +98,11 @@ typedef struct bf_he_rough {
                                      * dx per dr                           */
 } bf_he_rough;
 
-BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int deriv,
-                            int flat, bf_he_rough *r)
+/* bf_he_rough_make with the directions' u given (bf_he_u of d's cosines and
+ * sines at (tau, sigma0)). */
+BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double sigma0,
+                              int deriv, int flat, bf_he_rough *r)
 {
-    BF_REAL ui = bf_he_u(d->ci, d->si, tau, sigma0), uo = bf_he_u(d->co, d->so, tau, sigma0);
     r->flat = flat || !BF_ANY((ui < BF_HE_U_FLAT) || (uo < BF_HE_U_FLAT));
     if (r->flat) {
         /* erfc and e^(-u^2) are 0 (bf_he_erfc2): S = 1, r = 0, x = BF_TINY
@@ -121,6 +150,14 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
         r->r = rr;
         r->x = x;
     }
+}
+
+/* bf_he_rough_make_u with each direction's u from d. */
+BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int deriv,
+                            int flat, bf_he_rough *r)
+{
+    bf_he_rough_make_u(d, bf_he_u(d->ci, d->si, tau, sigma0), bf_he_u(d->co, d->so, tau, sigma0),
+                       sigma0, deriv, flat, r);
 }
 
 /* The shadowing S = S(theta_i) S(theta_o) of a direction pair, as K uses it. */
@@ -184,27 +221,45 @@ typedef struct bf_he_base {
     BF_REAL sv, lsv2;             /* sigma v_z and 2 ln(sigma v_z)            */
     BF_REAL s0v;                  /* sigma0 v_z                               */
     double klmax2;                /* the largest (2 pi / lam)^2 of the channels */
-    BF_REAL q0, lim0;             /* a / g and e^lk / g of the rough limit (see bf_he_fd_base) */
+    BF_REAL q0, lim0;             /* a / g and e^lk / g of the rough limit (see bf_he_fd_scale) */
     /* per channel: the value before the zero flag, the series V (summed at
      * min(g, 19)) and its partials, the limit L, min(g, 19), a, max(g, 18),
      * a / max(g, 18) */
     BF_REAL Kr[3], V[3], Vg[3], Va[3], L[3], g0[3], a0[3], gl[3], agl[3];
 } bf_he_base;
 
-/* The direction pair, the shadowing and sigma (with their partials), F and
- * the rough limit shared by the channels, at p0 = (tau, sigma0, n) (flat: see
- * bf_he_rough_make). */
-BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam,
-                         const bf_he_pconst *pc, int flat, bf_he_base *b)
+/* Of b's directions (b->d, their logarithms not needed), the shadowing and
+ * sigma (with their partials) from the directions' u, F, fs and the zero
+ * flag at p0 = (tau, sigma0, n) (flat: see bf_he_rough_make). */
+BF_FN void bf_he_fd_shade(const double *p0, int flat, BF_REAL ui, BF_REAL uo, bf_he_base *b)
 {
-    const double tau = p0[0], sigma0 = p0[1], n = p0[2];
-    bf_he_dir_make(g, &b->d);
-    bf_he_rough_make(&b->d, tau, sigma0, 1, flat, &b->r);
+    const double sigma0 = p0[1], n = p0[2];
+    bf_he_rough_make_u(&b->d, ui, uo, sigma0, 1, flat, &b->r);
     b->F = bf_he_fresnel(b->d.c, n);
     b->fs = b->F * b->r.shi * b->r.sho * (1.0 / BF_PI);
     b->ifs = 1.0 / fmax(b->fs, BF_TINY);
-    b->lc = log(fmax(b->fs, BF_TINY)) + b->d.lg2;
     b->zero = BF_SEL(BF_R(0.0), BF_R(1.0), b->fs < BF_TINY);
+}
+
+/* The first stage of bf_he_fd_base: the direction pair without its
+ * logarithms (bf_he_dir_cos) and bf_he_fd_shade, with the sines and u of su
+ * (bf_he_su_make at p0).  All that a lane served from the bin rows near the
+ * flat ones needs (bf_he_near_serve); bf_he_dir_logs of b->d and
+ * bf_he_fd_scale complete b. */
+BF_FN void bf_he_fd_surface(const bf_geom *g, const double *p0, int flat, const bf_he_su *su,
+                            bf_he_base *b)
+{
+    bf_he_dir_cos(g, su->si, su->so, &b->d);
+    bf_he_fd_shade(p0, flat, su->ui, su->uo, b);
+}
+
+/* The last stage, once b->d has its logarithms (bf_he_dir_logs): ln fs +
+ * ln G, sigma v_z and the rough limit shared by the channels. */
+BF_FN void bf_he_fd_scale(const double *p0, const double *lam, const bf_he_pconst *pc,
+                          bf_he_base *b)
+{
+    const double tau = p0[0], sigma0 = p0[1];
+    b->lc = log(fmax(b->fs, BF_TINY)) + b->d.lg2;
     b->sv = b->r.sigma * b->d.vz;             /* > 1e-106: g never underflows */
     b->lsv2 = 2.0 * log(b->sv);
     b->s0v = sigma0 * b->d.vz;
@@ -221,6 +276,30 @@ BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam,
         b->q0 = (0.25 * tau * tau) * b->d.vxy2 / (b->sv * b->sv);
         b->lim0 = exp(fmin(b->lc - b->q0 - b->lsv2 + pc->ltau16, BF_R(700.0)));
     }
+}
+
+/* The direction pair, the shadowing and sigma (with their partials), F and
+ * the rough limit shared by the channels, at p0 = (tau, sigma0, n) (flat: see
+ * bf_he_rough_make): bf_he_fd_surface, then bf_he_fd_scale. */
+BF_FN void bf_he_fd_base(const bf_geom *g, const double *p0, const double *lam,
+                         const bf_he_pconst *pc, int flat, bf_he_base *b)
+{
+    bf_he_su su;
+    bf_he_su_make(g, p0[0], p0[1], &su);
+    bf_he_fd_surface(g, p0, flat, &su, b);
+    bf_he_dir_logs(&b->d);
+    bf_he_fd_scale(p0, lam, pc, b);
+}
+
+/* bf_he_fd_base from the direction pair d (bf_he_dir_make of the lanes'
+ * geometry): the same b. */
+BF_FN void bf_he_fd_base_dir(const bf_he_dir *d, const double *p0, const double *lam,
+                             const bf_he_pconst *pc, int flat, bf_he_base *b)
+{
+    b->d = *d;
+    bf_he_fd_shade(p0, flat, bf_he_u(d->ci, d->si, p0[0], p0[1]), bf_he_u(d->co, d->so, p0[0], p0[1]),
+                   b);
+    bf_he_fd_scale(p0, lam, pc, b);
 }
 
 /* K(p0) of channel ch (wavelength lam um): bf_he's operations, with the
@@ -294,7 +373,7 @@ BF_FN void bf_he_fd_neighbour(const bf_he_base *b, const double *p0, const doubl
     BF_REAL rat = fsj * b->ifs;
     BF_REAL svj = rj.sigma * b->d.vz;
     /* e^(a/g - a'/g') g / g' of the limit, shared by the channels where
-     * g, g' >= 18 (see bf_he_fd_base) */
+     * g, g' >= 18 (see bf_he_fd_scale) */
     BF_REAL ej = BF_R(0.0);
     if (BF_ANY(b->klmax2 * (svj * svj) > BF_HE_G_LO)) {
         BF_REAL isv2 = 1.0 / (svj * svj);

@@ -1182,6 +1182,63 @@ START_TEST(pass_memo)
 }
 END_TEST
 
+/* The rows make each bin's K from the directions their dead test made
+ * (bf_he_fd_base_dir), and a vector not served flat takes its shadowing
+ * from the sines and u of its flat test (bf_he_fd_surface with
+ * bf_he_flat_make's su): the same to the bit as bf_he_fd_lanes, which makes
+ * them all itself, flat and not, at every bin's directions. */
+START_TEST(base_stages)
+{
+    const double *P = fd_sets[_i];
+    double p[4][3];
+    for (int j = 0; j < 4; j++) {
+        memcpy(p[j], P, sizeof p[j]);
+        if (j > 0)
+            p[j][j - 1] *= 1 + 1e-7;
+    }
+    bf_he_pconst pc;
+    bf_he_pconst_make(P[0], default_lam, &pc);
+    long n = 0;
+    for (int i = 0; i < 90; i += 7)
+        for (int j = 0; j < 90; j += 5)
+            for (int k = 0; k < 180; k += 37) {
+                double wi[3], wo[3];
+                if (brdffit_bin_directions(i, j, k, wi, wo, NULL) != BRDFFIT_OK || wi[2] <= 0.0 ||
+                    wo[2] <= 0.0)
+                    continue;
+                bf_geom g = geom(wi, wo);
+                for (int flat = 0; flat < 2; flat++) {
+                    double K0[3], Kj[3][3], L0[3], Lj[3][3];
+                    bf_he_fd_lanes(&g, (const double(*)[3])p, 3, default_lam, &pc, flat, K0, Kj, NULL);
+                    bf_he_base b;
+                    if (flat) {
+                        bf_he_dir d;
+                        bf_he_dir_make(&g, &d);
+                        bf_he_fd_base_dir(&d, P, default_lam, &pc, 1, &b);
+                    } else {
+                        bf_he_flat fl;
+                        bf_he_flat_make(&g, P[0], P[1], &fl);
+                        bf_he_fd_surface(&g, P, 0, &fl.su, &b);
+                        bf_he_dir_logs(&b.d);
+                        bf_he_fd_scale(P, default_lam, &pc, &b);
+                    }
+                    bf_he_fd_rest(&b, (const double(*)[3])p, 3, default_lam, &pc, L0, Lj, NULL);
+                    for (int c = 0; c < 3; c++) {
+                        ck_assert_msg(memcmp(&K0[c], &L0[c], sizeof(double)) == 0,
+                                      "set %d bin (%d, %d, %d) flat %d: K0[%d] %.17g against %.17g",
+                                      _i, i, j, k, flat, c, L0[c], K0[c]);
+                        for (int q = 0; q < 3; q++)
+                            ck_assert_msg(memcmp(&Kj[q][c], &Lj[q][c], sizeof(double)) == 0,
+                                          "set %d bin (%d, %d, %d) flat %d: K%d[%d] %.17g against %.17g",
+                                          _i, i, j, k, flat, q + 1, c, Lj[q][c], Kj[q][c]);
+                    }
+                    n++;
+                }
+            }
+    ck_assert_int_gt(n, 500);
+}
+END_TEST
+
 /* bf_he_rows_dead's bound: wherever it finds a bin's row dead, the rows'
  * own evaluation (bf_he_fd_lanes, flat, under the floor) is 0 at every
  * point and channel; on a smooth set it finds most of the rows that are 0
@@ -1214,7 +1271,9 @@ START_TEST(rows_dead_bound)
             for (int c = 0; c < 3; c++)
                 allzero &= K0[c] == 0.0 && Kj[0][c] == 0.0 && Kj[1][c] == 0.0 && Kj[2][c] == 0.0;
             zero += allzero;
-            if (!bf_he_rows_dead(&g, 1.0, P, default_lam, &pc))
+            bf_he_dir d;
+            bf_he_dir_make(&g, &d);
+            if (!bf_he_rows_dead(&d, 1.0, P, default_lam, &pc))
                 continue;
             found++;
             ck_assert_msg(allzero, "set %d bin (%d, %d): dead by the bound, K0 %g %g %g", _i, i, j,
@@ -1222,7 +1281,9 @@ START_TEST(rows_dead_bound)
         }
     /* a lane that no sample reads is always skipped */
     bf_geom n = { 0, 0, 1, 0, 0, 1, 1, 1 };
-    ck_assert(bf_he_rows_dead(&n, 0.0, P, default_lam, &pc));
+    bf_he_dir dn;
+    bf_he_dir_make(&n, &dn);
+    ck_assert(bf_he_rows_dead(&dn, 0.0, P, default_lam, &pc));
     if (P[1] <= 0.1 && P[2] > 1.0 && zero > 0) /* a smooth set with a Fresnel term */
         ck_assert_msg(found >= 0.5 * zero, "set %d: the bound found %ld of %ld", _i, found, zero);
 }
@@ -1329,6 +1390,7 @@ Suite *he_suite(void)
     tcase_add_test(tc, reciprocal_table);
     tcase_add_loop_test(tc, pass_memo, 0, NFD);
     tcase_add_loop_test(tc, rows_dead_bound, 0, NFD);
+    tcase_add_loop_test(tc, base_stages, 0, NFD);
     suite_add_tcase(s, tc);
     return s;
 }

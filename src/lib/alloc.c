@@ -14,6 +14,7 @@
 #include "internal.h"
 
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
@@ -100,6 +101,16 @@ static int pool_put(block b)
     return 0;
 }
 
+/* Enters p (got bytes) in the live table; with lock held. */
+static void live_add(void *p, size_t got)
+{
+    for (int i = 0; i < LIVE_MAX; i++)
+        if (!live[i].p) {
+            live[i] = (block){ p, got };
+            return;
+        }
+}
+
 void *bf_alloc_aligned(size_t bytes)
 {
     void *p = NULL;
@@ -110,15 +121,15 @@ void *bf_alloc_aligned(size_t bytes)
     size_t got = bytes;
     pthread_mutex_lock(&lock);
     p = pool_take(bytes, &got);
+    if (p)
+        live_add(p, got);
     pthread_mutex_unlock(&lock);
-    if (!p && !(p = huge_new(bytes)))
+    if (p)
+        return p;
+    if (!(p = huge_new(bytes)))
         return NULL;
     pthread_mutex_lock(&lock);
-    for (int i = 0; i < LIVE_MAX; i++)
-        if (!live[i].p) {
-            live[i] = (block){ p, got };
-            break;
-        }
+    live_add(p, got);
     pthread_mutex_unlock(&lock);
     return p;
 }
@@ -127,6 +138,10 @@ void bf_free_aligned(void *p)
 {
     if (!p)
         return;
+    if ((uintptr_t)p % HUGE_PAGE != 0) { /* not a large array (huge_new aligns those) */
+        free(p);
+        return;
+    }
     pthread_mutex_lock(&lock);
     for (int i = 0; i < LIVE_MAX; i++)
         if (live[i].p == p) {

@@ -830,6 +830,17 @@ static const double fd_sets[][3] = {
 };
 #define NFD (int)(sizeof fd_sets / sizeof fd_sets[0])
 
+/* A pass's points from P: p[0] = P, p[1 + j] = P with its parameter j
+ * times 1 + h (the forward-difference neighbours). */
+static void fd_points(const double *P, double h, double p[4][3])
+{
+    for (int j = 0; j < 4; j++) {
+        memcpy(p[j], P, sizeof p[j]);
+        if (j > 0)
+            p[j][j - 1] *= 1 + h;
+    }
+}
+
 START_TEST(fd_neighbours)
 {
     make_dirs();
@@ -840,11 +851,7 @@ START_TEST(fd_neighbours)
     for (int st = 0; st < 2; st++) {
         const double h = steps[st];
         double p[4][3];
-        for (int j = 0; j < 4; j++) {
-            memcpy(p[j], P, sizeof p[j]);
-            if (j > 0)
-                p[j][j - 1] *= 1 + h;
-        }
+        fd_points(P, h, p);
         for (int s = st; s < n_dirs; s += 2) { /* half the directions per step */
             bf_geom g = geom(dirs[s], dirs[s] + 3);
             double K0[3], Kj[3][3], Kb[3];
@@ -1120,11 +1127,7 @@ START_TEST(pass_memo)
     memo_walk w;
     memset(&w, 0, sizeof w);
     w.set = _i;
-    for (int j = 0; j < 4; j++) {
-        memcpy(w.p[j], P, sizeof w.p[j]);
-        if (j > 0)
-            w.p[j][j - 1] *= 1 + 1e-7;
-    }
+    fd_points(P, 1e-7, w.p);
     const bf_geom normal = { 0, 0, 1, 0, 0, 1, 1, 1 };
     double Knormal[3];
     bf_he(&normal, P[0], P[1], P[2], default_lam, Knormal);
@@ -1191,11 +1194,7 @@ START_TEST(base_stages)
 {
     const double *P = fd_sets[_i];
     double p[4][3];
-    for (int j = 0; j < 4; j++) {
-        memcpy(p[j], P, sizeof p[j]);
-        if (j > 0)
-            p[j][j - 1] *= 1 + 1e-7;
-    }
+    fd_points(P, 1e-7, p);
     bf_he_pconst pc;
     bf_he_pconst_make(P[0], default_lam, &pc);
     long n = 0;
@@ -1249,11 +1248,7 @@ START_TEST(rows_dead_bound)
 {
     const double *P = fd_sets[_i];
     double p[4][3];
-    for (int j = 0; j < 4; j++) {
-        memcpy(p[j], P, sizeof p[j]);
-        if (j > 0)
-            p[j][j - 1] *= 1 + 1e-7;
-    }
+    fd_points(P, 1e-7, p);
     bf_he_pconst pc;
     bf_he_pconst_make(P[0], default_lam, &pc);
     bf_he_row_floor(P, default_lam, &pc);

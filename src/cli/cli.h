@@ -102,6 +102,9 @@ typedef struct cli_options {
     brdffit_fit_options fit;
     brdffit_context_options context;
     int json;
+    int read_ahead;                             /* 1 (default): the next table is read
+                                                 * while this one is fitted (prefetch.h);
+                                                 * 0 after --no-read-ahead             */
     const char **files;                         /* the positional arguments      */
     int nfiles;
 } cli_options;

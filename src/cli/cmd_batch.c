@@ -830,7 +830,7 @@ static int do_material(batch_run *R, batch_material *m, const batch_material *ne
         rc = -1;
         goto done;
     }
-    if (next && !next->embedded)
+    if (next && !next->embedded && o->read_ahead)
         prefetch_start(R->pre, next->path, &o->sample, 1, o->models, o->nmodels);
     fit_planned(R, m, i, n, &td, s);
     if (td.assets && !R->out_failed && !stop_signal) {

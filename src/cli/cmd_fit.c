@@ -186,7 +186,7 @@ static void fit_file(runner *R, const char *path, const char *next, int first)
         brdffit_samples_free(samples);
         return;
     }
-    if (next) /* after the first context: its set-up may set POCL_CACHE_DIR */
+    if (next && o->read_ahead) /* after the first context: its set-up may set POCL_CACHE_DIR */
         prefetch_start(&R->pre, next, &o->sample, 0, o->models, o->nmodels);
     if (!o->json) {
         if (!first)

@@ -23,7 +23,11 @@ void cli_options_help(FILE *f)
             "                                device is found, else C on the host)\n"
             "  --device SPEC                 OpenCL device, PLATFORM:DEVICE by index or name\n"
             "                                substring (default $BRDFFIT_DEVICE, else PoCL's CPU)\n"
-            "  --json                        one JSON object per fit per line (JSON Lines)\n",
+            "  --json                        one JSON object per fit per line (JSON Lines)\n"
+            "  --no-read-ahead               read each table only when its fits begin (default:\n"
+            "                                the next one is read in a thread meanwhile, which\n"
+            "                                saves wall time but shares the cores with the fits,\n"
+            "                                so that the fits beside it take longer)\n",
             cli_model_names(names, sizeof names), cli_default_starts(starts, sizeof starts));
 }
 
@@ -142,6 +146,7 @@ static int options_init(cli_options *o, int argc)
     brdffit_sample_options_default(&o->sample);
     brdffit_fit_options_default(&o->fit);
     brdffit_context_options_default(&o->context);
+    o->read_ahead = 1;
     o->files = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *o->files);
     if (!o->files) {
         fputs("brdffit: out of memory\n", stderr);
@@ -183,6 +188,8 @@ int cli_parse_options(int argc, char **argv, cli_options *o)
             return CLI_HELP;
         else if (strcmp(a, "--json") == 0)
             o->json = 1;
+        else if (strcmp(a, "--no-read-ahead") == 0)
+            o->read_ahead = 0;
         else
             rc = parse_valued(o, argc, argv, &i);
     }

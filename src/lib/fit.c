@@ -27,6 +27,7 @@
 #include "linear.h"
 #include "pass.h"
 #include "registry.h"
+#include "round_search.h"
 #include "samples.h"
 #include "subsets.h"
 
@@ -545,48 +546,103 @@ static int start_round(brdffit_model model, int i)
     return gr->period > 0 && gr->round_param >= 0 ? i / gr->period : 0;
 }
 
+/* The screening's choice so far: the best `refine` starts, cheapest first
+ * (keep, *nkeep of them), and the best of each round (round_best). */
+typedef struct screening {
+    start *keep;
+    int *nkeep, refine;
+    start round_best[MAX_KEEP];
+    int nrounds;
+} screening;
+
+/* Take a screened start into the choice. */
+static void consider(screening *sc, const start *cand)
+{
+    int r = cand->round;
+    if (r < MAX_KEEP) {
+        if (r >= sc->nrounds || cand->cost < sc->round_best[r].cost)
+            sc->round_best[r] = *cand;
+        if (r >= sc->nrounds)
+            sc->nrounds = r + 1;
+    }
+    int pos = *sc->nkeep;
+    while (pos > 0 && cand->cost < sc->keep[pos - 1].cost)
+        pos--;
+    if (pos >= sc->refine)
+        return;
+    if (*sc->nkeep < sc->refine)
+        (*sc->nkeep)++;
+    memmove(sc->keep + pos + 1, sc->keep + pos, (size_t)(*sc->nkeep - 1 - pos) * sizeof *sc->keep);
+    sc->keep[pos] = *cand;
+}
+
+/* Screen the round of starts first .. first + n - 1 into sc: every start,
+ * or with search the ones bf_round_next asks for (round_search.c); the
+ * screened ones are then considered in their order in the grid. */
+static brdffit_status screen_round(lmstate *S, int first, int n, int nstarts, int search,
+                                   screening *sc)
+{
+    start cand[BF_ROUND_MAX];
+    double cost[BF_ROUND_MAX];
+    for (int k = 0; k < n; k++)
+        cost[k] = NAN;
+    for (int k = 0; k < n; k++) {
+        int next = search ? bf_round_next(n, cost) : k;
+        if (next < 0)
+            break;
+        double p[3];
+        start *c = &cand[next];
+        memset(c, 0, sizeof *c);
+        start_params(S->fm.model, first + next, nstarts, p);
+        brdffit_status st = screen_start(S, p, c);
+        if (st != BRDFFIT_OK)
+            return st;
+        c->index = first + next;
+        c->round = start_round(S->fm.model, first + next);
+        cost[next] = c->cost;
+    }
+    for (int k = 0; k < n; k++)
+        if (!isnan(cost[k]))
+            consider(sc, &cand[k]);
+    return BRDFFIT_OK;
+}
+
 /* Screen nstarts starts; keep the best `refine` of them, cheapest first, and
  * then the best start of every other round (the cheapest start of the
  * screening is not always in the best basin: measured on He, where each
- * round's best finds a minimum the other misses). */
+ * round's best finds a minimum the other misses).  With refine = 1 and a
+ * grid in rounds (He), each round is searched for its cheapest start
+ * (bf_round_next) instead of screened whole: that start is all the round
+ * gives the choice. */
 static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *keep, int *nkeep)
 {
-    start round_best[MAX_KEEP];
-    int nrounds = 0;
+    screening sc;
+    memset(&sc, 0, sizeof sc);
+    sc.keep = keep;
+    sc.nkeep = nkeep;
+    sc.refine = refine;
     *nkeep = 0;
-    for (int i = 0; i < nstarts; i++) {
-        double p[3];
-        start cand;
-        memset(&cand, 0, sizeof cand);
-        start_params(S->fm.model, i, nstarts, p);
-        brdffit_status st = screen_start(S, p, &cand);
+    const bf_start_grid *gr = &bf_model_def_get(S->fm.model)->grid;
+    int period = gr->period > 0 && gr->round_param >= 0 ? gr->period : nstarts;
+    int search = refine == 1 && period < nstarts && period <= BF_ROUND_MAX;
+    for (int first = 0; first < nstarts; first += period) {
+        int n = nstarts - first < period ? nstarts - first : period;
+        brdffit_status st = BRDFFIT_OK;
+        if (n <= BF_ROUND_MAX) {
+            st = screen_round(S, first, n, nstarts, search, &sc);
+        } else { /* a round too long to hold: one start at a time */
+            for (int k = 0; k < n && st == BRDFFIT_OK; k++)
+                st = screen_round(S, first + k, 1, nstarts, 0, &sc);
+        }
         if (st != BRDFFIT_OK)
             return st;
-        int r = start_round(S->fm.model, i);
-        cand.index = i;
-        cand.round = r;
-        if (r < MAX_KEEP) {
-            if (r >= nrounds || cand.cost < round_best[r].cost)
-                round_best[r] = cand;
-            if (r >= nrounds)
-                nrounds = r + 1;
-        }
-        int pos = *nkeep;
-        while (pos > 0 && cand.cost < keep[pos - 1].cost)
-            pos--;
-        if (pos >= refine)
-            continue;
-        if (*nkeep < refine)
-            (*nkeep)++;
-        memmove(keep + pos + 1, keep + pos, (size_t)(*nkeep - 1 - pos) * sizeof *keep);
-        keep[pos] = cand;
     }
-    for (int r = 0; r < nrounds && *nkeep < MAX_KEEP; r++) {
+    for (int r = 0; r < sc.nrounds && *nkeep < MAX_KEEP; r++) {
         int kept = 0;
         for (int k = 0; k < *nkeep && !kept; k++)
-            kept = memcmp(keep[k].x, round_best[r].x, sizeof keep[k].x) == 0;
+            kept = memcmp(keep[k].x, sc.round_best[r].x, sizeof keep[k].x) == 0;
         if (!kept)
-            keep[(*nkeep)++] = round_best[r];
+            keep[(*nkeep)++] = sc.round_best[r];
     }
     return BRDFFIT_OK;
 }

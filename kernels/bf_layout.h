@@ -50,8 +50,11 @@ typedef struct bf_pass_par {
     double lam[3];                /* wavelengths (He)                         */
     double inv_h[BF_MAX_NP];      /* 1 / h_j                                  */
     double p[1 + BF_MAX_NP][3];   /* p[0]: lobe params; p[1+j]: at u + h_j e_j */
+    double row_floor[3];          /* the bin rows' floor per channel at p[0]
+                                   * (bf_lobe_row_floor; He): the pass driver
+                                   * fills it for the kernel, once a pass     */
 } bf_pass_par;
-#define BF_PASS_PAR_DOUBLES (3 + 3 + 3 + BF_MAX_NP + 3 * (1 + BF_MAX_NP))
+#define BF_PASS_PAR_DOUBLES (3 + 3 + 3 + BF_MAX_NP + 3 * (1 + BF_MAX_NP) + 3)
 
 /* Offset of A; offsets inside a lobe block and inside a channel block. */
 enum { BF_MOM_A = 0 };

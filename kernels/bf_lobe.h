@@ -188,10 +188,10 @@ BF_FN_INLINE int bf_lobe_fd_factored(int model, const bf_geom *g, const double (
  * into rows (nrows per field) and handed to st, which then serves a vector
  * whose lanes are flat from them, given the vector's bins (bf_lobe_bins). */
 BF_FN void bf_lobe_rows_he(BF_GLOBAL const double *bins, int h0, int h1, const double (*p)[3],
-                           int np, const double *lam, BF_GLOBAL double *rows, int nrows,
-                           bf_lobe_state *st)
+                           int np, const double *lam, const double *floor, BF_GLOBAL double *rows,
+                           int nrows, bf_lobe_state *st)
 {
-    bf_he_bin_rows(bins, h0, h1, p, np, lam, rows, nrows);
+    bf_he_bin_rows(bins, h0, h1, p, np, lam, floor, rows, nrows);
     st->he.rows = rows;
     st->he.nrows = nrows;
     st->he.bins = bins;
@@ -201,17 +201,37 @@ BF_FN void bf_lobe_rows_he(BF_GLOBAL const double *bins, int h0, int h1, const d
 #define BF_ROWS_BF_FD_POINTWISE(name)
 #define BF_ROWS_BF_FD_GRAD(name)
 #define BF_ROWS_BF_FD_SCHLICK(name)
-#define BF_ROWS_BF_FD_OWN(name) bf_lobe_rows_##name(bins, h0, h1, p, np, lam, rows, nrows, st);
+#define BF_ROWS_BF_FD_OWN(name) bf_lobe_rows_##name(bins, h0, h1, p, np, lam, floor, rows, nrows, st);
 
+/* floor: bf_lobe_row_floor's at p[0]. */
 BF_FN void bf_lobe_rows(int model, BF_GLOBAL const double *bins, int h0, int h1,
-                        const double (*p)[3], int np, const double *lam, BF_GLOBAL double *rows,
-                        int nrows, bf_lobe_state *st)
+                        const double (*p)[3], int np, const double *lam, const double *floor,
+                        BF_GLOBAL double *rows, int nrows, bf_lobe_state *st)
 {
     switch (model) {
 #define BF_LOBE_ROWS_CASE(id, name, fd) \
     case id: { BF_ROWS_##fd(name) } break;
         BF_MODEL_LOBES(BF_LOBE_ROWS_CASE)
 #undef BF_LOBE_ROWS_CASE
+    default: break;
+    }
+}
+
+/* The floor of the bin rows at lobe parameters p0 (He: bf_he_row_floors)
+ * into floor[3], once a pass; 0 for a lobe without rows. */
+#define BF_FLOOR_BF_FD_POINTWISE(name)
+#define BF_FLOOR_BF_FD_GRAD(name)
+#define BF_FLOOR_BF_FD_SCHLICK(name)
+#define BF_FLOOR_BF_FD_OWN(name) bf_##name##_row_floors(p0, lam, floor);
+
+BF_FN void bf_lobe_row_floor(int model, const double *p0, const double *lam, double *floor)
+{
+    floor[0] = floor[1] = floor[2] = 0.0;
+    switch (model) {
+#define BF_LOBE_FLOOR_CASE(id, name, fd) \
+    case id: { BF_FLOOR_##fd(name) } break;
+        BF_MODEL_LOBES(BF_LOBE_FLOOR_CASE)
+#undef BF_LOBE_FLOOR_CASE
     default: break;
     }
 }

@@ -68,8 +68,8 @@ BF_FN_INLINE void bf_kernel_pass(const int np, __global const double *data, cons
     ulong v1 = min(v0 + vec_per_item, nvec);
     if (nrows > 0 && v0 < v1) {
         const int h0 = (int)hd[v0 * BF_WIDTH], h1 = (int)hd[v1 * BF_WIDTH - 1];
-        bf_lobe_rows(BF_MODEL, bins, h0, h1, pp.p, np, pp.lam, rows + (ulong)run * BF_WIDTH, nrows,
-                     &state.lobe);
+        bf_lobe_rows(BF_MODEL, bins, h0, h1, pp.p, np, pp.lam, pp.row_floor,
+                     rows + (ulong)run * BF_WIDTH, nrows, &state.lobe);
 #if BF_ROWS
         bf_pass_whole_bins(BF_NK, np, &pp, &state, h0, h1, (long)(v0 * BF_WIDTH),
                            (long)(v1 * BF_WIDTH), acc);

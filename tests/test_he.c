@@ -1142,7 +1142,9 @@ START_TEST(pass_memo)
         if (table[BF_B_COT * BF_NHD_PAD + h] > 0.0)
             for (int f = BF_B_COT; f <= BF_B_COTLO; f++)
                 table[f * BF_NHD_PAD + h] = bf_he_cot_of_cos(table[f * BF_NHD_PAD + h]);
-    bf_he_bin_rows(table, 0, BF_NHD - 1, (const double(*)[3])w.p, 3, default_lam, rows, nrows);
+    double floor[3];
+    bf_he_row_floors(w.p[0], default_lam, floor);
+    bf_he_bin_rows(table, 0, BF_NHD - 1, (const double(*)[3])w.p, 3, default_lam, floor, rows, nrows);
     w.memo.rows = rows;
     w.memo.nrows = nrows;
     w.memo.bins = table;

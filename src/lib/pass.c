@@ -128,7 +128,13 @@ static brdffit_status run_kernel(bf_pass_driver *dr, int full, const bf_pass_par
     brdffit_context *ctx = dr->ctx;
     cl_kernel k = full ? dr->kfull : dr->kvalue;
     cl_ulong npad = dr->samples->npad;
-    cl_int rc = clEnqueueWriteBuffer(ctx->queue, dr->par, CL_FALSE, 0, sizeof *pp, pp, 0, NULL, NULL);
+    /* pp with the rows' floor, made here once for every work-item; the
+     * write may read q until the queue is finished (the blocking read below,
+     * or clFinish on a failure) */
+    bf_pass_par q = *pp;
+    if (dr->bins.table)
+        bf_lobe_row_floor((int)dr->model, q.p[0], q.lam, q.row_floor);
+    cl_int rc = clEnqueueWriteBuffer(ctx->queue, dr->par, CL_FALSE, 0, sizeof q, &q, 0, NULL, NULL);
     rc |= clSetKernelArg(k, 0, sizeof(cl_mem), &dr->data);
     rc |= clSetKernelArg(k, 1, sizeof npad, &npad);
     rc |= clSetKernelArg(k, 2, sizeof dr->vec_per_item, &dr->vec_per_item);
@@ -140,12 +146,16 @@ static brdffit_status run_kernel(bf_pass_driver *dr, int full, const bf_pass_par
     rc |= clSetKernelArg(k, 7, sizeof(cl_mem), dr->brows ? &dr->brows : &dr->bhd);
     rc |= clSetKernelArg(k, 8, sizeof nrows, &nrows);
     rc |= clSetKernelArg(k, 9, sizeof dr->order, &dr->order);
-    if (rc != CL_SUCCESS)
+    if (rc != CL_SUCCESS) {
+        clFinish(ctx->queue);
         return bf_fail(err, BRDFFIT_E_OPENCL, "setting the pass arguments failed (%d)", (int)rc);
+    }
     size_t global = dr->items, local = 1;
     rc = clEnqueueNDRangeKernel(ctx->queue, k, 1, NULL, &global, &local, 0, NULL, NULL);
-    if (rc != CL_SUCCESS)
+    if (rc != CL_SUCCESS) {
+        clFinish(ctx->queue);
         return bf_fail(err, BRDFFIT_E_OPENCL, "clEnqueueNDRangeKernel failed (%d)", (int)rc);
+    }
     rc = clEnqueueReadBuffer(ctx->queue, dr->out, CL_TRUE, 0, dr->items * nmom * sizeof(double),
                              dr->rows, 0, NULL, NULL);
     if (rc != CL_SUCCESS)

@@ -15,9 +15,12 @@ void bf_host_begin(const brdffit_samples *samples, const bf_pass_bins *bins, brd
                    int np, const bf_pass_par *pp, struct bf_pass_state *ps)
 {
     bf_pass_state_clear(ps);
-    if (has_rows(samples, bins))
+    if (has_rows(samples, bins)) {
+        double floor[3];
+        bf_lobe_row_floor((int)model, pp->p[0], pp->lam, floor);
         bf_lobe_rows((int)model, bins->table, (int)bins->hd[0], (int)bins->hd[samples->n - 1],
-                     pp->p, np, pp->lam, bins->rows, bins->nrows, &ps->lobe);
+                     pp->p, np, pp->lam, floor, bins->rows, bins->nrows, &ps->lobe);
+    }
 }
 
 void bf_host_sample(const brdffit_samples *samples, const bf_pass_bins *bins, size_t i,

@@ -623,8 +623,9 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
     sc.refine = refine;
     *nkeep = 0;
     const bf_start_grid *gr = &bf_model_def_get(S->fm.model)->grid;
-    int period = gr->period > 0 && gr->round_param >= 0 ? gr->period : nstarts;
-    int search = refine == 1 && period < nstarts && period <= BF_ROUND_MAX;
+    const int rounds = gr->period > 0 && gr->round_param >= 0;
+    const int period = rounds ? gr->period : nstarts;
+    const int search = refine == 1 && rounds && period <= BF_ROUND_MAX;
     for (int first = 0; first < nstarts; first += period) {
         int n = nstarts - first < period ? nstarts - first : period;
         brdffit_status st = BRDFFIT_OK;

@@ -6,6 +6,7 @@
  * by a value pass of its own here (the oracle: the sweep the search
  * replaces). */
 #include "testutil.h"
+#include "internal.h"
 #include "linear.h"
 #include "pass.h"
 #include "round_search.h"
@@ -100,7 +101,7 @@ START_TEST(he_rounds_found)
         for (int k = 0; k < 7; k++) {
             bf_pass_par pp;
             memset(&pp, 0, sizeof pp);
-            pp.lam[0] = 0.645, pp.lam[1] = 0.526, pp.lam[2] = 0.444;
+            bf_lambdas(NULL, pp.lam); /* the fit's default wavelengths */
             pp.p[0][0] = 4.0 + 4.0 * k, pp.p[0][1] = sigma0[r], pp.p[0][2] = 2.0;
             double mom[BF_NMOM_MAX];
             ck_assert_msg(bf_driver_run(&dr, 0, &pp, mom, &err) == BRDFFIT_OK, "%s", err.message);

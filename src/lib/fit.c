@@ -626,17 +626,16 @@ static brdffit_status screen_starts(lmstate *S, int nstarts, int refine, start *
     const int rounds = gr->period > 0 && gr->round_param >= 0;
     const int period = rounds ? gr->period : nstarts;
     const int search = refine == 1 && rounds && period <= BF_ROUND_MAX;
-    for (int first = 0; first < nstarts; first += period) {
-        int n = nstarts - first < period ? nstarts - first : period;
-        brdffit_status st = BRDFFIT_OK;
-        if (n <= BF_ROUND_MAX) {
-            st = screen_round(S, first, n, nstarts, search, &sc);
-        } else { /* a round too long to hold: one start at a time */
-            for (int k = 0; k < n && st == BRDFFIT_OK; k++)
-                st = screen_round(S, first + k, 1, nstarts, 0, &sc);
-        }
+    /* each round in pieces of at most BF_ROUND_MAX starts (a searched one
+     * whole), considered in grid order as the whole round would be */
+    for (int first = 0; first < nstarts;) {
+        int end = first - first % period + period; /* the end of first's round */
+        end = end < nstarts ? end : nstarts;
+        int n = end - first < BF_ROUND_MAX ? end - first : BF_ROUND_MAX;
+        brdffit_status st = screen_round(S, first, n, nstarts, search, &sc);
         if (st != BRDFFIT_OK)
             return st;
+        first += n;
     }
     for (int r = 0; r < sc.nrounds && *nkeep < MAX_KEEP; r++) {
         int kept = 0;

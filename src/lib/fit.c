@@ -26,6 +26,7 @@
 #define _DEFAULT_SOURCE /* M_PI, M_SQRT2, M_SQRT1_2 */
 #include "linear.h"
 #include "pass.h"
+#include "refine_select.h"
 #include "registry.h"
 #include "round_search.h"
 #include "samples.h"
@@ -892,13 +893,12 @@ static void keep_lower(lmrun *run, const lmrun *cand)
         run->njev = cand->njev;
 }
 
-/* Two runs whose lobe coordinates end within SAME_POINT of each other in
- * their place in the range (directions: in cos and sin) are at one point
- * (same_coords).  Two subset runs there with r^T r within SAME_RR (relative)
- * ended at one minimum (same_point): refining the second on all samples
- * would repeat the first (measured over the 100 MERL tables, He: 98 of the
- * 100 fits had such a pair, ~1e-6 apart; skipping them changed no fit by
- * more than 1e-9; He's time in fits 148 -> 135 s). */
+/* Two points whose lobe coordinates lie within SAME_POINT of each other in
+ * their place in the range (directions: in cos and sin) are one point
+ * (same_coords); two ends there with r^T r within SAME_RR (relative) are
+ * one minimum (same_end: where a later subset run joins an earlier one's
+ * end, join_end; which ends go on to all samples is bf_refine_select's,
+ * refine_select.c). */
 #define SAME_POINT 1e-4
 #define SAME_RR 1e-6
 
@@ -920,11 +920,6 @@ static int same_coords(const fitmap *fm, const double *xa, const double *xb)
 static int same_end(const fitmap *fm, double ra, const double *xa, double rb, const double *xb)
 {
     return fabs(ra - rb) <= SAME_RR * fmax(ra, rb) && same_coords(fm, xa, xb);
-}
-
-static int same_point(const fitmap *fm, const lmrun *a, const lmrun *b)
-{
-    return same_end(fm, a->rr, a->x, b->rr, b->x);
 }
 
 /* A subset run that comes to the point where an earlier one ended (a point
@@ -1069,38 +1064,49 @@ static brdffit_status refine_all(lmstate *S, const brdffit_fit_options *o, lmrun
     return pinned_run(S, o, run, mask, solver_s);
 }
 
+/* Where a run ended, as bf_refine_select sees it: each lobe coordinate's
+ * place (a direction: its cosine and sine, as same_coords takes them). */
+static void run_end(const fitmap *fm, const lmrun *run, int joined, bf_run_end *e)
+{
+    e->rr = run->rr;
+    e->joined = joined;
+    for (int j = 0; j < fm->nl; j++) {
+        double t = coord_position(fm, j, run->x[j]);
+        e->place[2 * j] = t < 0.0 ? cos(run->x[j]) : t;
+        e->place[2 * j + 1] = t < 0.0 ? sin(run->x[j]) : 0.0;
+    }
+}
+
 /* Every kept start on the subset (each stopping where it comes to an
- * earlier one's end: join_end), then on all samples those whose subset
- * Error is within SUBSET_MARGIN of the lowest and that did not end at the
- * point of one refined before (same_point) or come to one; the lowest run
- * into *best. */
+ * earlier one's end: join_end), then on all samples those bf_refine_select
+ * takes: within SUBSET_MARGIN of the lowest subset Error, not joined, and of
+ * the ends that lie in one valley the lowest (without a subset: every kept
+ * start); the lowest run into *best. */
 static brdffit_status refine_kept(lmstate *S, const brdffit_fit_options *o, const start *keep,
                                   int nkeep, lmrun *best, double *solver_s)
 {
     lmrun runs[MAX_KEEP];
-    int refined[MAX_KEEP] = { 0 }, joined[MAX_KEEP];
-    double lowest = INFINITY;
+    bf_run_end ends[MAX_KEEP];
+    int refine[MAX_KEEP];
     for (int r = 0; r < nkeep; r++) {
         S->ends = runs;
         S->nends = r;
         S->joined = -1;
         brdffit_status st = refine_subset(S, o, &keep[r], &runs[r], solver_s);
-        joined[r] = S->joined;
+        run_end(&S->fm, &runs[r], S->joined >= 0, &ends[r]);
         S->nends = 0;
         S->joined = -1;
         if (st != BRDFFIT_OK)
             return st;
-        lowest = fmin(lowest, runs[r].rr);
     }
+    if (S->sub)
+        bf_refine_select(ends, nkeep, 2 * S->fm.nl, SUBSET_MARGIN, refine);
+    else /* each start as screened on all samples: no run to compare */
+        for (int r = 0; r < nkeep; r++)
+            refine[r] = 1;
     for (int r = 0; r < nkeep; r++) {
-        if (S->sub && !(runs[r].rr <= lowest * (1.0 + SUBSET_MARGIN)))
+        if (!refine[r])
             continue;
-        int repeat = joined[r] >= 0; /* at an earlier run's end (join_end) */
-        for (int q = 0; q < r && !repeat; q++)
-            repeat = refined[q] && same_point(&S->fm, &runs[q], &runs[r]);
-        if (repeat)
-            continue;
-        refined[r] = 1;
         lmrun run = runs[r];
         S->seed = &keep[r]; /* its pass on all samples, without a subset (seed_start) */
         brdffit_status st = refine_all(S, o, &run, solver_s);

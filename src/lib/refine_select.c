@@ -1,0 +1,60 @@
+/* SPDX-License-Identifier: MIT */
+/* refine_select.c -- bf_refine_select: which subset runs a fit refines on
+ * all samples.
+ *
+ * He refines each kept start by LM on the stride subset first, then only
+ * some of those runs on all samples, each pass of which costs up to ~7
+ * subset passes at a rough point (fit.c, refine_kept).  A run whose subset
+ * r^T r ends more than SUBSET_MARGIN above the lowest is not refined, nor
+ * one that stopped at an earlier run's end (join_end).  Of the others, two
+ * whose ends lie in one valley (r^T r within BF_VALLEY_RR and every lobe
+ * coordinate within BF_VALLEY_PLACE of its range) are the same minimum
+ * seen through the subset, and the run on all samples from either ends
+ * there: only the lower end is refined.
+ *
+ * Until the twenty-second session a run was left out only when it ended at
+ * the point of one refined before it (1e-4 of the range, 1e-6 of r^T r),
+ * and the first of the two in the kept order was refined.  Over the 100
+ * MERL tables three fits refined two ends of one valley: hematite's two
+ * runs on all samples (15 and 17 passes) came to one minimum, the later
+ * 5e-10 lower; nickel's (4 and 10 passes, along its flat valley) ended
+ * 1.6e-5 apart, the lower from the lower subset end; black-obsidian's (3
+ * passes more) 1.7e-6 apart, the lower likewise.  Refining the lower end
+ * alone: hematite 99 -> 83 passes and 3e-11 lower (its polish from the other
+ * end), nickel 82 -> 78 and black-obsidian 62 -> 57 the same to the bit, and
+ * the other 97 fits the same to the bit. */
+#include "refine_select.h"
+
+#include <math.h>
+
+int bf_same_valley(const bf_run_end *a, const bf_run_end *b, int nplaces)
+{
+    if (!(fabs(a->rr - b->rr) <= BF_VALLEY_RR * fmax(a->rr, b->rr)))
+        return 0;
+    for (int k = 0; k < nplaces; k++)
+        if (!(fabs(a->place[k] - b->place[k]) <= BF_VALLEY_PLACE))
+            return 0;
+    return 1;
+}
+
+/* A run within margin of the lowest (any, margin infinite) and not joined. */
+static int candidate(const bf_run_end *e, double lowest, double margin)
+{
+    return !e->joined && (isinf(margin) || e->rr <= lowest * (1.0 + margin));
+}
+
+void bf_refine_select(const bf_run_end *ends, int n, int nplaces, double margin, int *refine)
+{
+    double lowest = INFINITY;
+    for (int r = 0; r < n; r++)
+        lowest = fmin(lowest, ends[r].rr);
+    for (int r = 0; r < n; r++) {
+        refine[r] = candidate(&ends[r], lowest, margin);
+        for (int q = 0; q < n && refine[r]; q++) {
+            int lower = ends[q].rr < ends[r].rr || (ends[q].rr == ends[r].rr && q < r);
+            if (q != r && lower && candidate(&ends[q], lowest, margin) &&
+                bf_same_valley(&ends[q], &ends[r], nplaces))
+                refine[r] = 0;
+        }
+    }
+}

@@ -8,16 +8,17 @@
  * r^T r ends more than SUBSET_MARGIN above the lowest is not refined, nor
  * one that stopped at an earlier run's end (join_end).  Of the others, two
  * whose ends lie in one valley (r^T r within BF_VALLEY_RR and every lobe
- * coordinate within BF_VALLEY_PLACE of its range) are the same minimum
- * seen through the subset, and the run on all samples from either ends
- * there: only the lower end is refined.
+ * coordinate within BF_VALLEY_PLACE of its range) are one minimum seen
+ * through the subset: only the lower end is refined (in the three MERL fits
+ * with such a pair, its run on all samples ended as low as the other's, to
+ * 5e-10, or lower).
  *
  * Until the twenty-second session a run was left out only when it ended at
  * the point of one refined before it (1e-4 of the range, 1e-6 of r^T r),
  * and the first of the two in the kept order was refined.  Over the 100
  * MERL tables three fits refined two ends of one valley: hematite's two
- * runs on all samples (15 and 17 passes) came to one minimum, the later
- * 5e-10 lower; nickel's (4 and 10 passes, along its flat valley) ended
+ * runs on all samples (15 and 17 passes) came to one minimum, 5e-10 apart;
+ * nickel's (4 and 10 passes, along its flat valley) ended
  * 1.6e-5 apart, the lower from the lower subset end; black-obsidian's (3
  * passes more) 1.7e-6 apart, the lower likewise.  Refining the lower end
  * alone: hematite 99 -> 83 passes and 3e-11 lower (its polish from the other

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* test_refine.c -- which subset runs a fit refines on all samples
  * (refine_select.c): bf_refine_select on synthetic ends, each rule against
- * a plain reading of it (margin, joined, one valley, its edges, ties,
- * directions, no margin, NaN). */
+ * a plain reading of it (margin, joined, one valley, a chain of valleys,
+ * its edges, ties, directions, no margin, NaN, more runs than it takes). */
 #include "refine_select.h"
 
 #include <check.h>
@@ -57,6 +57,11 @@ START_TEST(one_valley_the_lowest)
     bf_run_end h[3] = { end3(1.00005, 0.5, 0.5, 0.5, 0), end3(1.00002, 0.505, 0.5, 0.5, 0),
                         end3(1.0, 0.509, 0.5, 0.5, 0) };
     ck_assert_uint_eq(choose(h, 3, 0.02), 0x4u);
+    /* a chain: the middle end shares a valley with each of the others, which
+     * share none: the lowest and the far one are refined, the middle not */
+    bf_run_end c[3] = { end3(1.00002, 0.516, 0.5, 0.5, 0), end3(1.0, 0.5, 0.5, 0.5, 0),
+                        end3(1.00001, 0.508, 0.5, 0.5, 0) };
+    ck_assert_uint_eq(choose(c, 3, 0.02), 0x3u);
 }
 END_TEST
 
@@ -93,6 +98,20 @@ START_TEST(direction_places)
 }
 END_TEST
 
+/* Runs past BF_REFINE_MAX are not refined; those before it are chosen as
+ * ever. */
+START_TEST(past_the_bound)
+{
+    bf_run_end e[BF_REFINE_MAX + 2];
+    int refine[BF_REFINE_MAX + 2];
+    for (int r = 0; r < BF_REFINE_MAX + 2; r++)
+        e[r] = end3(1.0 + 1e-3 * r, 0.05 * r, 0.5, 0.5, 0);
+    bf_refine_select(e, BF_REFINE_MAX + 2, 6, 0.02, refine);
+    for (int r = 0; r < BF_REFINE_MAX + 2; r++)
+        ck_assert_int_eq(refine[r], r < BF_REFINE_MAX);
+}
+END_TEST
+
 /* A NaN r^T r is never refined and holds no valley; an infinite one is the
  * lowest only when every one is. */
 START_TEST(not_finite)
@@ -115,6 +134,7 @@ Suite *refine_suite(void)
     tcase_add_test(t, valley_edges);
     tcase_add_test(t, direction_places);
     tcase_add_test(t, not_finite);
+    tcase_add_test(t, past_the_bound);
     suite_add_tcase(s, t);
     return s;
 }

@@ -537,6 +537,7 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
 }
 
 enum { MAX_KEEP = 16, LM_RESTARTS = 2 };
+_Static_assert(MAX_KEEP <= BF_REFINE_MAX, "bf_refine_select takes every kept start");
 
 /* Starts come in rounds of the start grid's period when a round changes a
  * parameter (He: 7 values of tau at one sigma0, then 7 at the next); the

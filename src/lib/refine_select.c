@@ -47,15 +47,26 @@ static int candidate(const bf_run_end *e, double lowest, double margin)
 void bf_refine_select(const bf_run_end *ends, int n, int nplaces, double margin, int *refine)
 {
     double lowest = INFINITY;
-    for (int r = 0; r < n; r++)
-        lowest = fmin(lowest, ends[r].rr);
     for (int r = 0; r < n; r++) {
-        refine[r] = candidate(&ends[r], lowest, margin);
-        for (int q = 0; q < n && refine[r]; q++) {
-            int lower = ends[q].rr < ends[r].rr || (ends[q].rr == ends[r].rr && q < r);
-            if (q != r && lower && candidate(&ends[q], lowest, margin) &&
-                bf_same_valley(&ends[q], &ends[r], nplaces))
+        lowest = fmin(lowest, ends[r].rr);
+        refine[r] = 0;
+    }
+    if (n > BF_REFINE_MAX) /* past the documented bound: the first ones only */
+        n = BF_REFINE_MAX;
+    /* the candidates from the lowest r^T r up (ties: the earlier first),
+     * each refined unless it lies in one valley with one refined before */
+    int seen[BF_REFINE_MAX] = { 0 };
+    for (int k = 0; k < n; k++) {
+        int r = -1;
+        for (int q = 0; q < n; q++)
+            if (!seen[q] && candidate(&ends[q], lowest, margin) && (r < 0 || ends[q].rr < ends[r].rr))
+                r = q;
+        if (r < 0)
+            return;
+        seen[r] = 1;
+        refine[r] = 1;
+        for (int q = 0; q < n && refine[r]; q++)
+            if (q != r && refine[q] && bf_same_valley(&ends[q], &ends[r], nplaces))
                 refine[r] = 0;
-        }
     }
 }

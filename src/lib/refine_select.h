@@ -25,12 +25,16 @@ typedef struct bf_run_end {
 /* 1 when a and b (nplaces places each) lie in one valley. */
 int bf_same_valley(const bf_run_end *a, const bf_run_end *b, int nplaces);
 
+/* The most runs bf_refine_select takes (a fit's kept starts at most). */
+#define BF_REFINE_MAX 16
+
 /* Which of the n runs ends[0 .. n-1] go on to all samples, into refine[r]
- * (1: refine it): those whose r^T r is within margin (relative) of the
- * lowest of the n (any, margin INFINITY), that did not stop at an earlier run's end (joined), and
- * that share no valley with another such run whose r^T r is lower (or the
- * same, and earlier): of the runs in one valley, only the lowest.  n at
- * most a fit's kept starts; nplaces at most BF_END_PLACES. */
+ * (1: refine it).  The candidates are the runs whose r^T r is within margin
+ * (relative) of the lowest of the n (any, margin INFINITY) and that did not
+ * stop at an earlier run's end (joined); taken from the lowest r^T r up (a
+ * tie: the earlier run first), each is refined unless it lies in one valley
+ * with one refined before it: of the ends in one valley, only the lowest.
+ * n at most BF_REFINE_MAX; nplaces at most BF_END_PLACES. */
 void bf_refine_select(const bf_run_end *ends, int n, int nplaces, double margin, int *refine);
 
 #endif /* BRDFFIT_REFINE_SELECT_H */

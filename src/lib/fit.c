@@ -538,6 +538,7 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
 
 enum { MAX_KEEP = 16, LM_RESTARTS = 2 };
 _Static_assert(MAX_KEEP <= BF_REFINE_MAX, "bf_refine_select takes every kept start");
+_Static_assert(2 * NX_MAX <= BF_END_PLACES, "coord_places fits a bf_run_end");
 
 /* Starts come in rounds of the start grid's period when a round changes a
  * parameter (He: 7 values of tau at one sigma0, then 7 at the next); the
@@ -903,18 +904,23 @@ static void keep_lower(lmrun *run, const lmrun *cand)
 #define SAME_POINT 1e-4
 #define SAME_RR 1e-6
 
-static int same_coords(const fitmap *fm, const double *xa, const double *xb)
+/* The places of lobe coordinates x, two a coordinate (see BF_END_PLACES):
+ * its place in its range and 0, or a direction's cosine and sine. */
+static void coord_places(const fitmap *fm, const double *x, double *place)
 {
     for (int j = 0; j < fm->nl; j++) {
-        double ta = coord_position(fm, j, xa[j]), tb = coord_position(fm, j, xb[j]);
-        if (ta < 0.0) {
-            if (fabs(cos(xa[j]) - cos(xb[j])) > SAME_POINT || fabs(sin(xa[j]) - sin(xb[j])) > SAME_POINT)
-                return 0;
-        } else if (fabs(ta - tb) > SAME_POINT) {
-            return 0;
-        }
+        double t = coord_position(fm, j, x[j]);
+        place[2 * j] = t < 0.0 ? cos(x[j]) : t;
+        place[2 * j + 1] = t < 0.0 ? sin(x[j]) : 0.0;
     }
-    return 1;
+}
+
+static int same_coords(const fitmap *fm, const double *xa, const double *xb)
+{
+    double pa[BF_END_PLACES], pb[BF_END_PLACES];
+    coord_places(fm, xa, pa);
+    coord_places(fm, xb, pb);
+    return bf_places_within(pa, pb, 2 * fm->nl, SAME_POINT);
 }
 
 /* Two ends, each its r^T r and lobe coordinates, at one minimum. */
@@ -1065,17 +1071,12 @@ static brdffit_status refine_all(lmstate *S, const brdffit_fit_options *o, lmrun
     return pinned_run(S, o, run, mask, solver_s);
 }
 
-/* Where a run ended, as bf_refine_select sees it: each lobe coordinate's
- * place (a direction: its cosine and sine, as same_coords takes them). */
+/* Where a run ended, as bf_refine_select sees it (coord_places). */
 static void run_end(const fitmap *fm, const lmrun *run, int joined, bf_run_end *e)
 {
     e->rr = run->rr;
     e->joined = joined;
-    for (int j = 0; j < fm->nl; j++) {
-        double t = coord_position(fm, j, run->x[j]);
-        e->place[2 * j] = t < 0.0 ? cos(run->x[j]) : t;
-        e->place[2 * j + 1] = t < 0.0 ? sin(run->x[j]) : 0.0;
-    }
+    coord_places(fm, run->x, e->place);
 }
 
 /* Every kept start on the subset (each stopping where it comes to an

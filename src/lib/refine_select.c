@@ -28,14 +28,18 @@
 
 #include <math.h>
 
-int bf_same_valley(const bf_run_end *a, const bf_run_end *b, int nplaces)
+int bf_places_within(const double *a, const double *b, int n, double tol)
 {
-    if (!(fabs(a->rr - b->rr) <= BF_VALLEY_RR * fmax(a->rr, b->rr)))
-        return 0;
-    for (int k = 0; k < nplaces; k++)
-        if (!(fabs(a->place[k] - b->place[k]) <= BF_VALLEY_PLACE))
+    for (int k = 0; k < n; k++)
+        if (!(fabs(a[k] - b[k]) <= tol))
             return 0;
     return 1;
+}
+
+int bf_same_valley(const bf_run_end *a, const bf_run_end *b, int nplaces)
+{
+    return fabs(a->rr - b->rr) <= BF_VALLEY_RR * fmax(a->rr, b->rr)
+           && bf_places_within(a->place, b->place, nplaces, BF_VALLEY_PLACE);
 }
 
 /* A run within margin of the lowest (any, margin infinite) and not joined. */

@@ -22,6 +22,9 @@ typedef struct bf_run_end {
     int joined;                   /* 1: it stopped at an earlier run's end */
 } bf_run_end;
 
+/* 1 when every a[k] lies within tol of b[k], k < n (a NaN: 0). */
+int bf_places_within(const double *a, const double *b, int n, double tol);
+
 /* 1 when a and b (nplaces places each) lie in one valley. */
 int bf_same_valley(const bf_run_end *a, const bf_run_end *b, int nplaces);
 

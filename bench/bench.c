@@ -18,17 +18,23 @@
  *     the 100 tables;
  *  4. `brdffit batch` on the same materials (bench_batch.c): its time and the
  *     share outside fitting;
- *  5. a material's renders and plots (bench_render.c; --renders: this alone).
+ *  5. a material's renders and plots (bench_render.c; --renders: this alone);
+ *  6. only with --database (`make bench-database`, a few minutes): `brdffit fit`
+ *     over all 100 tables x every model, once reading ahead and --rounds N
+ *     (3) times each fit alone: issue 15's targets over the whole database
+ *     (bench_database.c).
  *
  * Tables come from ../shared/tools/merl-table (BRDFFIT_SHARED overrides).
  * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N] [--parts 1,3,...]
  *                      [--renders] (--renders: --parts 5)
+ *        bench_brdffit --database [--rounds N] [--baseline FILE] [--models a,b,...]
  */
 #define _POSIX_C_SOURCE 200809L
 #include "pass.h"
 #include "testutil.h"
 #include "bench_batch.h"
 #include "bench_cli.h"
+#include "bench_database.h"
 #include "bench_render.h"
 #include "bench_stream.h"
 #include "registry.h"
@@ -122,7 +128,10 @@ typedef struct bench_args {
     int quick;            /* --quick: fewer repetitions, 2 materials */
     int nmat;             /* --materials N (1..10)                    */
     const char *models;   /* --models a,b,... or NULL: all            */
-    unsigned parts;       /* bit k: part k runs (--parts 1,3; --renders: 5) */
+    unsigned parts;       /* bit k: part k runs (--parts 1,3; --renders: 5;
+                           * --database: 6) */
+    int rounds;           /* --rounds N: part 6's runs each fit alone (1..20) */
+    const char *baseline; /* --baseline FILE: part 6 compares with its Errors */
 } bench_args;
 
 #define PART(k) (1u << (k))
@@ -147,11 +156,19 @@ static int parse_args(int argc, char **argv, bench_args *a)
     a->nmat = 10;
     a->models = NULL;
     a->parts = PART(1) | PART(2) | PART(3) | PART(4) | PART(5);
+    a->rounds = 3;
+    a->baseline = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
             a->quick = 1, a->nmat = 2;
         else if (!strcmp(argv[i], "--renders"))
             a->parts = PART(5);
+        else if (!strcmp(argv[i], "--database"))
+            a->parts = PART(6);
+        else if (!strcmp(argv[i], "--rounds") && i + 1 < argc)
+            a->rounds = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--baseline") && i + 1 < argc)
+            a->baseline = argv[++i];
         else if (!strcmp(argv[i], "--parts") && i + 1 < argc && parse_parts(argv[++i], &a->parts))
             ;
         else if (!strcmp(argv[i], "--models") && i + 1 < argc)
@@ -159,12 +176,18 @@ static int parse_args(int argc, char **argv, bench_args *a)
         else if (!strcmp(argv[i], "--materials") && i + 1 < argc)
             a->nmat = atoi(argv[++i]);
         else {
-            fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N] [--parts 1,2,..] [--renders]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N] [--parts 1,2,..] [--renders]\n"
+                            "       %s --database [--rounds N] [--baseline FILE] [--models a,b]\n",
+                    argv[0], argv[0]);
             return 2;
         }
     }
     if (a->nmat < 1 || a->nmat > 10)
         a->nmat = 10;
+    if (a->rounds < 1 || a->rounds > 20) {
+        fprintf(stderr, "%s: --rounds takes 1 to 20\n", argv[0]);
+        return 2;
+    }
     return 0;
 }
 
@@ -379,6 +402,8 @@ int main(int argc, char **argv)
     if ((a.parts & PART(4)) && bench_batch(materials, a.nmat, a.models) != 0)
         rc = 1;
     if ((a.parts & PART(5)) && bench_renders(a.quick) != 0)
+        rc = 1;
+    if ((a.parts & PART(6)) && bench_database(a.rounds, a.models, a.baseline) != 0)
         rc = 1;
 done:
     brdffit_samples_free(s);

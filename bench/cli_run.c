@@ -117,6 +117,8 @@ double cli_median(double *v, int n)
 
 int cli_model_medians(const cli_run *r, double med[BRDFFIT_MODEL_COUNT])
 {
+    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++)
+        med[m] = 0.0;
     double *v = malloc((size_t)(r->n > 0 ? r->n : 1) * sizeof *v);
     if (!v)
         return -1;

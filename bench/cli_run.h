@@ -42,7 +42,7 @@ void cli_run_free(cli_run *r);
 double cli_median(double *v, int n);
 
 /* Each model's median fit seconds in r into med[model] (0 for a model with
- * no fit); 0, or -1 out of memory. */
+ * no fit); 0, or -1 out of memory (med then all 0). */
 int cli_model_medians(const cli_run *r, double med[BRDFFIT_MODEL_COUNT]);
 
 /* The materials of ../shared/tools/merl-table --list into names (up to

@@ -19,7 +19,6 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 enum { DATABASE_TABLES = 100 };
 
@@ -68,12 +67,8 @@ int bench_cli_fit(const char *const *materials, int nmat, const char *models)
     cli_run T = { 0 }, A = { 0 };
     char *cmd = NULL, *alone = NULL;
     int rc = -1;
-    if (cli_command(materials, nmat, models, &cmd) != 0)
+    if (cli_command(materials, nmat, models, &cmd, &alone) != 0)
         goto done;
-    size_t len = strlen(cmd) + 32;
-    if (!(alone = malloc(len)))
-        goto done;
-    snprintf(alone, len, "%s --no-read-ahead", cmd);
     printf("\n3. brdffit fit end to end: %d tables (", nmat);
     for (int i = 0; i < nmat; i++)
         printf("%s%s", i ? ", " : "", materials[i]);

@@ -202,12 +202,8 @@ int bench_database(int rounds, const char *models, const char *baseline_path)
         goto done;
     for (int t = 0; t < ntab; t++)
         list[t] = names[t];
-    if (cli_command(list, ntab, models, &cmd) != 0)
+    if (cli_command(list, ntab, models, &cmd, &alone) != 0)
         goto done;
-    size_t len = strlen(cmd) + 32;
-    if (!(alone = malloc(len)))
-        goto done;
-    snprintf(alone, len, "%s --no-read-ahead", cmd);
     memset(best, 0, sizeof best);
     printf("\nthe whole database: brdffit fit over the %d tables x %s, --scale flat --json\n", ntab,
            models ? models : "every model");

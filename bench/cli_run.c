@@ -9,9 +9,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-int cli_command(const char *const *materials, int nmat, const char *models, char **cmd)
+int cli_command(const char *const *materials, int nmat, const char *models, char **cmd,
+                char **alone)
 {
-    *cmd = NULL;
+    *cmd = *alone = NULL;
     const char *cli = getenv("BRDFFIT_CLI");
     if (!cli || !*cli) {
         fprintf(stderr, "bench: running the program needs BRDFFIT_CLI (make bench sets it)\n");
@@ -33,8 +34,16 @@ int cli_command(const char *const *materials, int nmat, const char *models, char
         }
         o += (size_t)snprintf(s + o, len - o, " '%s'", path);
     }
-    snprintf(s + o, len - o, " --model %s --scale flat --json", models ? models : "all");
+    o += (size_t)snprintf(s + o, len - o, " --model %s --scale flat --json", models ? models : "all");
+    char *a = malloc(o + sizeof " --no-read-ahead");
+    if (!a) {
+        fprintf(stderr, "bench: out of memory for the command\n");
+        free(s);
+        return -1;
+    }
+    snprintf(a, o + sizeof " --no-read-ahead", "%s --no-read-ahead", s);
     *cmd = s;
+    *alone = a;
     return 0;
 }
 

@@ -26,10 +26,13 @@ typedef struct cli_run {
     double builds;  /* of which kernel builds */
 } cli_run;
 
-/* Into *cmd (malloc'ed; free it): "'$BRDFFIT_CLI' fit TABLE... --model
- * MODELS --scale flat --json", the tables from ../shared/tools/merl-table,
- * MODELS "all" when models is NULL.  0, or -1 after printing why. */
-int cli_command(const char *const *materials, int nmat, const char *models, char **cmd);
+/* Into *cmd: "'$BRDFFIT_CLI' fit TABLE... --model MODELS --scale flat
+ * --json", the tables from ../shared/tools/merl-table, MODELS "all" when
+ * models is NULL; into *alone the same with --no-read-ahead (each fit with
+ * the machine to itself).  Both malloc'ed (free them); 0, or -1 after
+ * printing why (both NULL). */
+int cli_command(const char *const *materials, int nmat, const char *models, char **cmd,
+                char **alone);
 
 /* Run cmd (cli_command's, and any options after it) and take its records
  * into *r (cleared first; cli_run_free it).  0 when it exited 0 with at

@@ -126,18 +126,33 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
     BF_REAL ei, eo, xi, xo;
     bf_he_erfc2(ui, &ei, &xi);
     bf_he_erfc2(uo, &eo, &xo);
-    r->Si = bf_he_shadow1x(ui, ei, xi);
-    r->So = bf_he_shadow1x(uo, eo, xo);
-    r->shi = r->Si / d->ci;
-    r->sho = r->So / d->co;
-    BF_REAL tani = d->si / d->ci, tano = d->so / d->co;
+    /* S(t) = h u / lu with h = 1 - erfc(u) / 2 and lu = (1 + L(u)) u
+     * (bf_he_shadow_lu); S / cos t, tan t = sin t / cos t and the partial
+     * d(S / cos t) / du all divide by cos t lu, whose reciprocals in both
+     * directions come from one division (ci lui co luo lies in
+     * [1e-202, 1e22]: cos >= BF_HE_COS_MIN, lu in [0.28, 1e10]) */
+    BF_REAL hi = 1.0 - 0.5 * ei, ho = 1.0 - 0.5 * eo;
+    BF_REAL lui = bf_he_shadow_lu(ui, ei, xi), luo = bf_he_shadow_lu(uo, eo, xo);
+    BF_REAL cli = d->ci * lui, clo = d->co * luo;
+    BF_REAL inv = 1.0 / (cli * clo);
+    BF_REAL wi = clo * inv, wo = cli * inv; /* 1 / (cos t lu) */
+    r->shi = (hi * ui) * wi;
+    r->sho = (ho * uo) * wo;
+    r->Si = r->shi * d->ci;
+    r->So = r->sho * d->co;
+    BF_REAL tani = (d->si * lui) * wi, tano = (d->so * luo) * wo;
     BF_REAL rr = (tani * ei + tano * eo) * (1.0 / sqrt(8.0 * BF_PI));
     BF_REAL x = bf_he_newton_x(rr);
-    r->sigma = sigma0 / sqrt(1.0 + x * x);
+    /* 1 / sqrt(1 + x^2) and 1 / (1 + x^2) from one division: both exactly 1
+     * where x^2 rounds away (sigma = sigma0 to the bit there, as the rows'
+     * near lanes need: bf_he_near_serve) */
+    BF_REAL x1 = 1.0 + x * x, sq = sqrt(x1);
+    BF_REAL ix = 1.0 / (sq * x1);
+    r->sigma = sigma0 * (x1 * ix);
     if (deriv) {
         r->tani = tani;
         r->tano = tano;
-        r->xk = x / (1.0 + x * x);
+        r->xk = x * (sq * ix);
         r->xr = r->xk / fmax(rr, BF_R(BF_TINY));
         r->ui = ui;
         r->uo = uo;
@@ -145,8 +160,8 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
         r->eo = eo;
         r->xi = xi;
         r->xo = xo;
-        r->dshi = bf_he_dshadow1(ui, ei, xi) / d->ci;
-        r->dsho = bf_he_dshadow1(uo, eo, xo) / d->co;
+        r->dshi = bf_he_dshadow_lu(ui, hi, lui, xi) * ((wi * wi) * d->ci);
+        r->dsho = bf_he_dshadow_lu(uo, ho, luo, xo) * ((wo * wo) * d->co);
         r->r = rr;
         r->x = x;
     }

@@ -115,24 +115,24 @@ BF_FN void bf_he_erfc2(BF_REAL u, BF_REAL *ec, BF_REAL *ex)
     }
 }
 
-/* One direction's shadowing S(theta) from u, erfc(u) and exp(-u^2). */
-BF_FN BF_REAL bf_he_shadow1x(BF_REAL u, BF_REAL ec, BF_REAL ex)
+/* One direction's shadowing is S(theta) = (1 - erfc(u) / 2) / (1 + L(u)),
+ * L(u) = (e^(-u^2) / (sqrt(pi) u) - erfc(u)) / 2; bf_he_rough_make_u takes it
+ * as h u / lu, h = 1 - erfc(u) / 2, from lu = (1 + L(u)) u =
+ * h u + e^(-u^2) / (2 sqrt(pi)), given u, erfc(u) and exp(-u^2): in
+ * [0.28, 1e10] for u in [1e-300, 1e10], with no cancellation (both terms
+ * non-negative). */
+BF_FN BF_REAL bf_he_shadow_lu(BF_REAL u, BF_REAL ec, BF_REAL ex)
 {
-    BF_REAL lam = 0.5 * (ex / (BF_SQRT_PI * u) - ec);
-    return (1.0 - 0.5 * ec) / (1.0 + lam);
+    return (1.0 - 0.5 * ec) * u + ex * (0.5 / BF_SQRT_PI);
 }
 
-/* dS/du of bf_he_shadow1x, finite for u in [1e-300, 1e10]:
- * with L' = -e^(-u^2) / (2 sqrt(pi) u^2) and (1 + L) u = u + (e^(-u^2) / sqrt(pi) - erfc(u) u) / 2,
- * dS/du = e^(-u^2) / sqrt(pi) (u (1 + L) u + (1 - erfc(u) / 2) / 2) / ((1 + L) u)^2. */
-BF_FN BF_REAL bf_he_dshadow1(BF_REAL u, BF_REAL ec, BF_REAL ex)
+/* dS/du times lu^2 (h and lu as above), finite for u in [1e-300, 1e10]:
+ * with L' = -e^(-u^2) / (2 sqrt(pi) u^2),
+ * dS/du = e^(-u^2) / sqrt(pi) (u lu + h / 2) / lu^2. */
+BF_FN BF_REAL bf_he_dshadow_lu(BF_REAL u, BF_REAL h, BF_REAL lu, BF_REAL ex)
 {
-    BF_REAL xs = ex * (1.0 / BF_SQRT_PI);
-    BF_REAL lu = u + 0.5 * (xs - ec * u);
-    return xs * (u * lu + 0.5 * (1.0 - 0.5 * ec)) / (lu * lu);
+    return (ex * (1.0 / BF_SQRT_PI)) * (u * lu + 0.5 * h);
 }
-
-
 
 /* The effective roughness sigma = sigma0 / sqrt(1 + x^2), x e^(x^2/2) = r, from
  * r = (K(ti) + K(to)) / sqrt(8 pi) >= 0.  For r <= BF_HE_R_SER = 0.01 the

@@ -187,21 +187,36 @@ BF_FN_INLINE BF_REAL bf_lafortune_vdk(const bf_geom *g, const double *p, BF_REAL
  * F0's partial from R and p1's from bf_<model>_rest_vdk (BF_FD_SCHLICK in
  * bf_lobe.h). */
 
-/* Cook-Torrance [F0, m], with the constant 1/(4 pi m^2) of the published fits */
+/* Cook-Torrance [F0, m], with the constant 1/(4 pi m^2) of the published fits:
+ * R = G D / (cos ti cos to), G = min(1, 2 N.H min(cos ti, cos to) / V.H),
+ * D = e^(-tan^2 delta / m^2) / (4 pi m^2 cos^4 delta).  Written with one
+ * division a sample: 1 / cos^2 delta (for tan^2 delta) and the rest's
+ * denominator both from 1 / (cos^2 delta V.H cos ti cos to) (a full pass on
+ * alum-bronze's mirror set 1.9-2.0 -> 1.6-1.7 ms with five divisions down to
+ * two, bench part 1 alternated).  *t gets tan^2 delta, for the partial. */
+BF_FN BF_REAL bf_cook_torrance_rest_t(const bf_geom *g, double m, BF_REAL *t)
+{
+    const double m2 = m * m;
+    BF_REAL nh = g->nh, vh = g->vh, nh2 = nh * nh;
+    BF_REAL den = vh * (g->iz * g->oz);
+    BF_REAL inv = 1.0 / (nh2 * den);
+    BF_REAL inh2 = den * inv; /* 1 / cos^2 delta */
+    *t = fmax(1.0 - nh2, 0.0) * inh2;
+    BF_REAL ggv = fmin(2.0 * nh * fmin(g->oz, g->iz), vh); /* G V.H */
+    return (ggv * exp(-*t / m2)) * ((inv * inh2) * (1.0 / (4.0 * BF_PI * m2)));
+}
+
 BF_FN BF_REAL bf_cook_torrance_rest(const bf_geom *g, double m)
 {
-    double m2 = m * m;
-    BF_REAL nh = g->nh, vh = g->vh;
-    BF_REAL gg = fmin(fmin(2.0 * nh * g->oz / vh, 2.0 * nh * g->iz / vh), 1.0);
-    BF_REAL nh2 = nh * nh;
-    BF_REAL d = exp(-bf_tan2(nh) / m2) / ((4.0 * BF_PI * m2) * (nh2 * nh2));
-    return gg * d / (g->iz * g->oz);
+    BF_REAL t;
+    return bf_cook_torrance_rest_t(g, m, &t);
 }
 
 BF_FN BF_REAL bf_cook_torrance_rest_vdk(const bf_geom *g, double m, BF_REAL *dr)
 {
-    BF_REAL r = bf_cook_torrance_rest(g, m);
-    *dr = bf_dk_where(r, bf_beckmann_dlog(g, m));
+    BF_REAL t;
+    BF_REAL r = bf_cook_torrance_rest_t(g, m, &t);
+    *dr = bf_dk_where(r, (2.0 * t / (m * m) - 2.0) / m); /* d ln R / d m */
     return r;
 }
 

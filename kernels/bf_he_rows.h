@@ -127,7 +127,7 @@ BF_FN BF_REAL bf_he_bin_q(const bf_he_flat *f)
     return 1.0 / (f->ci * f->co);
 }
 
-/* The cotangent of the angle whose cosine is c, with bf_he_u's floors: a
+/* The cotangent of the angle whose cosine is c, with bf_he_u2's floors: a
  * lane is flat at (tau, sigma0) where min(cot ti, cot to) is at least
  * 2 BF_HE_U_FLAT sigma0 / tau (to rounding), and min(cot ti, cot to) is this
  * of min(cos ti, cos to) (to rounding: sin t = sqrt(1 - cos^2 t) for unit
@@ -136,7 +136,7 @@ BF_FN BF_REAL bf_he_bin_q(const bf_he_flat *f)
 BF_FN BF_REAL bf_he_cot_of_cos(BF_REAL c)
 {
     BF_REAL cf = fmax(c, BF_HE_COS_MIN);
-    return cf / fmax(sqrt(fmax(1.0 - c * c, 0.0)), 1e-300);
+    return cf / fmax(sqrt(fmax(1.0 - c * c, 0.0)), 1e-150);
 }
 
 /* K0 and Kj of a vector the rows serve whole (every lane in the bin of bk),

@@ -23,7 +23,7 @@ typedef struct bf_he_dir {
     BF_REAL lvxy2;          /* ln |v_xy|^2 (floored)                    */
 } bf_he_dir;
 
-/* The sines of ti and to and their u = tau cot t / (2 sigma0) (bf_he_u):
+/* The sines of ti and to and their u = tau cot t / (2 sigma0) (bf_he_u2):
  * made once where a vector's flatness is tested (bf_he_flat_make) and
  * taken from there by its shadowing (bf_he_fd_surface), the same to the bit. */
 typedef struct bf_he_su {
@@ -34,8 +34,8 @@ BF_FN void bf_he_su_make(const bf_geom *g, double tau, double sigma0, bf_he_su *
 {
     su->si = sqrt(g->ix * g->ix + g->iy * g->iy);
     su->so = sqrt(g->ox * g->ox + g->oy * g->oy);
-    su->ui = bf_he_u(fmax(g->iz, BF_HE_COS_MIN), su->si, tau, sigma0);
-    su->uo = bf_he_u(fmax(g->oz, BF_HE_COS_MIN), su->so, tau, sigma0);
+    bf_he_u2(fmax(g->iz, BF_HE_COS_MIN), su->si, fmax(g->oz, BF_HE_COS_MIN), su->so, tau, sigma0,
+             &su->ui, &su->uo);
 }
 
 /* What bf_he_dir_make computes but the two logarithms (lg2, lvxy2 left
@@ -98,7 +98,7 @@ typedef struct bf_he_rough {
                                      * dx per dr                           */
 } bf_he_rough;
 
-/* bf_he_rough_make with the directions' u given (bf_he_u of d's cosines and
+/* bf_he_rough_make with the directions' u given (bf_he_u2 of d's cosines and
  * sines at (tau, sigma0)). */
 BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double sigma0,
                               int deriv, int flat, bf_he_rough *r)
@@ -142,18 +142,22 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
     r->So = r->sho * d->co;
     BF_REAL tani = (d->si * lui) * wi, tano = (d->so * luo) * wo;
     BF_REAL rr = (tani * ei + tano * eo) * (1.0 / sqrt(8.0 * BF_PI));
-    BF_REAL x = bf_he_newton_x(rr);
-    /* 1 / sqrt(1 + x^2) and 1 / (1 + x^2) from one division: both exactly 1
-     * where x^2 rounds away (sigma = sigma0 to the bit there, as the rows'
-     * near lanes need: bf_he_near_serve) */
-    BF_REAL x1 = 1.0 + x * x, sq = sqrt(x1);
-    BF_REAL ix = 1.0 / (sq * x1);
+    BF_REAL xq, x = bf_he_newton_xq(rr, &xq);
+    /* sigma = sigma0 / sqrt(1 + x^2); with deriv xk = x / (1 + x^2) and
+     * xr = xk / r (r floored at BF_TINY), from one division, or none where
+     * x^2 rounds away in every lane (sigma0 to the bit, as the rows' near
+     * lanes need: bf_he_near_serve) */
+    BF_REAL x1 = 1.0 + x * x, sq = BF_R(1.0), ix = BF_R(1.0);
+    if (BF_ANY(x1 != 1.0)) {
+        sq = sqrt(x1);
+        ix = 1.0 / (sq * x1);
+    }
     r->sigma = sigma0 * (x1 * ix);
     if (deriv) {
         r->tani = tani;
         r->tano = tano;
         r->xk = x * (sq * ix);
-        r->xr = r->xk / fmax(rr, BF_R(BF_TINY));
+        r->xr = xq * (sq * ix);
         r->ui = ui;
         r->uo = uo;
         r->ei = ei;
@@ -171,8 +175,9 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
 BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int deriv,
                             int flat, bf_he_rough *r)
 {
-    bf_he_rough_make_u(d, bf_he_u(d->ci, d->si, tau, sigma0), bf_he_u(d->co, d->so, tau, sigma0),
-                       sigma0, deriv, flat, r);
+    BF_REAL ui, uo;
+    bf_he_u2(d->ci, d->si, d->co, d->so, tau, sigma0, &ui, &uo);
+    bf_he_rough_make_u(d, ui, uo, sigma0, deriv, flat, r);
 }
 
 /* The shadowing S = S(theta_i) S(theta_o) of a direction pair, as K uses it. */
@@ -213,7 +218,7 @@ BF_FN void bf_he_rough_step(const bf_he_rough *r0, double tau0, double sigma00, 
         r->sigma = BF_R(sigma0);
         return;
     }
-    /* u'/u - 1; u = 1e10 is the normal's clamp (bf_he_u), where u stays */
+    /* u'/u - 1; u = 1e10 is the normal's clamp (bf_he_u2), where u stays */
     const double du = (tau * sigma00 - tau0 * sigma0) / (tau0 * sigma0);
     BF_REAL dui = BF_SEL(r0->ui * du, BF_R(0.0), r0->ui >= 1e10);
     BF_REAL duo = BF_SEL(r0->uo * du, BF_R(0.0), r0->uo >= 1e10);
@@ -312,8 +317,9 @@ BF_FN void bf_he_fd_base_dir(const bf_he_dir *d, const double *p0, const double 
                              const bf_he_pconst *pc, int flat, bf_he_base *b)
 {
     b->d = *d;
-    bf_he_fd_shade(p0, flat, bf_he_u(d->ci, d->si, p0[0], p0[1]), bf_he_u(d->co, d->so, p0[0], p0[1]),
-                   b);
+    BF_REAL ui, uo;
+    bf_he_u2(d->ci, d->si, d->co, d->so, p0[0], p0[1], &ui, &uo);
+    bf_he_fd_shade(p0, flat, ui, uo, b);
     bf_he_fd_scale(p0, lam, pc, b);
 }
 

@@ -107,10 +107,16 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
     if (r->flat) {
         /* erfc and e^(-u^2) are 0 (bf_he_erfc2): S = 1, r = 0, x = BF_TINY
          * (bf_he_newton_x), sigma = sigma0, the partials in u 0: the values
-         * of the general path below, without its divisions */
+         * of the general path below for such a lane, bit for bit (1 / cos t
+         * as u / (cos t u), its lu being u: a lane's values do not depend on
+         * the vector it is in), without its erfc; u taken at least
+         * BF_HE_U_FLAT where flat makes a rougher lane flat */
+        BF_REAL uci = fmax(ui, BF_R(BF_HE_U_FLAT)), uco = fmax(uo, BF_R(BF_HE_U_FLAT));
+        BF_REAL cli = d->ci * uci, clo = d->co * uco;
+        BF_REAL inv = 1.0 / (cli * clo);
         r->Si = r->So = BF_R(1.0);
-        r->shi = 1.0 / d->ci;
-        r->sho = 1.0 / d->co;
+        r->shi = uci * (clo * inv);
+        r->sho = uco * (cli * inv);
         r->sigma = BF_R(sigma0);
         if (deriv) {
             r->ui = ui;

@@ -14,9 +14,17 @@
  * [BF_HE_COS_MIN, 1]: F = q^2 (1 + r^2) / 2 with A = g' + c, q = (g' - c) / A
  * = e / A^2 (g' - c = e / A, e = n^2 - 1: no cancellation for n ~ 1) and
  * r = (c A - 1) / (c (g' - c) + 1) = (c A - 1) A / (c e + A).  Both
- * denominators come from one division: A^2 (c e + A) >= 8e-300 (A >= 2c). */
+ * denominators come from one division: A^2 (c e + A) >= 8e-300 (A >= 2c).
+ * Not contracted to fused multiply-adds in the kernel, so that it rounds as
+ * the host's C does: a full pass's neighbour in n takes F again at n + dn,
+ * and its difference quotient multiplies F's rounding by 1 / h ~ 1e7 (with
+ * c e + A and c A - 1 fused in the kernel alone, its sums and the C loop's
+ * parted by 1.1e-9 relative: tests/test_pass.c). */
 BF_FN BF_REAL bf_he_fresnel(BF_REAL c, double n)
 {
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#endif
     double e = (n - 1.0) * (n + 1.0);
     BF_REAL A = sqrt(e + c * c) + c, A2 = A * A;
     BF_REAL B = c * e + A;
@@ -218,22 +226,24 @@ BF_FN BF_REAL bf_he_newton_xq(BF_REAL r, BF_REAL *q)
     *q = ys;
     if (!BF_ANY(rs > BF_HE_R_SER))
         return xs;
-    if (!BF_ANY(rs > BF_HE_R_FIT)) {
-        BF_REAL y = bf_he_newton_y1(rs, t);
-        *q = BF_SEL(ys, y, rs > BF_HE_R_SER);
-        return BF_SEL(xs, rs * y, rs > BF_HE_R_SER);
-    }
+    /* each lane's x whatever lanes share its vector: the one step up to
+     * BF_HE_R_FIT, the loop above it */
+    BF_REAL rf = fmin(rs, BF_R(BF_HE_R_FIT));
+    BF_REAL y = bf_he_newton_y1(rf, rf * rf);
+    *q = BF_SEL(ys, y, rs > BF_HE_R_SER);
+    BF_REAL x = BF_SEL(xs, rs * y, rs > BF_HE_R_SER);
+    if (!BF_ANY(rs > BF_HE_R_FIT))
+        return x;
     BF_REAL lr = log(rs);
-    BF_REAL x = BF_SEL(bf_he_x_start(fmin(rs, BF_R(BF_HE_R_FIT))),
-                       fmax(sqrt(2.0 * fmax(lr, 0.0)), BF_R(0.75)), rs > BF_HE_R_FIT);
-    BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), rs > BF_HE_R_SER);
+    BF_REAL xn = fmax(sqrt(2.0 * fmax(lr, 0.0)), BF_R(0.75));
+    BF_REAL act = BF_SEL(BF_R(0.0), BF_R(1.0), rs > BF_HE_R_FIT);
     for (int it = 0; it < 60 && BF_ANY(act > 0.0); it++) {
-        BF_REAL dx = (log(x) + 0.5 * x * x - lr) * x / (1.0 + x * x);
-        x = BF_SEL(x, fmax(x - dx, 0.5 * x), act > 0.0);
-        act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-8 * x);
+        BF_REAL dx = (log(xn) + 0.5 * xn * xn - lr) * xn / (1.0 + xn * xn);
+        xn = BF_SEL(xn, fmax(xn - dx, 0.5 * xn), act > 0.0);
+        act = BF_SEL(act, BF_R(0.0), fabs(dx) <= 1e-8 * xn);
     }
-    *q = BF_SEL(ys, x / rs, rs > BF_HE_R_SER);
-    return BF_SEL(xs, x, rs > BF_HE_R_SER);
+    *q = BF_SEL(*q, xn / rs, rs > BF_HE_R_FIT);
+    return BF_SEL(x, xn, rs > BF_HE_R_FIT);
 }
 
 BF_FN BF_REAL bf_he_newton_x(BF_REAL r)

@@ -22,7 +22,10 @@
  *   d = Lambertian albedo, s = specular coefficient rho_s, p = lobe
  *   parameters shared by the channels.  K is the same for the three channels
  *   except for the He model, whose lobe depends on the wavelength.  A
- *   direction at or below the horizon (z <= 0) gives f = 0.
+ *   direction at or below the horizon (z <= 0) gives f = 0; one above it
+ *   but closer than cos theta = 1e-6 (5.7e-5 deg) is evaluated at
+ *   cos theta = 1e-6, so that every lobe is finite (BF_COS_FLOOR in
+ *   kernels/bf_models.h).
  *
  *   Lobes (Ngan, Durand, Matusik 2005, as their published parameters fit):
  *     ward [alpha]           K = exp(-tan^2 d / a^2) / (4 pi a^2 sqrt(cos ti cos to))

@@ -4,7 +4,8 @@
  * C library and the OpenCL kernel (see bf_common.h).
  *
  * Frame: z is the normal; wi (i*) points toward the light, wo (o*) toward the
- * viewer; both unit vectors strictly above the horizon.  H = normalize(wi+wo),
+ * viewer; both unit vectors strictly above the horizon (cos t taken at least
+ * BF_COS_FLOOR = 1e-6 by bf_geom_derive).  H = normalize(wi+wo),
  * delta = angle(N, H).  f_c = d_c/pi + s_c K_c, no cosine factor.
  *
  * Each model has one entry point of the same shape,
@@ -29,9 +30,21 @@ typedef struct bf_geom {
     BF_REAL vh;          /* V.H = L.H = cos theta_d */
 } bf_geom;
 
-/* Fill the derived fields of g from its two unit directions. */
+/* The floor of cos ti and cos to: a direction closer to the horizon is
+ * evaluated with cos t = BF_COS_FLOOR (5.7e-5 deg above it; the direction's
+ * length then differs from 1 by less than 1e-12), so that every lobe's
+ * quotients stay finite (below it Ward, Ward-Duer, Cook-Torrance,
+ * Ashikhmin-Shirley and GGX took 0/0 or x/0 at cosines of 1e-100 and less).
+ * No sample of a MERL table comes near it (the bins' centres lie within
+ * 89.5 deg). */
+#define BF_COS_FLOOR 1e-6
+
+/* Fill the derived fields of g from its two unit directions (their z
+ * floored at BF_COS_FLOOR). */
 BF_FN void bf_geom_derive(bf_geom *g)
 {
+    g->iz = fmax(g->iz, BF_COS_FLOOR);
+    g->oz = fmax(g->oz, BF_COS_FLOOR);
     BF_REAL c = g->ix * g->ox + g->iy * g->oy + g->iz * g->oz;   /* wi.wo */
     /* |wi + wo| = sqrt(2 + 2 wi.wo); wi = -wo cannot happen above the horizon */
     BF_REAL len = sqrt(fmax(2.0 + 2.0 * c, BF_TINY));

@@ -112,8 +112,20 @@ START_TEST(reciprocity)
 }
 END_TEST
 
+/* A unit direction whose cosine is z (its azimuth phi deg): grazing closer
+ * than degrees can say. */
+static void dir_z(double z, double phi, double w[3])
+{
+    const double s = sqrt(1.0 - z * z), a = phi * M_PI / 180.0;
+    w[0] = s * cos(a);
+    w[1] = s * sin(a);
+    w[2] = z;
+}
+
 /* Finite, non-negative values for every lobe at the corners of the parameter
- * box and the awkward directions: wi = wo, normal incidence, grazing 89.9 deg. */
+ * box and the awkward directions: wi = wo, normal incidence, grazing 89.9 deg,
+ * and cosines of 1e-12 down to the smallest double (back-scatter among
+ * them: bf_geom_derive's BF_COS_FLOOR). */
 START_TEST(finite_everywhere)
 {
     brdffit_model m = closed_form_model(_i);
@@ -142,17 +154,25 @@ START_TEST(finite_everywhere)
         for (int k = 0; k + 1 < mi->nparams; k++) /* a direction pair needs a direction */
             if (mi->params[k].map == BRDFFIT_MAP_DIRECTION && p.p[k] == 0 && p.p[k + 1] == 0)
                 p.p[k + 1] = 1;
-        for (int a = 0; a < nd; a++)
-            for (int b = 0; b < nd; b++) {
+        const double zs[] = { 1e-12, 1e-100, 1e-300, 4.9e-324 }, phis[] = { 0, 90, 180, 217 };
+        const int nz = 16; /* zs x phis after the nd directions in degrees */
+        for (int a = 0; a < nd + nz; a++)
+            for (int b = 0; b < nd + nz; b++) {
                 double wi[3], wo[3], rgb[3];
-                tu_dir_at(dirs[a][0], dirs[a][1], wi);
-                tu_dir_at(dirs[b][0], dirs[b][1], wo);
+                if (a < nd)
+                    tu_dir_at(dirs[a][0], dirs[a][1], wi);
+                else
+                    dir_z(zs[(a - nd) / 4], phis[(a - nd) % 4], wi);
+                if (b < nd)
+                    tu_dir_at(dirs[b][0], dirs[b][1], wo);
+                else
+                    dir_z(zs[(b - nd) / 4], phis[(b - nd) % 4], wo);
                 ck_assert_int_eq(brdffit_eval(m, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
                 for (int c = 0; c < 3; c++)
                     ck_assert_msg(isfinite(rgb[c]) && rgb[c] >= 0,
-                                  "%s p=(%g,%g,%g) wi=(%g deg,%g) wo=(%g deg,%g): f=%g", mi->name,
-                                  p.p[0], p.p[1], p.p[2], dirs[a][0], dirs[a][1], dirs[b][0],
-                                  dirs[b][1], rgb[c]);
+                                  "%s p=(%g,%g,%g) wi=(%g,%g,%g) wo=(%g,%g,%g): f=%g", mi->name,
+                                  p.p[0], p.p[1], p.p[2], wi[0], wi[1], wi[2], wo[0], wo[1],
+                                  wo[2], rgb[c]);
             }
     }
 }

@@ -110,13 +110,14 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
          * of the general path below for such a lane, bit for bit (1 / cos t
          * as u / (cos t u), its lu being u: a lane's values do not depend on
          * the vector it is in), without its erfc; u taken at least
-         * BF_HE_U_FLAT where flat makes a rougher lane flat */
+         * BF_HE_U_FLAT where flat makes a rougher lane flat (so the product
+         * bf_rcp2 divides by is at least 3.6e-199) */
         BF_REAL uci = fmax(ui, BF_R(BF_HE_U_FLAT)), uco = fmax(uo, BF_R(BF_HE_U_FLAT));
-        BF_REAL cli = d->ci * uci, clo = d->co * uco;
-        BF_REAL inv = 1.0 / (cli * clo);
+        BF_REAL wi, wo;
+        bf_rcp2(d->ci * uci, d->co * uco, &wi, &wo);
         r->Si = r->So = BF_R(1.0);
-        r->shi = uci * (clo * inv);
-        r->sho = uco * (cli * inv);
+        r->shi = uci * wi;
+        r->sho = uco * wo;
         r->sigma = BF_R(sigma0);
         if (deriv) {
             r->ui = ui;
@@ -139,9 +140,8 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
      * [1e-202, 1e22]: cos >= BF_HE_COS_MIN, lu in [0.28, 1e10]) */
     BF_REAL hi = 1.0 - 0.5 * ei, ho = 1.0 - 0.5 * eo;
     BF_REAL lui = bf_he_shadow_lu(ui, ei, xi), luo = bf_he_shadow_lu(uo, eo, xo);
-    BF_REAL cli = d->ci * lui, clo = d->co * luo;
-    BF_REAL inv = 1.0 / (cli * clo);
-    BF_REAL wi = clo * inv, wo = cli * inv; /* 1 / (cos t lu) */
+    BF_REAL wi, wo; /* 1 / (cos t lu) */
+    bf_rcp2(d->ci * lui, d->co * luo, &wi, &wo);
     r->shi = (hi * ui) * wi;
     r->sho = (ho * uo) * wo;
     r->Si = r->shi * d->ci;

@@ -43,10 +43,10 @@ BF_FN void bf_he_u2(BF_REAL ci, BF_REAL si, BF_REAL co, BF_REAL so, double tau, 
                     BF_REAL *ui, BF_REAL *uo)
 {
     const double k = tau / (2.0 * sigma0);
-    BF_REAL a = fmax(si, BF_R(1e-150)), b = fmax(so, BF_R(1e-150));
-    BF_REAL inv = 1.0 / (a * b);
-    *ui = fmin(fmax((k * ci) * (b * inv), BF_R(1e-300)), BF_R(1e10));
-    *uo = fmin(fmax((k * co) * (a * inv), BF_R(1e-300)), BF_R(1e10));
+    BF_REAL rsi, rso;
+    bf_rcp2(fmax(si, BF_R(1e-150)), fmax(so, BF_R(1e-150)), &rsi, &rso);
+    *ui = fmin(fmax((k * ci) * rsi, BF_R(1e-300)), BF_R(1e10));
+    *uo = fmin(fmax((k * co) * rso, BF_R(1e-300)), BF_R(1e10));
 }
 
 /* erfc(u) for u in [0, BF_HE_U_FLAT], given ex = e^(-u^2): W. J. Cody's

@@ -94,10 +94,16 @@ BF_FN BF_REAL bf_powu(BF_REAL x, double n)
  * Where K = 0 (underflowed, or cut off) the partials are 0.  The helpers: */
 
 /* d ln K / d alpha of a lobe exp(-tan^2 delta / alpha^2) / alpha^2 times
- * what does not depend on alpha (Ward, Ward-Duer, Cook-Torrance's m). */
+ * what does not depend on alpha (Ward, Ward-Duer, Cook-Torrance's m), from
+ * t = tan^2 delta (bf_beckmann_dlog_t) or from g. */
+BF_FN BF_REAL bf_beckmann_dlog_t(BF_REAL t, double alpha)
+{
+    return (2.0 * t / (alpha * alpha) - 2.0) / alpha;
+}
+
 BF_FN BF_REAL bf_beckmann_dlog(const bf_geom *g, double alpha)
 {
-    return (2.0 * bf_tan2(g->nh) / (alpha * alpha) - 2.0) / alpha;
+    return bf_beckmann_dlog_t(bf_tan2(g->nh), alpha);
 }
 
 /* K dlog where K > 0, else 0: a lobe that has underflowed (or is cut off)
@@ -230,7 +236,7 @@ BF_FN BF_REAL bf_cook_torrance_rest_vdk(const bf_geom *g, double m, BF_REAL *dr)
 {
     BF_REAL t;
     BF_REAL r = bf_cook_torrance_rest_t(g, m, &t);
-    *dr = bf_dk_where(r, (2.0 * t / (m * m) - 2.0) / m); /* d ln R / d m */
+    *dr = bf_dk_where(r, bf_beckmann_dlog_t(t, m));
     return r;
 }
 

@@ -211,7 +211,7 @@ BF_FN_INLINE BF_REAL bf_lafortune_vdk(const bf_geom *g, const double *p, BF_REAL
  * D = e^(-tan^2 delta / m^2) / (4 pi m^2 cos^4 delta).  Written with one
  * division a sample: 1 / cos^2 delta (for tan^2 delta) and the rest's
  * denominator both from 1 / (cos^2 delta V.H cos ti cos to) (it took five:
- * on alum-bronze's mirror set the full pass 1.9 -> 1.4-1.5 ms and the value
+ * on alum-bronze's mirror set the full pass 1.9-2.1 -> 1.4-1.6 ms and the value
  * pass 1.1 -> 0.8-0.9 ms, bench part 1 alternated, twenty-sixth session).
  * *t gets tan^2 delta, for the partial. */
 BF_FN BF_REAL bf_cook_torrance_rest_t(const bf_geom *g, double m, BF_REAL *t)

@@ -106,7 +106,7 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
     r->flat = flat || !BF_ANY((ui < BF_HE_U_FLAT) || (uo < BF_HE_U_FLAT));
     if (r->flat) {
         /* erfc and e^(-u^2) are 0 (bf_he_erfc2): S = 1, r = 0, x = BF_TINY
-         * (bf_he_newton_x), sigma = sigma0, the partials in u 0: the values
+         * (bf_he_newton_xq), sigma = sigma0, the partials in u 0: the values
          * of the general path below for such a lane, bit for bit (1 / cos t
          * as u / (cos t u), its lu being u: a lane's values do not depend on
          * the vector it is in), without its erfc; u taken at least

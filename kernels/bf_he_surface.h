@@ -165,7 +165,7 @@ BF_FN BF_REAL bf_he_dshadow_lu(BF_REAL u, BF_REAL h, BF_REAL lu, BF_REAL ex)
  * y = x / r; the next term is below 2 t^4 < 2e-16), within 3.2e-16 of the
  * root (against a long double Newton; tests/test_he.c, newton_x).  Above,
  * Newton on ln x + x^2/2 - ln r (no overflow for any r): for r up to
- * BF_HE_R_FIT = 2 from bf_he_x_start, within 5.7e-11 of the root, so that
+ * BF_HE_R_FIT = 2 from r P / Q (bf_he_x_start_pq), within 5.7e-11 of the root, so that
  * one step ends it (the rough samples' r are mostly below 1, and a vector
  * took the four steps of its slowest lane from x = r: a rough full pass 5%
  * faster), above from max(sqrt(2 ln r), 0.75) (monotone on either side of
@@ -193,14 +193,7 @@ BF_FN void bf_he_x_start_pq(BF_REAL t, BF_REAL *p, BF_REAL *q)
          + t * (2.5263287435881709 + t * (0.2745068180691122 + t * 0.0064419946217939561)))));
 }
 
-BF_FN BF_REAL bf_he_x_start(BF_REAL r)
-{
-    BF_REAL p, q;
-    bf_he_x_start_pq(r * r, &p, &q);
-    return r * (p / q);
-}
-
-/* The one Newton step from bf_he_x_start that ends the root for every r in
+/* The one Newton step from that start that ends the root for every r in
  * [0, BF_HE_R_FIT] (below), with one division and one logarithm: with
  * y0 = P / Q = x0 / r, F = ln y0 + x0^2 / 2 (= ln x0 + x0^2 / 2 - ln r) and
  * x0 / (1 + x0^2) = r P Q^2 / (Q m), m = Q^2 + t P^2, both quotients come
@@ -244,12 +237,6 @@ BF_FN BF_REAL bf_he_newton_xq(BF_REAL r, BF_REAL *q)
     }
     *q = BF_SEL(*q, xn / rs, rs > BF_HE_R_FIT);
     return BF_SEL(x, xn, rs > BF_HE_R_FIT);
-}
-
-BF_FN BF_REAL bf_he_newton_x(BF_REAL r)
-{
-    BF_REAL q;
-    return bf_he_newton_xq(r, &q);
 }
 
 #endif /* BF_HE_SURFACE_H */

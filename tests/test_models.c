@@ -122,6 +122,26 @@ static void dir_z(double z, double phi, double w[3])
     w[2] = z;
 }
 
+/* finite_everywhere's directions: (theta deg, phi deg) at 0 .. FE_ND - 1,
+ * then the cosines fe_zs at the azimuths fe_phis (FE_NZ of them). */
+static const double fe_dirs[][2] = { { 0, 0 },     { 1e-9, 0 },  { 30, 0 },      { 30, 180 },
+                                     { 60, 90 },   { 80, 45 },   { 89.9, 0 },    { 89.9, 180 },
+                                     { 89.9, 90 }, { 89.999, 10 }, { 45, 270 } };
+static const double fe_zs[] = { 1e-12, 1e-100, 1e-300, 4.9e-324 }, fe_phis[] = { 0, 90, 180, 217 };
+enum {
+    FE_ND = (int)(sizeof fe_dirs / sizeof fe_dirs[0]),
+    FE_NPHI = (int)(sizeof fe_phis / sizeof fe_phis[0]),
+    FE_NZ = (int)(sizeof fe_zs / sizeof fe_zs[0]) * FE_NPHI
+};
+
+static void fe_dir(int k, double w[3])
+{
+    if (k < FE_ND)
+        tu_dir_at(fe_dirs[k][0], fe_dirs[k][1], w);
+    else
+        dir_z(fe_zs[(k - FE_ND) / FE_NPHI], fe_phis[(k - FE_ND) % FE_NPHI], w);
+}
+
 /* Finite, non-negative values for every lobe at the corners of the parameter
  * box and the awkward directions: wi = wo, normal incidence, grazing 89.9 deg,
  * and cosines of 1e-12 down to the smallest double (back-scatter among
@@ -131,9 +151,6 @@ START_TEST(finite_everywhere)
     brdffit_model m = closed_form_model(_i);
     const brdffit_model_info *mi = brdffit_model_get(m);
     ck_assert_ptr_nonnull(mi);
-    double dirs[][2] = { { 0, 0 }, { 1e-9, 0 }, { 30, 0 }, { 30, 180 }, { 60, 90 }, { 80, 45 },
-                         { 89.9, 0 }, { 89.9, 180 }, { 89.9, 90 }, { 89.999, 10 }, { 45, 270 } };
-    int nd = (int)(sizeof dirs / sizeof dirs[0]);
     int corners = 1 << mi->nparams;
     unsigned st = 99;
     for (int cnr = 0; cnr < corners * 3; cnr++) {
@@ -154,19 +171,11 @@ START_TEST(finite_everywhere)
         for (int k = 0; k + 1 < mi->nparams; k++) /* a direction pair needs a direction */
             if (mi->params[k].map == BRDFFIT_MAP_DIRECTION && p.p[k] == 0 && p.p[k + 1] == 0)
                 p.p[k + 1] = 1;
-        const double zs[] = { 1e-12, 1e-100, 1e-300, 4.9e-324 }, phis[] = { 0, 90, 180, 217 };
-        const int nz = 16; /* zs x phis after the nd directions in degrees */
-        for (int a = 0; a < nd + nz; a++)
-            for (int b = 0; b < nd + nz; b++) {
+        for (int a = 0; a < FE_ND + FE_NZ; a++)
+            for (int b = 0; b < FE_ND + FE_NZ; b++) {
                 double wi[3], wo[3], rgb[3];
-                if (a < nd)
-                    tu_dir_at(dirs[a][0], dirs[a][1], wi);
-                else
-                    dir_z(zs[(a - nd) / 4], phis[(a - nd) % 4], wi);
-                if (b < nd)
-                    tu_dir_at(dirs[b][0], dirs[b][1], wo);
-                else
-                    dir_z(zs[(b - nd) / 4], phis[(b - nd) % 4], wo);
+                fe_dir(a, wi);
+                fe_dir(b, wo);
                 ck_assert_int_eq(brdffit_eval(m, &p, wi, wo, rgb, NULL), BRDFFIT_OK);
                 for (int c = 0; c < 3; c++)
                     ck_assert_msg(isfinite(rgb[c]) && rgb[c] >= 0,

@@ -31,9 +31,10 @@
  * as e^(ln T_m* + ln(pref F G S / (pi cos cos))) sum_m T_m / T_m*, so nothing
  * underflows unless K does: a lane whose peak term puts less than e^-760 into
  * K is 0 without summing (in a pass's bin rows, a higher floor:
- * bf_he_row_floor); the sum starts where the terms are within e^-40 of
- * the peak and stops, past the peak, once a term is below 1e-12 of the sum
- * (relative error ~1e-12; 3e-13 measured against 40-digit sums).  The cap
+ * bf_he_row_floor); the sum starts where the terms are within e^-40
+ * (BF_HE_HEAD) of the peak and stops, past the peak, once a term is below
+ * 1e-12 of the sum (relative error ~1e-12; 3e-13 measured against 40-digit
+ * sums), in the bin rows also where the terms fall below their floor.  The cap
  * m <= BF_HE_MMAX = 400 is exact: for g < 19, T_m < Poisson(m; 19) < e^-840
  * beyond it, and the scale factor is below e^45 for directions up to 89.9 deg
  * (and far beyond), so no later term reaches the double range.  The peak can

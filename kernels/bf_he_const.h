@@ -13,6 +13,7 @@
 #define BF_HE_MMAX 400       /* last term of the series             */
 #define BF_HE_COS_MIN 1e-100 /* floor of cos ti, cos to, cos theta_b */
 #define BF_HE_LN_DEAD (-760.0) /* a lane below e^this is 0 (the rows: bf_he_row_floor) */
+#define BF_HE_HEAD 40.0      /* a series starts within e^-40 of its peak term */
 #define BF_HE_U_FLAT 6.0     /* u >= 6: erfc(u) and e^(-u^2) taken as 0 */
 #define BF_HE_U_ROW 4.0      /* u >= 4: a pass's bin rows serve a lane whose sigma is sigma0
                               * (bf_he_near_serve) */

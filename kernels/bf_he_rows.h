@@ -242,23 +242,31 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
 }
 
 /* The floor of a pass's rows.  At a smooth point most bins lie far from the
- * specular direction, where K is below its value at normal incidence by
- * e^-100 to e^-700 without reaching e^BF_HE_LN_DEAD, and summing their
- * series was most of the rows' work (blue-acrylic at its fit: half the bins,
- * 60% of the terms).  So the rows take a lane as dead (0) where its series'
- * peak term puts less into K than e^-BF_HE_ROW_FLOOR of K at normal
- * incidence (wi = wo = N) at p0, per channel: pc->ldead = max(BF_HE_LN_DEAD,
- * ln K_normal - BF_HE_ROW_FLOOR) (BF_HE_LN_DEAD where K_normal is 0).  A
- * served K then differs from bf_he's by less than
- * BF_HE_MMAX e^-BF_HE_ROW_FLOOR K_normal ~ 3.5e-24 K_normal (at most
- * BF_HE_MMAX terms, none above the peak; tests/test_he.c, pass_memo).  In a
- * pass's sums, such a sample's term K w rho is then below 3.5e-24 e^20 ~
- * 1.7e-15 of the term of a sample near normal incidence (a MERL table's
- * rho spans less than e^20): below the rounding of sums of 1e5 to 1e6
- * such terms.  Measured over the 100 MERL tables: every fit the same to
- * the bit, at e^-100 first and at e^-60 since (subset passes at
- * blue-acrylic's and brass's fits 5-9% faster than at e^-100). */
-#define BF_HE_ROW_FLOOR 60.0
+ * specular direction, where K is far below its value at normal incidence,
+ * and summing their series was most of the rows' work (blue-acrylic at its
+ * fit: half the bins, 60% of the terms).  So the rows take a lane as dead
+ * (0) where its series' peak term puts less into K than e^-BF_HE_ROW_FLOOR of
+ * K at normal incidence (wi = wo = N) at p0, per channel: pc->ldead =
+ * max(BF_HE_LN_DEAD, ln K_normal - BF_HE_ROW_FLOOR) (BF_HE_LN_DEAD where
+ * K_normal is 0), and a live lane's sum leaves out its terms below e^ldead
+ * (bf_he_series_x).  A served K then differs from bf_he's by less than
+ * BF_HE_MMAX e^-BF_HE_ROW_FLOOR K_normal ~ 2.8e-10 K_normal (at most
+ * BF_HE_MMAX terms left out, each below e^ldead; tests/test_he.c,
+ * pass_memo), in practice by a few e^-28 K_normal ~ 1e-12 K_normal, where
+ * the measured values are the diffuse part's; a pass's value moments then
+ * differ from those of the samples evaluated one by one by ~1e-13 and its
+ * Jacobian moments by ~2e-11 (relative; tests/test_pass.c, fold_equals_plain
+ * and subset_every_8th), far below the forward differences' own error.
+ * Measured over the 100 MERL tables (He, --scale flat): each fit's Error, at
+ * its parameters, within -3.3e-13 to +2.7e-12 (relative) of the same Error
+ * with the floor at e^-60, and no fit above the stored run
+ * (bench/baseline-errors.tsv) by 1e-9; a stride-subset pass at brass's and
+ * two-layer-gold's fits 20-22% less than at e^-60, nickel's 14%, and the
+ * smooth fits around He's median 5-13% less (fastest of six).  At e^-25
+ * the Errors moved by up to 1.6e-11 at the same parameters and the
+ * Jacobian moments by 2e-8; at e^-20 the Errors by up to 2.7e-9.  At e^-60
+ * (and at e^-100, the first floor) every fit was the same to the bit. */
+#define BF_HE_ROW_FLOOR 28.0
 
 BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc)
 {

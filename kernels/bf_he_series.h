@@ -287,14 +287,16 @@ BF_FN_INLINE BF_REAL bf_he_series_peak(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REA
 }
 
 /* The first m (a scalar for the vector) from which bf_he_series_x sums
- * the lanes where act > 0: at most each lane's first term within e^-40 of
- * its peak term m (conv: m is the peak; else from 1).  The curvature of
- * ln T is at least kap on [3, m], so ln T(m - w) <= ln T(m) - kap w (w - 1) / 2. */
-BF_FN_INLINE int bf_he_series_first(BF_REAL m, BF_REAL a, BF_REAL conv, BF_REAL act)
+ * the lanes where act > 0: at most each lane's first term within e^-drop of
+ * its peak term m (conv: m is the peak; else from 1), drop = min(BF_HE_HEAD, the
+ * peak's height above the floor: bf_he_series_x).  The curvature of ln T is
+ * at least kap on [3, m], so ln T(m - w) <= ln T(m) - kap w (w - 1) / 2. */
+BF_FN_INLINE int bf_he_series_first(BF_REAL m, BF_REAL a, BF_REAL conv, BF_REAL act,
+                                    BF_REAL drop)
 {
     BF_REAL x1 = m + 1.0;
     BF_REAL kap = 2.0 * a / (x1 * x1 * x1) + (m - 1.0) / (m * x1);
-    BF_REAL w = 0.5 + sqrt(0.25 + 80.0 / fmax(kap, BF_R(1e-300)));
+    BF_REAL w = 0.5 + sqrt(0.25 + (2.0 * drop) / fmax(kap, BF_R(1e-300)));
     BF_REAL mlo = floor(m - w);
     mlo = BF_SEL(mlo, BF_R(1.0), (mlo < 3.0) || (conv <= 0.0));
     mlo = BF_SEL(BF_R(1e9), mlo, act > 0.0);
@@ -311,7 +313,12 @@ BF_FN_INLINE int bf_he_series_first(BF_REAL m, BF_REAL a, BF_REAL conv, BF_REAL 
  * starting point depends on la).  See bf_he.h's header comment; a lane whose peak
  * term puts less than e^ldead into the value (lpk + lk < ldead) is dead: 0,
  * not summed.  ldead is BF_HE_LN_DEAD (where the value underflows) but in a
- * pass's bin rows (bf_he_row_floor).
+ * pass's bin rows (bf_he_row_floor), where a live lane's sum also leaves out
+ * the terms below e^ldead at either end: it starts within e^-drop of the
+ * peak, drop the smaller of BF_HE_HEAD and the peak's height above the
+ * floor, and stops at the first term below the floor past the peak (with
+ * BF_HE_LN_DEAD, what it so leaves out of K lies below the smallest
+ * subnormal, e^-744).
  *
  * With deriv != 0 (a constant at every call) it also returns the partials of
  * ln V, V = e^(lpk + lk) sum_m t_m (t_m = T_m / T_m*, the terms it sums):
@@ -351,16 +358,20 @@ BF_FN BF_REAL bf_he_series_x(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_R
      * the finiteness of lanes that are not summed). */
     BF_REAL sum = BF_R(0.0), s1 = BF_R(0.0), sinv = BF_R(0.0);
     BF_REAL base = -g - lpk;
-    for (int k = bf_he_series_first(m, a, conv, act); k <= BF_HE_MMAX; k++) {
+    BF_REAL fl = BF_R(ldead) - (lpk + lk); /* the floor, relative to the peak term */
+    BF_REAL drop = fmin(BF_R(BF_HE_HEAD), fmax(-fl, BF_R(0.0)));
+    for (int k = bf_he_series_first(m, a, conv, act, drop); k <= BF_HE_MMAX; k++) {
         double dk = (double)k, ik = bf_he_rcp[k];
         BF_REAL e = dk * lng - a * ik + (base - bf_he_lkk[k]);
         BF_REAL t = bf_exp(fmin(fmax(e, BF_R(-700.0)), BF_R(700.0)));
-        sum = BF_SEL(sum, sum + t, act > 0.0);
+        /* a term below the floor is left out wherever the lane's vector
+         * starts (before the peak) and ends the lane (past it) */
+        sum = BF_SEL(sum, sum + t, (act > 0.0) && (e >= fl));
         if (deriv) {
-            s1 = BF_SEL(s1, s1 + t * dk, act > 0.0);
-            sinv = BF_SEL(sinv, sinv + t * ik, act > 0.0);
+            s1 = BF_SEL(s1, s1 + t * dk, (act > 0.0) && (e >= fl));
+            sinv = BF_SEL(sinv, sinv + t * ik, (act > 0.0) && (e >= fl));
         }
-        act = BF_SEL(act, BF_R(0.0), (m <= dk) && (t <= 1e-12 * sum));
+        act = BF_SEL(act, BF_R(0.0), (m <= dk) && ((t <= 1e-12 * sum) || (e < fl)));
         if (!BF_ANY(act > 0.0))
             break;
     }

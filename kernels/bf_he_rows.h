@@ -262,7 +262,7 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
  * with the floor at e^-60, and no fit above the stored run
  * (bench/baseline-errors.tsv) by 1e-9; a stride-subset pass at brass's and
  * two-layer-gold's fits 20-22% less than at e^-60, nickel's 14%, and the
- * smooth fits around He's median 5-13% less (fastest of six).  At e^-25
+ * smooth fits around He's median 5-17% less (fastest of six).  At e^-25
  * the Errors moved by up to 1.6e-11 at the same parameters and the
  * Jacobian moments by 2e-8; at e^-20 the Errors by up to 2.7e-9.  At e^-60
  * (and at e^-100, the first floor) every fit was the same to the bit. */

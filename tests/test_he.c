@@ -1379,10 +1379,19 @@ END_TEST
  * 0.001).  The rows just under the floor are left to the rows' own peak
  * test (at tau = 1, sigma0 = 0.001, where g is ~1e-3, it found none of
  * them with the floor at e^-25: its Poisson tail bound needs a / w well
- * above g); rougher sets'
- * rows are mostly 0 where the rough limit underflows, which the bound also
- * leaves to the rows. */
+ * above g); rougher sets' rows are mostly 0 where the rough limit
+ * underflows, which the bound also leaves to the rows. */
 #define DEEP_BELOW (60.0 - BF_HE_ROW_FLOOR)
+
+/* 1 when a row is 0 at every point and channel: K0 and the three neighbours. */
+static int row_zero(const double K0[3], const double Kj[3][3])
+{
+    int zero = 1;
+    for (int c = 0; c < 3; c++)
+        zero &= K0[c] == 0.0 && Kj[0][c] == 0.0 && Kj[1][c] == 0.0 && Kj[2][c] == 0.0;
+    return zero;
+}
+
 START_TEST(rows_dead_bound)
 {
     const double *P = fd_sets[_i];
@@ -1404,15 +1413,10 @@ START_TEST(rows_dead_bound)
             bf_geom g = geom(wi, wo);
             double K0[3], Kj[3][3];
             bf_he_fd_lanes(&g, (const double(*)[3])p, 3, default_lam, &pc, 1, K0, Kj, NULL);
-            int allzero = 1;
-            for (int c = 0; c < 3; c++)
-                allzero &= K0[c] == 0.0 && Kj[0][c] == 0.0 && Kj[1][c] == 0.0 && Kj[2][c] == 0.0;
+            const int allzero = row_zero(K0, Kj);
             double D0[3], Dj[3][3];
             bf_he_fd_lanes(&g, (const double(*)[3])p, 3, default_lam, &deep, 1, D0, Dj, NULL);
-            int deepzero = 1;
-            for (int c = 0; c < 3; c++)
-                deepzero &= D0[c] == 0.0 && Dj[0][c] == 0.0 && Dj[1][c] == 0.0 && Dj[2][c] == 0.0;
-            zero += deepzero;
+            zero += row_zero(D0, Dj);
             bf_he_dir d;
             bf_he_dir_make(&g, &d);
             if (!bf_he_rows_dead(&d, 1.0, P, default_lam, &pc))

@@ -196,6 +196,34 @@ START_TEST(prepare_refuses_and_small_sets)
 }
 END_TEST
 
+/* A model that refines on the bin subset first (registry: refine_on_bins)
+ * has the subsets it runs on (refine_on_subset, a stride, bins), and its
+ * rough test is on one of its lobe coordinates' parameters, inside that
+ * parameter's bounds; He is one. */
+START_TEST(refine_on_bins_has_its_subsets)
+{
+    int found = 0;
+    for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
+        const bf_model_def *def = bf_model_def_get((brdffit_model)m);
+        if (!def->refine_on_bins)
+            continue;
+        found += m == BRDFFIT_HE;
+        ck_assert_msg(def->refine_on_subset && def->screen_stride > 1, "model %d", m);
+        for (int i = 0; i < 3; i++)
+            ck_assert_int_gt(def->screen_bins[i], 0);
+        int coord = 0;
+        for (int j = 0; j < bf_model_ncoords((brdffit_model)m); j++)
+            coord |= bf_model_coord_param((brdffit_model)m, j) == def->rough_param;
+        ck_assert_msg(coord, "model %d: rough_param %d is no coordinate's", m, def->rough_param);
+        const brdffit_param_info *pi = &def->info.params[def->rough_param];
+        ck_assert_msg(def->rough_from > pi->lower && def->rough_from < pi->upper,
+                      "model %d: rough_from %g outside (%g, %g)", m, def->rough_from, pi->lower,
+                      pi->upper);
+    }
+    ck_assert_int_eq(found, 1);
+}
+END_TEST
+
 /* A derived datum whose making fails: its status and message come back,
  * nothing is kept, and the next ask makes it (a failure is not remembered). */
 static int fail_next = 1;
@@ -246,6 +274,7 @@ Suite *subsets_suite(void)
     tcase_add_loop_test(tc, prepared_fit_is_fresh_fit, 0, 2);
     tcase_add_test(tc, prepare_refuses_and_small_sets);
     tcase_add_test(tc, failed_make_keeps_nothing);
+    tcase_add_test(tc, refine_on_bins_has_its_subsets);
     suite_add_tcase(s, tc);
     return s;
 }

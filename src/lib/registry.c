@@ -119,7 +119,18 @@ static const bf_model_def registry[] = {
      * passes 1.84 -> 1.09 s, one fit 4.6e-14 higher (specular-red-phenolic),
      * the others the same to the bit; every 4th: 0.76 s, three fits moved by
      * less than 6e-15, a 192nd of the samples, close to SCREEN_MIN_SAMPLES;
-     * every 30th sample: 2 fits moved by less than 1e-9). */
+     * every 30th sample: 2 fits moved by less than 1e-9).  Each kept start
+     * is then refined by LM on the bin subset first, where a pass costs a
+     * third (smooth points) to a ninth of the stride subset's, and only the
+     * ends within BINS_MARGIN of the lowest there, not at an earlier run's
+     * end, go on to the stride subset, from that end (fit.c, bins_runs).  An
+     * end with sigma0 >= 0.3 um goes on from its start instead: He's value
+     * there is near its rough limit (g >= 19) over most directions at all
+     * three wavelengths, and that depends on tau / sigma0 alone, so where
+     * along that line the bin subset's run ends is no guide to where the
+     * stride subset's would (from the bin end, polyurethane-foam's fit ended
+     * 7.9e-6 above the stored run; blue-metallic-paint2's 3.7e-5 above the
+     * run before at 0.5 um). */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
                   .default_starts = 21 },
@@ -129,6 +140,9 @@ static const bf_model_def registry[] = {
         .screen_bins = { 3, 3, 12 },
         .secant = BF_SECANT_ON_ALL,
         .refine_on_subset = 1,
+        .refine_on_bins = 1,
+        .rough_param = 1,
+        .rough_from = 0.3,
     },
     [BRDFFIT_GGX] = {
         .info = { BRDFFIT_GGX, "ggx", "GGX", PARAMS(ggx_params), .chromatic = 0,

@@ -53,6 +53,16 @@ typedef struct bf_model_def {
                                   * screening's subset first, then on all
                                   * samples from where that stopped (fit.c,
                                   * refine_kept); 0: on all samples only      */
+    int refine_on_bins;          /* 1 (with refine_on_subset and screen_bins):
+                                  * each kept start is refined by LM on the
+                                  * bin subset before the screen_stride
+                                  * subset, and only the bin ends within
+                                  * BINS_MARGIN of the lowest go on there, from
+                                  * that end (fit.c, bins_runs)              */
+    int rough_param;             /* with refine_on_bins: a bin end whose lobe
+                                  * parameter rough_param is at or above
+                                  * rough_from goes on from its start instead */
+    double rough_from;
 } bf_model_def;
 
 /* The registry entry of a model, or NULL for an id out of range. */

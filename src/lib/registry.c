@@ -125,12 +125,13 @@ static const bf_model_def registry[] = {
      * ends within BINS_MARGIN of the lowest there, not at an earlier run's
      * end, go on to the stride subset, from that end (fit.c, bins_runs).  An
      * end with sigma0 >= 0.3 um goes on from its start instead: He's value
-     * there is near its rough limit (g >= 19) over most directions at all
-     * three wavelengths, and that depends on tau / sigma0 alone, so where
-     * along that line the bin subset's run ends is no guide to where the
-     * stride subset's would (from the bin end, polyurethane-foam's fit ended
-     * 7.9e-6 above the stored run; blue-metallic-paint2's 3.7e-5 above the
-     * run before at 0.5 um). */
+     * there is at its rough limit (g >= 19) wherever theta_i and theta_o
+     * are below ~40 degrees at 645 nm and ~60 degrees at 444 nm, and that
+     * depends on tau / sigma0 alone, so where along that line the bin
+     * subset's run ends is no guide to where the stride subset's would (from
+     * the bin end, polyurethane-foam's fit ended 7.9e-6 above the stored
+     * run; with the line at 0.5 um, blue-metallic-paint2's 3.7e-5 above the
+     * run before; at 0.2 um, nickel's 8.2e-6 above the stored run). */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
                   .default_starts = 21 },

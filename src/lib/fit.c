@@ -964,6 +964,15 @@ static unsigned on_bounds(const fitmap *fm, const double *x)
     return mask;
 }
 
+/* A run that has not moved from start sp. */
+static void run_at(lmrun *run, const start *sp)
+{
+    memset(run, 0, sizeof *run);
+    memcpy(run->x, sp->x, sizeof run->x);
+    run->lin = sp->lin;
+    run->rr = sp->cost;
+}
+
 /* Refining a start is two stages (three with refine_on_bins: bins_runs
  * first).  refine_subset: LM on the screening's subset when the model's
  * registry entry says so (S->sub; else the start as screened on all
@@ -976,16 +985,6 @@ static unsigned on_bounds(const fitmap *fm, const double *x)
  * inside on those coordinates (bound_restart), and the better kept; one that
  * still ends there is taken once more with them held on the bound
  * (pinned_run). */
-
-/* A run that has not moved from start sp. */
-static void run_at(lmrun *run, const start *sp)
-{
-    memset(run, 0, sizeof *run);
-    memcpy(run->x, sp->x, sizeof run->x);
-    run->lin = sp->lin;
-    run->rr = sp->cost;
-}
-
 static brdffit_status refine_subset(lmstate *S, const brdffit_fit_options *o, const start *sp,
                                     lmrun *run, double *solver_s)
 {

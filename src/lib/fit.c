@@ -926,10 +926,13 @@ static int same_coords(const fitmap *fm, const double *xa, const double *xb)
     return bf_places_within(pa, pb, 2 * fm->nl, SAME_POINT);
 }
 
-/* Two ends, each its r^T r and lobe coordinates, at one minimum. */
+/* Two ends, each its r^T r and lobe coordinates, at one minimum (an end
+ * with r^T r not finite, such as a run not taken, bins_runs, is none: two
+ * infinities would be within SAME_RR of each other). */
 static int same_end(const fitmap *fm, double ra, const double *xa, double rb, const double *xb)
 {
-    return fabs(ra - rb) <= SAME_RR * fmax(ra, rb) && same_coords(fm, xa, xb);
+    return isfinite(ra) && isfinite(rb) && fabs(ra - rb) <= SAME_RR * fmax(ra, rb) &&
+           same_coords(fm, xa, xb);
 }
 
 /* A subset run that comes to the point where an earlier one ended (a point
@@ -944,8 +947,6 @@ static int same_end(const fitmap *fm, double ra, const double *xa, double rb, co
 static int join_end(const lmstate *S, const point *pt)
 {
     for (int q = 0; q < S->nends; q++) {
-        if (!isfinite(S->ends[q].rr)) /* a run not taken (see bins_runs) */
-            continue;
         if (same_end(&S->fm, pt->rr, pt->x, S->ends[q].rr, S->ends[q].x))
             return q;
     }
@@ -1091,6 +1092,24 @@ static void run_end(const fitmap *fm, const lmrun *run, int joined, bf_run_end *
     coord_places(fm, run->x, e->place);
 }
 
+/* Before run r of runs: a point it comes to at the end of runs 0 .. r-1
+ * stops it there (join_end). */
+static void join_before(lmstate *S, const lmrun *runs, int r)
+{
+    S->ends = runs;
+    S->nends = r;
+    S->joined = -1;
+}
+
+/* After it: where it ended (and whether it joined one) into *e, and no
+ * joining for the runs that follow elsewhere. */
+static void join_after(lmstate *S, const lmrun *run, bf_run_end *e)
+{
+    run_end(&S->fm, run, S->joined >= 0, e);
+    S->nends = 0;
+    S->joined = -1;
+}
+
 /* A run on the bin subset goes on to the stride subset when it ended
  * within BINS_MARGIN of the lowest bin end (and neither at an earlier run's
  * end nor the higher of two ends in one valley: bf_refine_select).
@@ -1113,13 +1132,9 @@ static brdffit_status bins_runs(lmstate *S, const brdffit_fit_options *o, const 
     bf_run_end ends[MAX_KEEP];
     for (int r = 0; r < nkeep; r++) {
         run_at(&bruns[r], &keep[r]);
-        S->ends = bruns;
-        S->nends = r;
-        S->joined = -1;
+        join_before(S, bruns, r);
         brdffit_status st = lm_subset(S, S->bins, o, &bruns[r], solver_s);
-        run_end(&S->fm, &bruns[r], S->joined >= 0, &ends[r]);
-        S->nends = 0;
-        S->joined = -1;
+        join_after(S, &bruns[r], &ends[r]);
         if (st != BRDFFIT_OK)
             return st;
     }
@@ -1160,21 +1175,20 @@ static brdffit_status refine_kept(lmstate *S, const brdffit_fit_options *o, cons
     const int on_bins = S->sub && S->bins_open && bf_model_def_get(S->fm.model)->refine_on_bins;
     brdffit_status st = on_bins ? bins_runs(S, o, keep, nkeep, bruns, take, solver_s) : BRDFFIT_OK;
     for (int r = 0; r < nkeep && st == BRDFFIT_OK; r++) {
-        S->ends = runs;
-        S->nends = r;
-        S->joined = -1;
-        start from = keep[r];
-        if (on_bins)
-            start_after_bins(S, &keep[r], &bruns[r], &from);
+        const start *from = &keep[r];
+        start after;
+        if (on_bins) {
+            start_after_bins(S, &keep[r], &bruns[r], &after);
+            from = &after;
+        }
+        join_before(S, runs, r);
         if (on_bins && !take[r]) {
-            run_at(&runs[r], &from);
+            run_at(&runs[r], from);
             runs[r].rr = INFINITY;
         } else {
-            st = refine_subset(S, o, &from, &runs[r], solver_s);
+            st = refine_subset(S, o, from, &runs[r], solver_s);
         }
-        run_end(&S->fm, &runs[r], S->joined >= 0, &ends[r]);
-        S->nends = 0;
-        S->joined = -1;
+        join_after(S, &runs[r], &ends[r]);
     }
     if (st != BRDFFIT_OK)
         return st;

@@ -96,8 +96,9 @@
  * takes them (bf_he_bin_serve when its lanes share a bin, else
  * bf_he_bin_gather); else bf_he_fd_surface (the directions but their
  * logarithms, S, sigma, F: the sines and u from the test for flat lanes), and
- * a vector whose lanes are all flat or near them (sigma = sigma0) takes the
- * rows times its own shadowing (bf_he_near_serve: no logarithm taken); else
+ * a vector whose lanes are all flat or near them (sigma = sigma0, or w = 1 -
+ * (sigma / sigma0)^2 <= 1e-7) takes the rows times its own shadowing (and
+ * the carry of ln K to its g: bf_he_near_serve; no logarithm taken); else
  * the directions' logarithms and the rough limit (bf_he_dir_logs,
  * bf_he_fd_scale), then bf_he_fd_rest: bf_he_fd_channel per channel (the
  * value, through bf_he_dblend), bf_he_fd_neighbour per neighbour (with no

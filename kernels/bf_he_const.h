@@ -15,8 +15,8 @@
 #define BF_HE_LN_DEAD (-760.0) /* a lane below e^this is 0 (the rows: bf_he_row_floor) */
 #define BF_HE_HEAD 40.0      /* a series starts within e^-40 of its peak term */
 #define BF_HE_U_FLAT 6.0     /* u >= 6: erfc(u) and e^(-u^2) taken as 0 */
-#define BF_HE_U_ROW 4.0      /* u >= 4: a pass's bin rows serve a lane whose sigma is sigma0
-                              * (bf_he_near_serve) */
+#define BF_HE_U_ROW 2.0      /* u >= 2: a pass's bin rows serve a lane whose sigma is sigma0
+                              * or just below it (bf_he_near_serve) */
 /* ln 18, ln 19, ln 400 (BF_HE_G_LO, BF_HE_G_HI, BF_HE_MMAX), correctly rounded:
  * written out, as the kernel compiler does not fold log() of a constant */
 #define BF_HE_LN_G_LO 2.8903717578961645

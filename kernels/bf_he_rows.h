@@ -42,7 +42,13 @@ enum {
 };
 #define BF_NHD (90 * 90)
 #define BF_NHD_PAD (BF_NHD + 8) /* a vector from the last bin stays inside */
-#define BF_BK_FIELDS (3 * (1 + BF_HE_NP))
+/* A pass's rows: fields 3 j + c, K cos ti cos to at p[j] in channel c, then
+ * per channel c the carry of the lanes a little rougher than flat at p[0]
+ * (bf_he_near_serve): BF_HE_ROW_G + c, G = d ln K / d ln g, and
+ * BF_HE_ROW_H + c, H = d^2 ln K / d (ln g)^2 (bf_he_row_carry). */
+#define BF_HE_ROW_G (3 * (1 + BF_HE_NP))
+#define BF_HE_ROW_H (BF_HE_ROW_G + 3)
+#define BF_BK_FIELDS (BF_HE_ROW_H + 3)
 
 /* The bin rows of a data pass (bf_he_memo.rows).  Where the shadowing is flat
  * (u >= BF_HE_U_FLAT for both directions: S = 1, sigma = sigma0), K depends
@@ -160,25 +166,37 @@ BF_FN void bf_he_bin_load(bf_he_memo *m, int hd, int np)
     m->bgen = 1.0 + (double)hd;
 }
 
+/* 1 when the lanes' bins (m->vhd) are at most two, its first lane's and
+ * its last's (a vector of the stride subset mostly spans two). */
+BF_FN int bf_he_rows_two(const bf_he_memo *m)
+{
+    const double h0 = BF_FIRST(m->vhd), h1 = BF_LAST(m->vhd);
+    return !BF_ANY((m->vhd != h0) && (m->vhd != h1));
+}
+
+/* Field f of the rows of the lanes' bins, two = bf_he_rows_two(m): where
+ * they lie in two, a select between the two rows (4% faster than gathering
+ * them at blue-acrylic's and brass's fits). */
+BF_FN BF_REAL bf_he_row_field(const bf_he_memo *m, int f, int two)
+{
+    BF_GLOBAL const double *r = m->rows + f * m->nrows;
+    if (two)
+        return BF_SEL(BF_R(r[(int)BF_FIRST(m->vhd)]), BF_R(r[(int)BF_LAST(m->vhd)]),
+                      m->vhd == BF_LAST(m->vhd));
+    return BF_GATHERG(r, m->vhd);
+}
+
 /* K0 and Kj of a flat vector whose lanes lie in several bins: each lane's
- * row, times its q.  Where they lie in two (a vector of the stride subset
- * mostly does), a select between the two rows: 4% faster than gathering
- * them at blue-acrylic's and brass's fits. */
+ * row, times its q. */
 BF_FN void bf_he_bin_gather(const bf_he_memo *m, BF_REAL q, int np, BF_REAL *K0,
                             BF_REAL (*Kj)[3])
 {
-    const double h0 = BF_FIRST(m->vhd), h1 = BF_LAST(m->vhd);
-    const int two = !BF_ANY((m->vhd != h0) && (m->vhd != h1));
-    for (int j = 0; j <= np; j++)
-        for (int c = 0; c < 3; c++) {
-            BF_GLOBAL const double *r = m->rows + (3 * j + c) * m->nrows;
-            BF_REAL v = (two ? BF_SEL(BF_R(r[(int)h0]), BF_R(r[(int)h1]), m->vhd == h1)
-                             : BF_GATHERG(r, m->vhd)) * q;
-            if (j == 0)
-                K0[c] = v;
-            else
-                Kj[j - 1][c] = v;
-        }
+    const int two = bf_he_rows_two(m);
+    for (int c = 0; c < 3; c++)
+        K0[c] = bf_he_row_field(m, c, two) * q;
+    for (int j = 0; j < np; j++)
+        for (int c = 0; c < 3; c++)
+            Kj[j][c] = bf_he_row_field(m, 3 * (1 + j) + c, two) * q;
 }
 
 /* K at p[0] and at p[1..np] of the lanes of b (bf_he_fd_base's at p[0]):
@@ -204,38 +222,80 @@ BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const 
 }
 
 /* The lanes near the flat ones, from the rows.  Where u >= BF_HE_U_ROW in
- * both directions, erfc(u) <= 1.6e-8 and sigma's root x is so small that
- * sigma = sigma0 / sqrt(1 + x^2) is sigma0 to the bit in most lanes (near
- * grazing, tan t can make it not: such a lane is not served); the shadowing
- * S(t) = 1 - O(erfc u) is not 1.  Such a lane's K is its bin's flat K times
- * S(ti) S(to): g, a, F and G are the bin's (to the rounding of its
- * directions, as for a flat lane), and the series with them; so K =
- * row (S(ti) / cos ti) (S(to) / cos to) at p[0], and at p[j] the row at p[j]
- * times the shadowing carried there (bf_he_rough_step, whose sigma stays
- * sigma0's to first order in x ~ 1e-10).  The rows are made for every bin
- * with a sample at u >= BF_HE_U_ROW (bf_he_bin_rows), so every lane served
- * has its bin's row.  A vector is served when all its lanes are (else 0,
- * nothing set): at a smooth fit, the lanes a little inside the cutoff
- * (u in [4, 6)) then take no series, no table and no neighbour's carry
- * (u >= 4.5 at first: nylon's fit, whose cutoff lanes lie at u ~ 4.2, took
- * 1.57 ms a subset pass against 0.74 ms from u >= 4; every other pass
- * measured the same; below 4, sigma is rarely sigma0 to the bit). */
+ * both directions the shadowing S(t) = 1 - O(erfc u) is not 1 (erfc(2) =
+ * 4.7e-3), but sigma's root x is often small: at He's typical start
+ * (tau = 16, sigma0 = 0.5) every sample of alum-bronze's that is not flat has
+ * 1 - sigma / sigma0 below 1e-7.  Such a lane's g, a, F and G are its bin's
+ * at sigma0 (to the rounding of its directions, as for a flat lane) but for
+ * g's relative shortfall w = x^2 / (1 + x^2) = 1 - (sigma / sigma0)^2.  With
+ * w <= BF_HE_W_CARRY its K is its bin's row times
+ * (S(ti) / cos ti) (S(to) / cos to), times ln K carried from the row's g to
+ * g (1 - w) by the row's G and H (bf_he_row_carry): e^(G s + H s^2 / 2),
+ * s = ln(1 - w) = -w (1 + w / 2) to 3e-22.  What that leaves out is the
+ * next term, d^3 ln K / d(ln g)^3 s^3 / 6: in the rough limit a/g s^3 / 6;
+ * in the series, where the rows keep no H, H s^2 / 2 itself, H = Var(m) - g
+ * of the series' weights (|H| < 30 over the (g, a) of the MERL bins:
+ * 1.5e-13 at w = 1e-7).  At p[j]: the row at p[j], the shadowing and w
+ * carried there (bf_he_rough_step), G and H those at p[0] (what that leaves
+ * out is ~h w dG/dp ~ 1e-13 of K, h ~ 1e-7 the step).  tests/test_he.c
+ * (pass_memo) holds every served K within 2e-12 and every neighbour within
+ * 1e-11 of its own evaluation.  Where sigma is sigma0 to the bit (the only
+ * lanes served so before the carry), w is taken as 0 at every point.  The
+ * rows are made for every bin with a sample at u >= BF_HE_U_ROW
+ * (bf_he_bin_rows), so every lane served has its bin's row; below u = 2,
+ * w <= 1e-7 needs tan t < 0.34 (r >= tan t erfc(u) / sqrt(8 pi), at most 3.2e-4).
+ * A vector is served when all its lanes are (else 0, nothing set).
+ * Measured (thirtieth session, alum-bronze's mirror set at the typical
+ * start): the samples not served by the rows 35919 -> 1601 of 467468; a
+ * value pass 2.8 -> 1.6 ms, a full pass 3.9 -> 2.7 ms (u >= 2.5 the same,
+ * u >= 3 as before; u >= 4 had been the bound, for sigma = sigma0). */
+#define BF_HE_W_CARRY 1e-7
+/* G of a bin whose rows carry no lane (bf_he_row_carry). */
+#define BF_HE_ROW_NONE 1e300
+
+/* G and H of the lanes' bins (rows fields BF_HE_ROW_G, BF_HE_ROW_H) into
+ * G[3], H[3]: 0 when a lane with w > 0 lies in a bin that has none
+ * (BF_HE_ROW_NONE: bf_he_row_carry), else 1. */
+BF_FN int bf_he_row_carry_load(const bf_he_memo *m, BF_REAL w, BF_REAL *G, BF_REAL *H)
+{
+    const int two = bf_he_rows_two(m);
+    for (int c = 0; c < 3; c++) {
+        G[c] = bf_he_row_field(m, BF_HE_ROW_G + c, two);
+        if (BF_ANY((w > 0.0) && (G[c] >= BF_HE_ROW_NONE)))
+            return 0;
+        H[c] = bf_he_row_field(m, BF_HE_ROW_H + c, two);
+    }
+    return 1;
+}
+
+/* e^(G s + H s^2 / 2) of channel c, s = ln(1 - w) (see above). */
+BF_FN BF_REAL bf_he_row_carry_exp(const BF_REAL *G, const BF_REAL *H, int c, BF_REAL w)
+{
+    BF_REAL s = -w * (1.0 + 0.5 * w);
+    return bf_he_exp_small(s * (G[c] + (0.5 * s) * H[c]));
+}
+
 BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)[3], int np,
                            BF_REAL *K0, BF_REAL (*Kj)[3])
 {
     const double tau = p[0][0], sigma0 = p[0][1];
-    if (BF_ANY((b->r.ui < BF_HE_U_ROW) || (b->r.uo < BF_HE_U_ROW) || (b->r.sigma != sigma0)))
+    if (BF_ANY((b->r.ui < BF_HE_U_ROW) || (b->r.uo < BF_HE_U_ROW) || (b->r.w > BF_HE_W_CARRY)))
+        return 0;
+    BF_REAL w = BF_SEL(b->r.w, BF_R(0.0), b->r.sigma == sigma0), G[3], H[3];
+    const int carry = BF_ANY(w > 0.0);
+    if (carry && !bf_he_row_carry_load(m, w, G, H))
         return 0;
     bf_he_bin_gather(m, BF_R(1.0), np, K0, Kj);
     BF_REAL s = BF_SEL(b->r.shi * b->r.sho, BF_R(0.0), b->zero > 0.0);
     for (int c = 0; c < 3; c++)
-        K0[c] *= s;
+        K0[c] *= carry ? s * bf_he_row_carry_exp(G, H, c, w) : s;
     for (int j = 0; j < np; j++) {
         bf_he_rough rj;
         bf_he_rough_step(&b->r, tau, sigma0, p[1 + j][0], p[1 + j][1], &rj);
         BF_REAL sj = BF_SEL(rj.shi * rj.sho, BF_R(0.0), b->zero > 0.0);
+        BF_REAL wj = BF_SEL(rj.w, BF_R(0.0), w <= 0.0);
         for (int c = 0; c < 3; c++)
-            Kj[j][c] *= sj;
+            Kj[j][c] *= carry ? sj * bf_he_row_carry_exp(G, H, c, wj) : sj;
     }
     m->nhits += 1.0;
     return 1;
@@ -330,6 +390,32 @@ BF_FN void bf_he_row_floors(const double *p0, const double *lam, double *floor)
         floor[ch] = pc.ldead[ch];
 }
 
+/* G = d ln K / d ln g and H = d^2 ln K / d(ln g)^2 of a flat lane at p0
+ * in channel ch (wavelength lam), b made by bf_he_fd_base_dir with flat and
+ * K0 its value (bf_he_fd_rest), for bf_he_near_serve's carry: in the
+ * series (g below 18) G = g dlnV/dg and H 0 (H itself is the carry's
+ * remainder there: bf_he_near_serve), in the rough limit (g above 19,
+ * ln K = lk - a/g - ln g) G = a/g - 1 and H = -a/g; 0 where K0 is 0 (no
+ * carry changes a 0).  Within BF_HE_CARRY_EDGE (relative) of 18 and 19
+ * and between them, where the blend's slope jumps, G = BF_HE_ROW_NONE: no
+ * lane with w > 0 is carried from there, so that no carry (at p[0], or at
+ * a neighbour's g_ref, which a step of ~1e-7 moves by ~2e-7) crosses a
+ * jump. */
+#define BF_HE_CARRY_EDGE 1e-6
+
+BF_FN void bf_he_row_carry(const bf_he_base *b, BF_REAL K0, double lam, int ch, BF_REAL *G,
+                           BF_REAL *H)
+{
+    const double kl = 2.0 * BF_PI / lam;
+    BF_REAL gg = (kl * kl) * (b->sv * b->sv), ag = b->a0[ch] / gg;
+    BF_REAL series = BF_SEL(BF_R(0.0), BF_R(1.0), gg < BF_HE_G_LO * (1.0 - BF_HE_CARRY_EDGE));
+    BF_REAL limit = BF_SEL(BF_R(0.0), BF_R(1.0), gg > BF_HE_G_HI * (1.0 + BF_HE_CARRY_EDGE));
+    *G = BF_SEL(BF_SEL(BF_R(BF_HE_ROW_NONE), ag - 1.0, limit > 0.0), gg * b->Vg[ch], series > 0.0);
+    *H = BF_SEL(BF_R(0.0), -ag, limit > 0.0);
+    *G = BF_SEL(*G, BF_R(0.0), K0 == 0.0);
+    *H = BF_SEL(*H, BF_R(0.0), K0 == 0.0);
+}
+
 /* A pass's rows (see above) of the bins h0 .. h1 of the bin table `bins`
  * (BF_B_* above) at p[0..np]: field f = 3 j + c (K cos ti cos to at p[j] in
  * channel c) of bin hd into rows[f * nrows + hd], BF_NLANES bins at a time
@@ -368,14 +454,23 @@ BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const do
         if (bf_he_rows_dead(&d, live, p[0], lam, &pc)) {
             for (int f = 0; f < 3 * (1 + np); f++)
                 BF_STORE(BF_R(0.0), rows + f * nrows + h);
+            for (int c = 0; c < 3; c++) {
+                BF_STORE(BF_R(0.0), rows + (BF_HE_ROW_G + c) * nrows + h);
+                BF_STORE(BF_R(0.0), rows + (BF_HE_ROW_H + c) * nrows + h);
+            }
             continue;
         }
         bf_he_base b; /* bf_he_fd_lanes with flat, from d */
         bf_he_fd_base_dir(&d, p[0], lam, &pc, 1, &b);
         bf_he_fd_rest(&b, p, np, lam, &pc, K0, Kj, (bf_he_memo *)0);
         BF_REAL cc = fmax(g.iz, BF_HE_COS_MIN) * fmax(g.oz, BF_HE_COS_MIN);
-        for (int c = 0; c < 3; c++)
+        for (int c = 0; c < 3; c++) {
+            BF_REAL G, H;
+            bf_he_row_carry(&b, K0[c], lam[c], c, &G, &H);
             BF_STORE(K0[c] * cc, rows + c * nrows + h);
+            BF_STORE(G, rows + (BF_HE_ROW_G + c) * nrows + h);
+            BF_STORE(H, rows + (BF_HE_ROW_H + c) * nrows + h);
+        }
         for (int j = 0; j < np; j++)
             for (int c = 0; c < 3; c++)
                 BF_STORE(Kj[j][c] * cc, rows + (3 * (1 + j) + c) * nrows + h);

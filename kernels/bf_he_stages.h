@@ -96,6 +96,9 @@ typedef struct bf_he_rough {
     BF_REAL xk, xr;                 /* xk = x / (1 + x^2): dx per d ln r at the
                                      * root, and -d ln sigma per dx; xr = xk / r:
                                      * dx per dr                           */
+    BF_REAL w;                      /* x^2 / (1 + x^2) = 1 - (sigma / sigma0)^2:
+                                     * g's relative shortfall from its value at
+                                     * sigma0 (bf_he_near_serve)           */
 } bf_he_rough;
 
 /* bf_he_rough_make with the directions' u given (bf_he_u2 of d's cosines and
@@ -126,7 +129,7 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
             r->dshi = r->dsho = BF_R(0.0);
             r->r = BF_R(0.0);
             r->x = BF_R(BF_TINY);
-            r->tani = r->tano = r->xk = r->xr = BF_R(0.0);
+            r->tani = r->tano = r->xk = r->xr = r->w = BF_R(0.0);
         }
         return;
     }
@@ -164,6 +167,7 @@ BF_FN void bf_he_rough_make_u(const bf_he_dir *d, BF_REAL ui, BF_REAL uo, double
         r->tano = tano;
         r->xk = x * (sq * ix);
         r->xr = xq * (sq * ix);
+        r->w = (x * x) * (sq * ix);
         r->ui = ui;
         r->uo = uo;
         r->ei = ei;
@@ -211,9 +215,9 @@ BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
  * the ratio's step, exactly but for rounding), S(t) / cos t by dS/du, erfc by
  * -2 e^(-u^2) / sqrt(pi), r by its weights tan t, x by one Newton step on
  * ln x + x^2/2 = ln r from r0's root (dx = x dr / (r (1 + x^2))), sigma by
- * d ln sigma = d ln sigma0 - x dx / (1 + x^2).  No exp, erfc, log, square
- * root or division per lane.  (It sets shi, sho and sigma: all that a
- * neighbour uses.) */
+ * d ln sigma = d ln sigma0 - x dx / (1 + x^2), w by dw = 2 x dx / (1 + x^2)^2.
+ * No exp, erfc, log, square root or division per lane.  (It sets shi, sho,
+ * sigma and w: all that a neighbour uses.) */
 BF_FN void bf_he_rough_step(const bf_he_rough *r0, double tau0, double sigma00, double tau,
                             double sigma0, bf_he_rough *r)
 {
@@ -222,6 +226,7 @@ BF_FN void bf_he_rough_step(const bf_he_rough *r0, double tau0, double sigma00, 
         r->shi = r0->shi;
         r->sho = r0->sho;
         r->sigma = BF_R(sigma0);
+        r->w = BF_R(0.0);
         return;
     }
     /* u'/u - 1; u = 1e10 is the normal's clamp (bf_he_u2), where u stays */
@@ -234,6 +239,7 @@ BF_FN void bf_he_rough_step(const bf_he_rough *r0, double tau0, double sigma00, 
                * (-2.0 / (BF_SQRT_PI * sqrt(8.0 * BF_PI)));
     BF_REAL dx = r0->xr * dr;
     r->sigma = (r0->sigma * (sigma0 / sigma00)) * (1.0 - r0->xk * dx);
+    r->w = r0->w + (2.0 * r0->xk) * (1.0 - r0->w) * dx; /* dw/dx = 2 x / (1 + x^2)^2 */
 }
 
 /* What bf_he_fd computes at p[0] and its neighbours are carried from. */

@@ -268,10 +268,16 @@ BF_FN int bf_he_row_carry_load(const bf_he_memo *m, BF_REAL w, BF_REAL *G, BF_RE
     return 1;
 }
 
-/* e^(G s + H s^2 / 2) of channel c, s = ln(1 - w) (see above). */
-BF_FN BF_REAL bf_he_row_carry_exp(const BF_REAL *G, const BF_REAL *H, int c, BF_REAL w)
+/* s = ln(1 - w) of a lane's w (to 3e-22 for w <= BF_HE_W_CARRY), once a
+ * point for the three channels' bf_he_row_carry_exp. */
+BF_FN BF_REAL bf_he_row_carry_s(BF_REAL w)
 {
-    BF_REAL s = -w * (1.0 + 0.5 * w);
+    return -w * (1.0 + 0.5 * w);
+}
+
+/* e^(G s + H s^2 / 2) of channel c (see above). */
+BF_FN BF_REAL bf_he_row_carry_exp(const BF_REAL *G, const BF_REAL *H, int c, BF_REAL s)
+{
     return bf_he_exp_small(s * (G[c] + (0.5 * s) * H[c]));
 }
 
@@ -287,15 +293,16 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
         return 0;
     bf_he_bin_gather(m, BF_R(1.0), np, K0, Kj);
     BF_REAL s = BF_SEL(b->r.shi * b->r.sho, BF_R(0.0), b->zero > 0.0);
+    BF_REAL ls = carry ? bf_he_row_carry_s(w) : BF_R(0.0);
     for (int c = 0; c < 3; c++)
-        K0[c] *= carry ? s * bf_he_row_carry_exp(G, H, c, w) : s;
+        K0[c] *= carry ? s * bf_he_row_carry_exp(G, H, c, ls) : s;
     for (int j = 0; j < np; j++) {
         bf_he_rough rj;
         bf_he_rough_step(&b->r, tau, sigma0, p[1 + j][0], p[1 + j][1], &rj);
         BF_REAL sj = BF_SEL(rj.shi * rj.sho, BF_R(0.0), b->zero > 0.0);
-        BF_REAL wj = BF_SEL(rj.w, BF_R(0.0), w <= 0.0);
+        BF_REAL lsj = carry ? bf_he_row_carry_s(BF_SEL(rj.w, BF_R(0.0), w <= 0.0)) : BF_R(0.0);
         for (int c = 0; c < 3; c++)
-            Kj[j][c] *= carry ? sj * bf_he_row_carry_exp(G, H, c, wj) : sj;
+            Kj[j][c] *= carry ? sj * bf_he_row_carry_exp(G, H, c, lsj) : sj;
     }
     m->nhits += 1.0;
     return 1;

@@ -47,19 +47,25 @@ static void some_point(brdffit_model m, bf_pass_par *pp)
     }
 }
 
-/* He at alum-bronze's own He fit, a smooth point where most samples are
- * flat, with forward-difference neighbours 1e-7 away. */
-static void he_at_alum_bronze_fit(bf_pass_par *pp)
+/* He at p0 = (tau, sigma0, n), with forward-difference neighbours 1e-7 away. */
+static void he_at(bf_pass_par *pp, const double *p0)
 {
     some_point(BRDFFIT_HE, pp);
-    const double p0[3] = { 38.97, 0.3836, 1.607 };
     for (int j = 0; j <= 3; j++) {
-        memcpy(pp->p[j], p0, sizeof p0);
+        memcpy(pp->p[j], p0, sizeof pp->p[j]);
         if (j > 0) {
             pp->p[j][j - 1] *= 1 + 1e-7;
             pp->inv_h[j - 1] = 1e7;
         }
     }
+}
+
+/* He at alum-bronze's own He fit, a smooth point where most samples are
+ * flat. */
+static void he_at_alum_bronze_fit(bf_pass_par *pp)
+{
+    const double p0[3] = { 38.97, 0.3836, 1.607 };
+    he_at(pp, p0);
 }
 
 /* The kernel's sums of an open driver at pp equal the host C loop's to 1e-9
@@ -336,15 +342,11 @@ START_TEST(fold_equals_plain)
 {
     brdffit_samples *s = load_samples("alum-bronze");
     bf_pass_par pp;
-    he_at_alum_bronze_fit(&pp);
-    if (_i == 1) {
-        const double p0[3] = { 16.0, 0.5, 2.0 };
-        for (int j = 0; j <= 3; j++) {
-            memcpy(pp.p[j], p0, sizeof p0);
-            if (j > 0)
-                pp.p[j][j - 1] *= 1 + 1e-7;
-        }
-    }
+    const double start[3] = { 16.0, 0.5, 2.0 };
+    if (_i == 1)
+        he_at(&pp, start);
+    else
+        he_at_alum_bronze_fit(&pp);
     const int np = 3, nmom = bf_nmom(3, np);
     double fold[BF_NMOM_MAX] = { 0 }, plain[BF_NMOM_MAX] = { 0 };
     bf_pass_state ps;

@@ -95,12 +95,12 @@
  * In steps: with a memo that has rows, a vector whose lanes are all flat
  * takes them (bf_he_bin_serve when its lanes share a bin, else
  * bf_he_bin_gather); else bf_he_fd_surface (the directions but their
- * logarithms, S, sigma, F: the sines and u from the test for flat lanes), and
- * a vector whose lanes are all flat or near them (sigma = sigma0, or w = 1 -
- * (sigma / sigma0)^2 <= 1e-7) takes the rows times its own shadowing (and
- * the carry of ln K to its g: bf_he_near_serve; no logarithm taken); else
- * the directions' logarithms and the rough limit (bf_he_dir_logs,
- * bf_he_fd_scale), then bf_he_fd_rest: bf_he_fd_channel per channel (the
+ * logarithms and c, S, sigma: the sines and u from the test for flat
+ * lanes), and a vector whose lanes are all flat or near them (sigma =
+ * sigma0, or w = 1 - (sigma / sigma0)^2 <= 1e-7) takes the rows times its
+ * own shadowing (and the carry of ln K to its g: bf_he_near_serve; no
+ * logarithm or Fresnel taken); else F (bf_he_fd_fresnel), the directions'
+ * logarithms and the rough limit (bf_he_dir_logs, bf_he_fd_scale), then bf_he_fd_rest: bf_he_fd_channel per channel (the
  * value, through bf_he_dblend), bf_he_fd_neighbour per neighbour (with no
  * rows: bf_he_fd_lanes, the same: bf_he_fd_base, then bf_he_fd_rest).
  *
@@ -140,6 +140,7 @@ BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, cons
         bf_he_base b;
         bf_he_fd_surface(g, p[0], 0, &fl.su, &b); /* fl made by bf_he_flat_make */
         if (!bf_he_near_serve(memo, &b, p, np, K0, Kj)) {
+            bf_he_fd_fresnel(p[0], &b);
             bf_he_dir_logs(&b.d);
             bf_he_fd_scale(p[0], lam, pc, &b);
             bf_he_fd_rest(&b, p, np, lam, pc, K0, Kj, memo);

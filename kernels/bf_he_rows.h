@@ -245,6 +245,12 @@ BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const 
  * (bf_he_bin_rows), so every lane served has its bin's row; below u = 2,
  * w <= 1e-7 needs tan t < 0.34 (r >= tan t erfc(u) / sqrt(8 pi), at most 3.2e-4).
  * A vector is served when all its lanes are (else 0, nothing set).
+ * b needs no Fresnel (bf_he_fd_fresnel): F enters K through the rows, and
+ * its zero flag (F S(ti) S(to) / (pi cos ti cos to) below BF_TINY) is never
+ * set in such a lane but where F is 0 in every lane and row: with S/cos t
+ * >= 0.99 (u >= 2), it needs F < 1e-307, and F >= ((n - 1) / (n + 1))^2 /
+ * 2 >= 1e-37 for n in (1, 30] (n - 1 >= 2.2e-16), 0 at n = 1, where the
+ * rows are 0 (bf_he_fd_channel's zero flag) and so is K.
  * Measured (thirtieth session, alum-bronze's mirror set at the typical
  * start): the samples not served by the rows 35919 -> 1601 of 467468; a
  * value pass 2.8 -> 1.6 ms, a full pass 3.9 -> 2.7 ms (u >= 2.5 the same,
@@ -292,14 +298,14 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
     if (carry && !bf_he_row_carry_load(m, w, G, H))
         return 0;
     bf_he_bin_gather(m, BF_R(1.0), np, K0, Kj);
-    BF_REAL s = BF_SEL(b->r.shi * b->r.sho, BF_R(0.0), b->zero > 0.0);
+    BF_REAL s = b->r.shi * b->r.sho;
     BF_REAL ls = carry ? bf_he_row_carry_s(w) : BF_R(0.0);
     for (int c = 0; c < 3; c++)
         K0[c] *= carry ? s * bf_he_row_carry_exp(G, H, c, ls) : s;
     for (int j = 0; j < np; j++) {
         bf_he_rough rj;
         bf_he_rough_step(&b->r, tau, sigma0, p[1 + j][0], p[1 + j][1], &rj);
-        BF_REAL sj = BF_SEL(rj.shi * rj.sho, BF_R(0.0), b->zero > 0.0);
+        BF_REAL sj = rj.shi * rj.sho;
         BF_REAL lsj = carry ? bf_he_row_carry_s(BF_SEL(rj.w, BF_R(0.0), w <= 0.0)) : BF_R(0.0);
         for (int c = 0; c < 3; c++)
             Kj[j][c] *= carry ? sj * bf_he_row_carry_exp(G, H, c, lsj) : sj;

@@ -87,14 +87,19 @@ BF_HE_CONSTANT double bf_he_cody_q[5] = {
 
 BF_FN BF_REAL bf_he_erfc_cody(BF_REAL u, BF_REAL ex)
 {
-    BF_REAL r = BF_R(0.0);
+    /* each piece's quotient num / den, then one division for the pieces
+     * the lanes need (at He's typical start most vectors of grazing lanes
+     * take the two upper ones): each lane's value that of its piece alone,
+     * to the bit */
+    BF_REAL num = BF_R(0.0), den = BF_R(1.0);
     if (BF_ANY(u <= 0.46875)) {
         BF_REAL z = u * u, n = bf_he_cody_a[4] * z, d = z;
         for (int i = 0; i < 3; i++) {
             n = (n + bf_he_cody_a[i]) * z;
             d = (d + bf_he_cody_b[i]) * z;
         }
-        r = BF_SEL(r, 1.0 - u * (n + bf_he_cody_a[3]) / (d + bf_he_cody_b[3]), u <= 0.46875);
+        num = BF_SEL(num, u * (n + bf_he_cody_a[3]), u <= 0.46875);
+        den = BF_SEL(den, d + bf_he_cody_b[3], u <= 0.46875);
     }
     if (BF_ANY((u > 0.46875) && (u <= 4.0))) {
         BF_REAL n = bf_he_cody_c[8] * u, d = u;
@@ -102,12 +107,13 @@ BF_FN BF_REAL bf_he_erfc_cody(BF_REAL u, BF_REAL ex)
             n = (n + bf_he_cody_c[i]) * u;
             d = (d + bf_he_cody_d[i]) * u;
         }
-        r = BF_SEL(r, ex * (n + bf_he_cody_c[7]) / (d + bf_he_cody_d[7]), (u > 0.46875) && (u <= 4.0));
+        num = BF_SEL(num, ex * (n + bf_he_cody_c[7]), (u > 0.46875) && (u <= 4.0));
+        den = BF_SEL(den, d + bf_he_cody_d[7], (u > 0.46875) && (u <= 4.0));
     }
     if (BF_ANY(u > 4.0)) {
         /* z P(z) / Q(z) with z = 1 / w, w = u^2, is P~(w) / (w Q~(w)) with
          * the coefficients reversed (P~(w) = w^5 P(1 / w), w <= 36 here):
-         * one division for the piece instead of three */
+         * one quotient for the piece instead of three */
         BF_REAL uc = fmax(u, BF_R(4.0)), w = uc * uc;
         BF_REAL n = bf_he_cody_p[4] * w, d = bf_he_cody_q[4] * w;
         for (int i = 3; i >= 0; i--) {
@@ -117,9 +123,11 @@ BF_FN BF_REAL bf_he_erfc_cody(BF_REAL u, BF_REAL ex)
         n += bf_he_cody_p[5];
         d += 1.0;
         BF_REAL wd = w * d;
-        r = BF_SEL(r, ex * (0.56418958354775628695 * wd - n) / (wd * uc), u > 4.0);
+        num = BF_SEL(num, ex * (0.56418958354775628695 * wd - n), u > 4.0);
+        den = BF_SEL(den, wd * uc, u > 4.0);
     }
-    return r;
+    BF_REAL r = num / den;
+    return BF_SEL(r, 1.0 - r, u <= 0.46875);
 }
 
 /* erfc(u) and e^(-u^2) of the shadowing, for u in [1e-300, 1e10], as 0 for

@@ -1350,8 +1350,9 @@ END_TEST
 /* The rows make each bin's K from the directions their dead test made
  * (bf_he_fd_base_dir), and a vector not served flat takes its shadowing
  * from the sines and u of its flat test (bf_he_fd_surface with
- * bf_he_flat_make's su): the same to the bit as bf_he_fd_lanes, which makes
- * them all itself, flat and not, at every bin's directions. */
+ * bf_he_flat_make's su), then F (bf_he_fd_fresnel): the same to the bit
+ * as bf_he_fd_lanes, which makes them all itself, flat and not, at every
+ * bin's directions. */
 START_TEST(base_stages)
 {
     const double *P = fd_sets[_i];
@@ -1380,6 +1381,7 @@ START_TEST(base_stages)
                         bf_he_flat fl;
                         bf_he_flat_make(&g, P[0], P[1], &fl);
                         bf_he_fd_surface(&g, P, 0, &fl.su, &b);
+                        bf_he_fd_fresnel(P, &b);
                         bf_he_dir_logs(&b.d);
                         bf_he_fd_scale(P, default_lam, &pc, &b);
                     }

@@ -41,11 +41,33 @@ typedef struct bf_fold {
     BF_REAL se[3], seq[3], see[3];  /* per channel: sum a^2 e, a^2 e q, a^2 e^2 */
 } bf_fold;
 
+/* BF_PAIRS: 1 where bf_accumulate may hold a vector back (bf_pair): the
+ * host's loop, and the kernel of a model with bin rows (He).  The other
+ * kernels have no such state: with it, though never used, their full
+ * passes took 2-4% longer (Cook-Torrance's 1.12 -> 1.15 ms). */
+#if defined(__OPENCL_VERSION__) && !BF_ROWS
+#define BF_PAIRS 0
+#else
+#define BF_PAIRS 1
+#endif
+
+/* A vector held back by bf_accumulate (a model with its own forward
+ * differences: He), to be summed with the next one: its weights, K at p0,
+ * G and values. */
+typedef struct bf_pair {
+    double held;                    /* 1: a vector is held                   */
+    BF_REAL a2, K0[3], G[3][BF_MAX_NP], rho[3];
+} bf_pair;
+
 /* What a pass carries from one vector to the next of a work-item's run of
- * samples (table order): the lobe's memos and the fold of factored vectors. */
+ * samples (table order): the lobe's memos, the fold of factored vectors
+ * and a vector held for the next. */
 typedef struct bf_pass_state {
     bf_lobe_state lobe;
     bf_fold fold;
+#if BF_PAIRS
+    bf_pair pair;
+#endif
 } bf_pass_state;
 
 BF_FN void bf_fold_zero(bf_fold *f)
@@ -60,6 +82,9 @@ BF_FN void bf_pass_state_clear(bf_pass_state *ps)
 {
     bf_lobe_state_clear(&ps->lobe);
     bf_fold_zero(&ps->fold);
+#if BF_PAIRS
+    ps->pair.held = 0.0;
+#endif
     for (int j = 0; j <= BF_MAX_NP; j++)
         for (int c = 0; c < 3; c++)
             ps->fold.F[j][c] = 0.0;
@@ -258,43 +283,11 @@ BF_FN_INLINE void bf_pass_partials(int model, int np, const bf_pass_par *pp, con
     })
 }
 
-/* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)].
- * ps: the state of the run of samples being walked in table order
- * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL.
- *
- * Written so that PoCL keeps a closed-form model's moments in registers
- * through the kernel's loop: it is always inlined there (PoCL had called it
- * with nk and np as run-time arguments: the closed-form full passes took
- * 4-32% longer), its loops are written out (BF_UNROLL3: each index into acc
- * a constant; the trip counts, 1-3, were left as loops), acc never leaves
- * the kernel (bf_fold_add, bf_fold_flush and bf_accumulate_end inlined) and
- * the loop calls nothing (bf_lobe_fd inlined, and the lobes it calls: a call
- * clobbers every vector register, so the sums were stored and loaded around
- * it).  PoCL had kept acc in memory, a load and a store per moment and
- * vector; registers take off a full pass on alum-bronze (a scratch timer
- * alternating the builds, 2026-12-04) 27-33% of its time for Blinn-Phong,
- * 20% Lafortune, 18-21% Cook-Torrance, 13-17% Ward, 8-15% Ward-Duer, 9%
- * Ashikhmin-Shirley, 4-11% GGX; He's the same (its 61 moments do not fit
- * the registers).  The sums, the same operations in the same order, are
- * the same to the bit. */
-BF_FN_INLINE void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp,
-                                const bf_geom *g, const BF_REAL *rho, BF_REAL a2, BF_REAL *acc,
-                                bf_pass_state *ps)
+/* Add to acc[bf_nmom(nk, np)] the moments of one vector (or sample): its
+ * weights a2, K at p0 (K0) and G_j per lobe, and values rho. */
+BF_FN_INLINE void bf_acc_one(int nk, int np, const bf_pass_par *pp, BF_REAL a2, const BF_REAL *K0,
+                             BF_REAL (*G)[BF_MAX_NP], const BF_REAL *rho, BF_REAL *acc)
 {
-    BF_REAL K0[3], G[3][BF_MAX_NP];
-    if (bf_lobe_fd_kind(model) == BF_FD_KIND_PARTIALS && np > 0) {
-        bf_pass_partials(model, np, pp, g, K0, G);
-    } else {
-        BF_REAL K[BF_MAX_NP][3], q;
-        if (bf_lobe_fd_factored(model, g, pp->p, np, pp->lam, K0, K,
-                                ps ? &ps->lobe : (bf_lobe_state *)0, &q)) {
-            bf_fold_add(ps, nk, np, pp, rho, a2, q, acc);
-            return;
-        }
-        BF_UNROLL3(j, if (j < np) {
-            BF_UNROLL3(k, if (k < nk) G[k][j] = (K[j][k] - K0[k]) * pp->inv_h[j];)
-        })
-    }
     acc[BF_MOM_A] += a2;
     BF_UNROLL3(k, if (k < nk) {
         BF_REAL *m = acc + bf_mom_lobe(k, np);
@@ -320,11 +313,115 @@ BF_FN_INLINE void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp
     })
 }
 
-/* The end of a run of samples: what the fold holds into acc. */
+/* bf_acc_one of two vectors, (a2, K0, G, rho) and (b2, L0, H, sig), each
+ * moment's two terms added before acc: one load and store of each moment
+ * for the two.  He's 61 moments do not fit the registers (PoCL keeps them
+ * in memory, a load and a store a moment and vector); summed in pairs, a
+ * full pass at its typical start (tau = 16, sigma0 = 0.5, n = 2) on
+ * alum-bronze's mirror set 2.41 -> 2.27 ms (a scratch timer, fastest of
+ * 500, alternated three times). */
+BF_FN_INLINE void bf_acc_two(int nk, int np, const bf_pass_par *pp, BF_REAL a2, const BF_REAL *K0,
+                             BF_REAL (*G)[BF_MAX_NP], const BF_REAL *rho, BF_REAL b2,
+                             const BF_REAL *L0, BF_REAL (*H)[BF_MAX_NP], const BF_REAL *sig,
+                             BF_REAL *acc)
+{
+    acc[BF_MOM_A] += a2 + b2;
+    BF_UNROLL3(k, if (k < nk) {
+        BF_REAL *m = acc + bf_mom_lobe(k, np);
+        BF_REAL aK = a2 * K0[k], bK = b2 * L0[k];
+        m[BF_MK_SK] += aK + bK;
+        m[BF_MK_SKK] += aK * K0[k] + bK * L0[k];
+        BF_UNROLL3(j, if (j < np) {
+            BF_REAL aG = a2 * G[k][j], bG = b2 * H[k][j];
+            m[bf_mk_sg(j)] += aG + bG;
+            m[bf_mk_skg(np, j)] += aK * G[k][j] + bK * H[k][j];
+            BF_UNROLL3(l, if (l >= j && l < np) m[bf_mk_sgg(np, j, l)] += aG * G[k][l] + bG * H[k][l];)
+        })
+    })
+    BF_UNROLL3(c, {
+        const int k = nk > 1 ? c : 0;
+        const BF_REAL dc = pp->d[c] * (1.0 / BF_PI);
+        BF_REAL e = rho[c] - (dc + pp->s[c] * K0[k]), f = sig[c] - (dc + pp->s[c] * L0[k]);
+        BF_REAL ae = a2 * e, bf = b2 * f;
+        BF_REAL *m = acc + bf_mom_chan(c, nk, np);
+        m[BF_MC_SE] += ae + bf;
+        m[BF_MC_SKE] += ae * K0[k] + bf * L0[k];
+        m[BF_MC_SEE] += ae * e + bf * f;
+        BF_UNROLL3(j, if (j < np) m[bf_mc_sge(j)] += ae * G[k][j] + bf * H[k][j];)
+    })
+}
+
+/* Add one sample's (or one vector's) contributions to acc[bf_nmom(nk, np)].
+ * ps: the state of the run of samples being walked in table order
+ * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL.
+ *
+ * Written so that PoCL keeps a closed-form model's moments in registers
+ * through the kernel's loop: it is always inlined there (PoCL had called it
+ * with nk and np as run-time arguments: the closed-form full passes took
+ * 4-32% longer), its loops are written out (BF_UNROLL3: each index into acc
+ * a constant; the trip counts, 1-3, were left as loops), acc never leaves
+ * the kernel (bf_fold_add, bf_fold_flush and bf_accumulate_end inlined) and
+ * the loop calls nothing (bf_lobe_fd inlined, and the lobes it calls: a call
+ * clobbers every vector register, so the sums were stored and loaded around
+ * it).  PoCL had kept acc in memory, a load and a store per moment and
+ * vector; registers take off a full pass on alum-bronze (a scratch timer
+ * alternating the builds, 2026-12-04) 27-33% of its time for Blinn-Phong,
+ * 20% Lafortune, 18-21% Cook-Torrance, 13-17% Ward, 8-15% Ward-Duer, 9%
+ * Ashikhmin-Shirley, 4-11% GGX.  He's 61 moments do not fit the registers:
+ * with a run's state, its vectors that are not folded are summed in pairs
+ * (bf_acc_two; the first of a pair held in ps->pair, a last one left
+ * alone summed by bf_accumulate_end). */
+BF_FN_INLINE void bf_accumulate(int model, int nk, int np, const bf_pass_par *pp,
+                                const bf_geom *g, const BF_REAL *rho, BF_REAL a2, BF_REAL *acc,
+                                bf_pass_state *ps)
+{
+    BF_REAL K0[3], G[3][BF_MAX_NP];
+    if (bf_lobe_fd_kind(model) == BF_FD_KIND_PARTIALS && np > 0) {
+        bf_pass_partials(model, np, pp, g, K0, G);
+    } else {
+        BF_REAL K[BF_MAX_NP][3], q;
+        if (bf_lobe_fd_factored(model, g, pp->p, np, pp->lam, K0, K,
+                                ps ? &ps->lobe : (bf_lobe_state *)0, &q)) {
+            bf_fold_add(ps, nk, np, pp, rho, a2, q, acc);
+            return;
+        }
+        BF_UNROLL3(j, if (j < np) {
+            BF_UNROLL3(k, if (k < nk) G[k][j] = (K[j][k] - K0[k]) * pp->inv_h[j];)
+        })
+    }
+#if BF_PAIRS
+    if (bf_lobe_has_own_fd(model) && ps) {
+        bf_pair *h = &ps->pair;
+        if (h->held == 0.0) {
+            h->held = 1.0;
+            h->a2 = a2;
+            BF_UNROLL3(k, if (k < nk) {
+                h->K0[k] = K0[k];
+                BF_UNROLL3(j, if (j < np) h->G[k][j] = G[k][j];)
+            })
+            BF_UNROLL3(c, h->rho[c] = rho[c];)
+            return;
+        }
+        h->held = 0.0;
+        bf_acc_two(nk, np, pp, h->a2, h->K0, h->G, h->rho, a2, K0, G, rho, acc);
+        return;
+    }
+#endif
+    bf_acc_one(nk, np, pp, a2, K0, G, rho, acc);
+}
+
+/* The end of a run of samples: what the fold and the pair hold into acc. */
 BF_FN_INLINE void bf_accumulate_end(int nk, int np, const bf_pass_par *pp, BF_REAL *acc,
                                     bf_pass_state *ps)
 {
     bf_fold_flush(&ps->fold, nk, np, pp, acc);
+#if BF_PAIRS
+    if (ps->pair.held != 0.0) {
+        bf_pair *h = &ps->pair;
+        bf_acc_one(nk, np, pp, h->a2, h->K0, h->G, h->rho, acc);
+        h->held = 0.0;
+    }
+#endif
 }
 
 #endif /* BF_PASS_H */

@@ -950,6 +950,73 @@ static void ward_moments(const bf_pass_par *pp, double *mom)
     }
 }
 
+/* One sample's terms, the oracle of pairs_sum_as_ones: each named moment
+ * added from its definition (bf_pass.h's header comment). */
+static void moments_by_name(int nk, int np, const bf_pass_par *pp, double a2, const double *K0,
+                            double (*G)[BF_MAX_NP], const double *rho, double *mom)
+{
+    mom[BF_MOM_A] += a2;
+    for (int k = 0; k < nk; k++) {
+        double *m = mom + bf_mom_lobe(k, np);
+        m[BF_MK_SK] += a2 * K0[k];
+        m[BF_MK_SKK] += a2 * K0[k] * K0[k];
+        for (int j = 0; j < np; j++) {
+            m[bf_mk_sg(j)] += a2 * G[k][j];
+            m[bf_mk_skg(np, j)] += a2 * K0[k] * G[k][j];
+            for (int l = j; l < np; l++)
+                m[bf_mk_sgg(np, j, l)] += a2 * G[k][j] * G[k][l];
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        int k = nk > 1 ? c : 0;
+        double e = rho[c] - pp->d[c] / BF_PI - pp->s[c] * K0[k], *m = mom + bf_mom_chan(c, nk, np);
+        m[BF_MC_SE] += a2 * e;
+        m[BF_MC_SKE] += a2 * e * K0[k];
+        m[BF_MC_SEE] += a2 * e * e;
+        for (int j = 0; j < np; j++)
+            m[bf_mc_sge(j)] += a2 * e * G[k][j];
+    }
+}
+
+/* He's vectors are summed in pairs (bf_acc_two, bf_accumulate): the pair's
+ * moments are those of its two members, for every nk and np: against each
+ * moment summed from its definition, and against bf_acc_one twice. */
+START_TEST(pairs_sum_as_ones)
+{
+    bf_pass_par pp;
+    memset(&pp, 0, sizeof pp);
+    for (int c = 0; c < 3; c++)
+        pp.d[c] = 0.1 + 0.05 * c, pp.s[c] = 0.7 - 0.2 * c;
+    srand(31);
+    for (int nk = 1; nk <= 3; nk += 2)
+        for (int np = 0; np <= BF_MAX_NP; np++)
+            for (int rep = 0; rep < 50; rep++) {
+                double a2[2], K0[2][3], G[2][3][BF_MAX_NP], rho[2][3];
+                for (int v = 0; v < 2; v++) {
+                    a2[v] = rand() / (double)RAND_MAX;
+                    for (int k = 0; k < 3; k++) {
+                        K0[v][k] = 3.0 * rand() / RAND_MAX;
+                        rho[v][k] = rand() / (double)RAND_MAX;
+                        for (int j = 0; j < BF_MAX_NP; j++)
+                            G[v][k][j] = 2.0 * rand() / RAND_MAX - 1.0;
+                    }
+                }
+                double two[BF_NMOM_MAX] = { 0 }, ones[BF_NMOM_MAX] = { 0 }, def[BF_NMOM_MAX] = { 0 };
+                bf_acc_two(nk, np, &pp, a2[0], K0[0], G[0], rho[0], a2[1], K0[1], G[1], rho[1], two);
+                for (int v = 0; v < 2; v++) {
+                    bf_acc_one(nk, np, &pp, a2[v], K0[v], G[v], rho[v], ones);
+                    moments_by_name(nk, np, &pp, a2[v], K0[v], G[v], rho[v], def);
+                }
+                for (int m = 0; m < bf_nmom(nk, np); m++) {
+                    double tol = 1e-14 * (fabs(def[m]) + 1.0);
+                    ck_assert_msg(fabs(two[m] - def[m]) <= tol && fabs(ones[m] - def[m]) <= tol,
+                                  "nk %d np %d moment %d: pair %.17g, one by one %.17g, by name %.17g",
+                                  nk, np, m, two[m], ones[m], def[m]);
+                }
+            }
+}
+END_TEST
+
 /* r^T r from moments taken at a reference far from the best d, s is lost to
  * cancellation (the fit once got a spurious 0 there): bf_linear_ref_far says
  * so, and says nothing at the best, where r^T r is that of a pass taken at
@@ -1031,6 +1098,7 @@ Suite *pass_suite(void)
     suite_add_tcase(s, tc);
     TCase *tl = tcase_create("layout");
     tcase_add_test(tl, moment_layout);
+    tcase_add_test(tl, pairs_sum_as_ones);
     tcase_add_test(tl, ref_far_detected);
     tcase_add_test(tl, run_order_is_a_permutation);
     suite_add_tcase(s, tl);

@@ -100,9 +100,10 @@
  * sigma0, or w = 1 - (sigma / sigma0)^2 <= 1e-7) takes the rows times its
  * own shadowing (and the carry of ln K to its g: bf_he_near_serve; no
  * logarithm or Fresnel taken); else F (bf_he_fd_fresnel), the directions'
- * logarithms and the rough limit (bf_he_dir_logs, bf_he_fd_scale), then bf_he_fd_rest: bf_he_fd_channel per channel (the
- * value, through bf_he_dblend), bf_he_fd_neighbour per neighbour (with no
- * rows: bf_he_fd_lanes, the same: bf_he_fd_base, then bf_he_fd_rest).
+ * logarithms and the rough limit (bf_he_dir_logs, bf_he_fd_scale), then
+ * bf_he_fd_rest: bf_he_fd_channel per channel (the value, through
+ * bf_he_dblend), bf_he_fd_neighbour per neighbour (with no rows:
+ * bf_he_fd_lanes, the same: bf_he_fd_base, then bf_he_fd_rest).
  *
  * bf_he_fd_factored is bf_he_fd, and with q != NULL it returns a vector
  * whose lanes share a bin's row in factored form: 1, and *q (bf_he_bin_q),

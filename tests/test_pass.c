@@ -577,10 +577,39 @@ START_TEST(unordered_set_summed_by_samples)
 }
 END_TEST
 
-/* Model m's sums at pp sample by sample, each lobe moment written out here
- * from bf_lobe_fd's K(p_0) and neighbours K(p_j), G_j = (K(p_j) - K(p_0)) /
- * h_j: the forward differences as a pass of a lobe without partials takes
- * them (one lobe, nk = 1). */
+/* One sample's terms added to mom, each named moment from its definition
+ * (bf_pass.h's header comment): the oracle of neighbour_sums and
+ * pairs_sum_as_ones. */
+static void moments_by_name(int nk, int np, const bf_pass_par *pp, double a2, const double *K0,
+                            double (*G)[BF_MAX_NP], const double *rho, double *mom)
+{
+    mom[BF_MOM_A] += a2;
+    for (int k = 0; k < nk; k++) {
+        double *m = mom + bf_mom_lobe(k, np);
+        m[BF_MK_SK] += a2 * K0[k];
+        m[BF_MK_SKK] += a2 * K0[k] * K0[k];
+        for (int j = 0; j < np; j++) {
+            m[bf_mk_sg(j)] += a2 * G[k][j];
+            m[bf_mk_skg(np, j)] += a2 * K0[k] * G[k][j];
+            for (int l = j; l < np; l++)
+                m[bf_mk_sgg(np, j, l)] += a2 * G[k][j] * G[k][l];
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        int k = nk > 1 ? c : 0;
+        double e = rho[c] - pp->d[c] / BF_PI - pp->s[c] * K0[k], *m = mom + bf_mom_chan(c, nk, np);
+        m[BF_MC_SE] += a2 * e;
+        m[BF_MC_SKE] += a2 * e * K0[k];
+        m[BF_MC_SEE] += a2 * e * e;
+        for (int j = 0; j < np; j++)
+            m[bf_mc_sge(j)] += a2 * e * G[k][j];
+    }
+}
+
+/* Model m's sums at pp sample by sample, each moment written out here
+ * (moments_by_name) from bf_lobe_fd's K(p_0) and neighbours K(p_j), G_j =
+ * (K(p_j) - K(p_0)) / h_j: the forward differences as a pass of a lobe
+ * without partials takes them (one lobe, nk = 1). */
 static void neighbour_sums(const brdffit_samples *s, brdffit_model m, int np, const bf_pass_par *pp,
                            double *mom)
 {
@@ -592,28 +621,11 @@ static void neighbour_sums(const brdffit_samples *s, brdffit_model m, int np, co
         bf_geom g = { f[BF_F_IX * P], f[BF_F_IY * P], f[BF_F_IZ * P], f[BF_F_OX * P],
                       f[BF_F_OY * P], f[BF_F_OZ * P], f[BF_F_NH * P], f[BF_F_VH * P] };
         const double a2 = f[BF_F_A2 * P], rho[3] = { f[BF_F_R * P], f[BF_F_G * P], f[BF_F_B * P] };
-        double K0[3], Kj[BF_MAX_NP][3], G[BF_MAX_NP];
+        double K0[3], Kj[BF_MAX_NP][3], G[3][BF_MAX_NP];
         bf_lobe_fd((int)m, &g, pp->p, np, pp->lam, K0, Kj, NULL);
         for (int j = 0; j < np; j++)
-            G[j] = (Kj[j][0] - K0[0]) * pp->inv_h[j];
-        double *L = mom + bf_mom_lobe(0, np);
-        mom[BF_MOM_A] += a2;
-        L[BF_MK_SK] += a2 * K0[0];
-        L[BF_MK_SKK] += a2 * K0[0] * K0[0];
-        for (int j = 0; j < np; j++) {
-            L[bf_mk_sg(j)] += a2 * G[j];
-            L[bf_mk_skg(np, j)] += a2 * K0[0] * G[j];
-            for (int l = j; l < np; l++)
-                L[bf_mk_sgg(np, j, l)] += a2 * G[j] * G[l];
-        }
-        for (int c = 0; c < 3; c++) {
-            double e = rho[c] - (pp->d[c] / BF_PI + pp->s[c] * K0[0]), *C = mom + bf_mom_chan(c, 1, np);
-            C[BF_MC_SE] += a2 * e;
-            C[BF_MC_SKE] += a2 * K0[0] * e;
-            C[BF_MC_SEE] += a2 * e * e;
-            for (int j = 0; j < np; j++)
-                C[bf_mc_sge(j)] += a2 * G[j] * e;
-        }
+            G[0][j] = (Kj[j][0] - K0[0]) * pp->inv_h[j];
+        moments_by_name(1, np, pp, a2, K0, G, rho, mom);
     }
 }
 
@@ -947,34 +959,6 @@ static void ward_moments(const bf_pass_par *pp, double *mom)
                       (wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2]) / hn };
         double rho[3] = { 0.1 + 0.05 * sin(i), 0.2 + 0.03 * cos(i), 0.05 + 0.01 * sin(3.0 * i) };
         bf_accumulate((int)BRDFFIT_WARD, 1, 0, pp, &g, rho, 1.0 / 200, mom, NULL);
-    }
-}
-
-/* One sample's terms, the oracle of pairs_sum_as_ones: each named moment
- * added from its definition (bf_pass.h's header comment). */
-static void moments_by_name(int nk, int np, const bf_pass_par *pp, double a2, const double *K0,
-                            double (*G)[BF_MAX_NP], const double *rho, double *mom)
-{
-    mom[BF_MOM_A] += a2;
-    for (int k = 0; k < nk; k++) {
-        double *m = mom + bf_mom_lobe(k, np);
-        m[BF_MK_SK] += a2 * K0[k];
-        m[BF_MK_SKK] += a2 * K0[k] * K0[k];
-        for (int j = 0; j < np; j++) {
-            m[bf_mk_sg(j)] += a2 * G[k][j];
-            m[bf_mk_skg(np, j)] += a2 * K0[k] * G[k][j];
-            for (int l = j; l < np; l++)
-                m[bf_mk_sgg(np, j, l)] += a2 * G[k][j] * G[k][l];
-        }
-    }
-    for (int c = 0; c < 3; c++) {
-        int k = nk > 1 ? c : 0;
-        double e = rho[c] - pp->d[c] / BF_PI - pp->s[c] * K0[k], *m = mom + bf_mom_chan(c, nk, np);
-        m[BF_MC_SE] += a2 * e;
-        m[BF_MC_SKE] += a2 * e * K0[k];
-        m[BF_MC_SEE] += a2 * e * e;
-        for (int j = 0; j < np; j++)
-            m[bf_mc_sge(j)] += a2 * e * G[k][j];
     }
 }
 

@@ -9,7 +9,7 @@
 #   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make tsan        the threaded tests under ThreadSanitizer (clang)
 #   make fuzz        the fuzz targets (tests/fuzz/, libFuzzer), FUZZ_SECONDS each (default 60)
-#   make bench       the benchmark (bench/), figures as in README.md
+#   make bench       the benchmark (bench/), figures: docs/performance.md
 #   make bench-python  only its Python part (eval from NumPy against C)
 #   make bench-database  the 100 tables x every model end to end (a few minutes)
 #   make fidelity    every published material x model against the paper and a stored run
@@ -262,7 +262,7 @@ bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 
 # The whole database (bench/bench_database.c): brdffit fit over the 100 tables
 # x every model, once reading ahead and BENCH_ROUNDS times each fit alone,
-# against the stored run (README: Where issue 15's targets stand).  A few minutes.
+# against the stored run (docs/performance.md).  A few minutes.
 BENCH_ROUNDS ?= 3
 bench-database: $(BUILD)/bench_brdffit $(BUILD)/brdffit
 	@mkdir -p $(BUILD)/pocl-cache
@@ -290,7 +290,7 @@ $(BUILD)/bench_fidelity: $(BUILD)/bench/fidelity.o $(BUILD)/libbrdffit-internal.
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 # Every published material x every model, against the published parameters
-# and the stored run bench/baseline-errors.tsv (README: Fidelity).
+# and the stored run bench/baseline-errors.tsv (docs/fidelity.md).
 fidelity: $(BUILD)/bench_fidelity
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/bench_fidelity --baseline bench/baseline-errors.tsv $(FIDELITY_ARGS)

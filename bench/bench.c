@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* bench.c -- `make bench`: the figures README.md reports.
+/* bench.c -- `make bench`: the figures docs/performance.md reports.
  *
  *  1. per model, on the full alum-bronze table: its kernel build time
  *     (brdffit_context_prepare), then one OpenCL data pass (value + Jacobian

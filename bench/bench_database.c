@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* bench_database.c -- `make bench-database` (bench_brdffit --database): issue
- * 15's targets over the whole database, from one command, as README reports
+ * 15's targets over the whole database, from one command, as docs/performance.md reports
  * them.  `brdffit fit` over every table of ../shared/tools/merl-table --list
  * x every model, --scale flat --json, the program as a user runs it (one
  * process, one context, every table read and sampled, every kernel built
@@ -9,7 +9,7 @@
  *     its wall time (target: the 100 tables x every model in 3 minutes);
  *   - then `rounds` times with --no-read-ahead, each fit having the two
  *     cores to itself (the thread reading ahead slows the fits beside it,
- *     Cook-Torrance's median by 1.4-1.7x: README, Performance): each run's
+ *     Cook-Torrance's median by 1.4-1.7x: docs/performance.md): each run's
  *     per-model medians and He / Cook-Torrance, then the same from each
  *     table's fastest fit over the rounds, which takes most of the shared
  *     machine's noise out of each fit (target: He's median at most 3x

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* bench_render.c -- part 5 of the bench: a material's renders and plots
- * (library renders, curves, and the program's files), see README.md. */
+ * (library renders, curves, and the program's files), see docs/performance.md. */
 #include "bench_render.h"
 #include "internal.h"
 #include "render_files.h"

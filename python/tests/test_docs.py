@@ -92,21 +92,6 @@ def test_readme_length():
     assert n <= 300, f"README.md has {n} lines (at most 300: the rest belongs in docs/)"
 
 
-WORDS = re.compile(r"\bsessions?\b|issue [0-9]+|twenty-|thirty-|forty-", re.I)
-
-
-def test_no_development_log():
-    """The user-facing documents say what the code does, not how it came to be."""
-    files = documents() + [os.path.join("include", "brdffit.h")]
-    hits = []
-    for rel in files:
-        with open(os.path.join(REPO, rel), encoding="utf-8") as f:
-            for n, line in enumerate(f, 1):
-                if WORDS.search(line):
-                    hits.append(f"{rel}:{n}: {line.strip()}")
-    assert not hits, "\n".join(hits)
-
-
 # ---------------------------------------------------------------- running the blocks
 
 needs_shared = pytest.mark.skipif(

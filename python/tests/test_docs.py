@@ -185,6 +185,11 @@ def test_example_runs(rel, block, doc_env, scratch):
         r = subprocess.run([cc, "-std=c11", "-Wall", "-Werror", "-o", name, f"{name}.c", *flags, "-lm"],
                            cwd=work, env=env, capture_output=True, text=True)
         assert r.returncode == 0, f"{where} does not compile:\n{r.stderr}"
+        if shutil.which(os.environ.get("CXX", "c++")):  # the header promises C++ too
+            r = subprocess.run([os.environ.get("CXX", "c++"), "-std=c++11", "-x", "c++", "-Wall",
+                                "-Werror", "-fsyntax-only", f"{name}.c", *flags],
+                               cwd=work, env=env, capture_output=True, text=True)
+            assert r.returncode == 0, f"{where} does not compile as C++:\n{r.stderr}"
         cmds = [["bash", "-e", "-c", run] for run in runs]
     for cmd in cmds:
         r = subprocess.run(cmd, cwd=work, env=env, capture_output=True, text=True, timeout=300)

@@ -119,6 +119,13 @@ expect "the synthetic table for the example" \
     $CC -std=c11 -o "$T/mktable" tests/packaging/mktable.c $cflags $libs
 expect "writing it" env LD_LIBRARY_PATH="$D$P/lib" "$T/mktable" "$T/ct.binary"
 
+# fits_back OUTPUT: the example's output is a fit of the model to the table
+# Cook-Torrance F0 0.4, m 0.15 made
+fits_back() {
+    awk '/^F0 / { ok = ($2 > 0.399 && $2 < 0.401 && $4 > 0.1499 && $4 < 0.1501 && $6 < 1e-6) }
+         END { exit !ok }' "$1"
+}
+
 for lang in c c++; do
     if [ $lang = c ]; then comp="$CC -std=c11 -x c"; else comp="$CXX -std=c++11 -x c++"; fi
     expect "README example, $lang, shared: builds" \
@@ -132,10 +139,8 @@ for lang in c c++; do
         fail "README example, $lang, static: still needs libbrdffit.so"
     else pass; fi
     for kind in shared static; do
-        # a fit of the example's model to the table Cook-Torrance F0 0.4, m 0.15 made
         if env LD_LIBRARY_PATH="$D$P/lib" "$T/ex-$lang-$kind" "$T/ct.binary" >"$T/out" 2>&1 &&
-           awk '/^F0 / { ok = ($2 > 0.399 && $2 < 0.401 && $4 > 0.1499 && $4 < 0.1501 && $6 < 1e-6) }
-                END { exit !ok }' "$T/out"; then pass; else
+           fits_back "$T/out"; then pass; else
             fail "README example, $lang, $kind: did not fit the table back:"
             sed 's/^/    /' "$T/out" >&2
         fi
@@ -185,9 +190,7 @@ if env -u LD_LIBRARY_PATH ldd "$T/ex-prefix" 2>&1 | grep -q "libbrdffit.so.0 => 
     fail "README example, PREFIX=$PP: does not load $PP/lib/libbrdffit.so.0:"
     env -u LD_LIBRARY_PATH ldd "$T/ex-prefix" 2>&1 | sed 's/^/    /' >&2
 fi
-if env -u LD_LIBRARY_PATH "$T/ex-prefix" "$T/ct.binary" >"$T/out" 2>&1 &&
-   awk '/^F0 / { ok = ($2 > 0.399 && $2 < 0.401 && $4 > 0.1499 && $4 < 0.1501 && $6 < 1e-6) }
-        END { exit !ok }' "$T/out"; then pass; else
+if env -u LD_LIBRARY_PATH "$T/ex-prefix" "$T/ct.binary" >"$T/out" 2>&1 && fits_back "$T/out"; then pass; else
     fail "README example, PREFIX=$PP, no LD_LIBRARY_PATH: did not run and fit the table back:"
     sed 's/^/    /' "$T/out" >&2
 fi

@@ -286,6 +286,15 @@ LIBDIR     = $(PREFIX)/lib
 INCLUDEDIR = $(PREFIX)/include
 BINDIR     = $(PREFIX)/bin
 DROPIN_HEADERS = $(shell $(CC) -MM -MT x -x c kernels/bf_lobe.h | sed -e 's/^x://' -e 's/\\//g')
+# brdffit.pc's Libs carries -Wl,-rpath,${libdir} for every prefix but / and
+# /usr, so that a program linked through `pkg-config --libs brdffit` finds
+# libbrdffit.so.0 where it was installed, without LD_LIBRARY_PATH.  /usr/lib
+# is the dynamic loader's own; /usr/local/lib gets the run path too: Debian's
+# ld.so.conf names it, but the loader finds a library there only after
+# ldconfig has run, which `make install` does not do (the run path is harmless
+# once it has).
+comma := ,
+PC_RPATH = $(if $(filter / /usr,$(PREFIX) $(patsubst %/,%,$(PREFIX))),,-Wl$(comma)-rpath$(comma)$${libdir})
 $(BUILD)/bench_fidelity: $(BUILD)/bench/fidelity.o $(BUILD)/libbrdffit-internal.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
@@ -308,7 +317,7 @@ install: all
 	ln -sf $(SOFILE) $(DESTDIR)$(LIBDIR)/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libbrdffit.so
 	install -m 755 $(BUILD)/brdffit $(DESTDIR)$(BINDIR)/
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' brdffit.pc.in \
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@RPATH@|$(PC_RPATH)|' brdffit.pc.in \
 	    > $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc
 	$(MAKE) --no-print-directory install-python
 

@@ -12,6 +12,7 @@
 #   make bench       the benchmark (bench/), figures: docs/performance.md
 #   make bench-python  only its Python part (eval from NumPy against C)
 #   make bench-database  the 100 tables x every model end to end (a few minutes)
+#   make bench-ceres  brdffit's fit against a tuned Ceres Solver fit (installs Ceres)
 #   make fidelity    every published material x model against the paper and a stored run
 #   make fidelity-quick  the same on ten materials
 #   make deps        install the Debian packages the build needs (.ci/install-deps)
@@ -277,6 +278,33 @@ bench-python: $(BUILD)/bench_eval_c $(BUILD)/libbrdffit.so
 	BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
 	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c
 
+# brdffit's fit against a tuned Ceres Solver fit of the same problem
+# (bench/ceres/fit_ceres.cc says what it solves and how it is tuned), per
+# model and table, each figure appended to bench/results.tsv (bench/record).
+# Ceres comes from Debian (.ci/install-deps ceres); nothing else needs it.
+# CERES_ARGS: more options (--models, --materials, --reps, ...).
+CXX      ?= g++
+CERES_CXXFLAGS = -std=c++17 $(OPT) -g -Wall -Wextra -MMD -MP -pthread -I/usr/include/eigen3
+CERES_LIBS     = -lceres -lglog -lgflags
+$(BUILD)/bench-ceres: | $(DEPS_STAMP)
+	mkdir -p $@
+
+$(BUILD)/bench-ceres/fc_shim.o: bench/ceres/fc_shim.c bench/ceres/fc_shim.h | $(BUILD)/bench-ceres
+	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/bench-ceres/fit_ceres.o: bench/ceres/fit_ceres.cc bench/ceres/fc_shim.h | $(BUILD)/bench-ceres
+	sh .ci/install-deps ceres
+	$(CXX) $(CPPFLAGS) -Ibench/ceres -Itests $(CERES_CXXFLAGS) -c -o $@ $<
+
+$(BUILD)/bench_ceres: $(BUILD)/bench-ceres/fit_ceres.o $(BUILD)/bench-ceres/fc_shim.o $(BUILD)/tests/testutil.o $(BUILD)/libbrdffit-internal.a
+	$(CXX) $(LDFLAGS) -o $@ $^ $(CERES_LIBS) $(LDLIBS)
+
+bench-ceres:
+	sh .ci/install-deps ceres
+	$(MAKE) $(BUILD)/bench_ceres
+	@mkdir -p $(BUILD)/pocl-cache
+	$(RUN_ENV) ./$(BUILD)/bench_ceres --record bench/record $(CERES_ARGS)
+
 # ---- install / uninstall ----
 # The header, both libraries (libbrdffit.so.VERSION, its soname link and the
 # .so link), brdffit.pc, the program, and the drop-in evaluator headers a
@@ -365,5 +393,5 @@ clean:
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize tsan fuzz bench bench-database bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan fuzz bench bench-ceres bench-database bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

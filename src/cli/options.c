@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* options.c -- the options of `fit` and `demo`: parsing them into a
  * cli_options, and their block of the --help text. */
+#define _POSIX_C_SOURCE 200809L
 #include "cli.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 void cli_options_help(FILE *f)
 {
@@ -45,7 +47,7 @@ static int add_model_named(cli_options *o, const char *one)
 {
     char names[512];
     brdffit_model m;
-    if (strcmp(one, "all") == 0) {
+    if (strcasecmp(one, "all") == 0) { /* model names are matched in any case */
         for (int k = 0; k < brdffit_model_count(); k++)
             add_model(o, (brdffit_model)k);
     } else if (brdffit_model_from_name(one, &m, NULL) == BRDFFIT_OK) {

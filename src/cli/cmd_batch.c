@@ -102,20 +102,25 @@ static int parse_batch(int argc, char **argv, batch_options *b)
     return rc;
 }
 
-void cli_batch_help(FILE *f)
+const cli_help_block *cli_batch_help(void)
 {
-    fputs("Options of batch (and the options of fit but --json):\n"
-          "  --out DIR                     the report: DIR/index.html, DIR/<material>/, fits.tsv,\n"
-          "                                journal.jsonl (re-run the same command to resume)\n"
-          "  --published FITS.tsv          also the Error of published parameters (the format\n"
-          "                                of ngan2005-fits.tsv) on each table, and the ratio\n"
-          "  --shard K/N                   only every N-th material of the sorted list, from the\n"
-          "                                K-th (merge the shards with `brdffit report`)\n"
-          "  --no-render, --no-plot        leave out the renders / the incidence-plane plots\n"
-          "  --demo                        add the embedded synthetic material\n"
-          "  --quiet                       no progress on stderr (a live line on a terminal,\n"
-          "                                else one line per material)\n",
-          f);
+    static const cli_help_item items[] = {
+        { "--out DIR", "the report: DIR/index.html, DIR/<material>/, fits.tsv,\n"
+                       "journal.jsonl (re-run the same command to resume)" },
+        { "--published FITS.tsv", "also the Error of published parameters (the format\n"
+                                  "of ngan2005-fits.tsv) on each table, and the ratio" },
+        { "--shard K/N", "only every N-th material of the sorted list, from the\n"
+                         "K-th (merge the shards with `brdffit report`)" },
+        { "--no-render, --no-plot", "leave out the renders / the incidence-plane plots" },
+        { "--demo", "add the embedded synthetic material" },
+        { "--quiet", "no progress on stderr (a live line on a terminal,\n"
+                     "else one line per material)" },
+    };
+    static const cli_help_block block = {
+        "Options of batch", "and the options of fit but --json; INPUT is a MERL table,\n"
+                            "a directory of *.binary, or @LIST: a text file naming one table a line",
+        items, (int)(sizeof items / sizeof items[0]) };
+    return &block;
 }
 
 /* ------------------------------------------------------------------ materials */

@@ -11,6 +11,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+const cli_help_block *cli_score_help(void)
+{
+    static const cli_help_item items[] = {
+        { "--model M", "the model of --params; with --fits, only these models" },
+        { "--params d_r,d_g,d_b,s_r,s_g,s_b,p0[,p1,p2]", "the parameters to score, in the\n"
+                                                         "paper's units" },
+        { "--fits FILE", "score the rows of this material (named by TABLE's file)\n"
+                         "in an ngan2005-fits.tsv-style TSV" },
+    };
+    static const cli_help_block block = {
+        "Options of score", "and the options of fit: --scale, --cutoff, --backend, --device",
+        items, (int)(sizeof items / sizeof items[0]) };
+    return &block;
+}
+
 /* "0.1,0.2,..." into p for the model: 6 + nparams numbers. */
 static int parse_params(const char *v, brdffit_model model, brdffit_params *p)
 {

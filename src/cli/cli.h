@@ -12,6 +12,8 @@
  *   args.c        strict number parsing, usage errors, the list of model names
  *   options.c     the options of `fit` and `demo`, and their help text
  *   material.c    what a fit report is about: a material's name from its path
+ *   kernel_note.c on a terminal, a line while a model's kernels are compiled
+ *   hints.c       what an input of the wrong kind was probably meant to be
  *   report.c      the paper-style table and the JSON Lines records
  *   json.c        JSON text: escaped strings, round-tripping numbers
  *   text.c        text for the terminal: control characters made harmless
@@ -165,6 +167,29 @@ int cli_parse_options(int argc, char **argv, cli_options *o);
 void cli_options_free(cli_options *o);
 /* The "Options of fit and demo" block of the help. */
 const cli_help_block *cli_options_help(void);
+
+/* ---- kernel_note.c ---- */
+
+/* When f is a terminal, the context uses OpenCL and the model's kernels are
+ * not built in it yet: "brdffit: compiling the OpenCL kernels of MODEL, once
+ * per machine (cached in DIR)..." on f, without a newline; returns 1 then,
+ * else 0 (nothing printed). */
+int kernel_note_begin(FILE *f, const brdffit_context *ctx, brdffit_model model);
+/* After the call that built them (a fit, an Error): the time ends the line
+ * when the build compiled (1 s or more), else the line is erased (PoCL's
+ * cache had them, or the build failed).  Nothing when shown is 0. */
+void kernel_note_end(FILE *f, int shown, const brdffit_context *ctx, brdffit_model model);
+
+/* ---- hints.c ---- */
+
+/* 1 when path is a directory. */
+int cli_is_directory(const char *path);
+/* 1 when path is a regular file whose first bytes are text (no control
+ * characters but tabs and line ends): a list, not a MERL table. */
+int cli_is_text_file(const char *path);
+/* After a table could not be read: what to run instead when path is a
+ * directory or a text file (a note on stderr), else nothing. */
+void cli_hint_unreadable_table(const char *path);
 
 /* ---- material.c ---- */
 

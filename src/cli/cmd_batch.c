@@ -228,6 +228,9 @@ static int collect(const batch_options *b, material_list *L)
             rc = add_list_file(L, in + 1);
         else if (stat(in, &st) == 0 && S_ISDIR(st.st_mode))
             rc = add_directory(L, in);
+        else if (cli_is_text_file(in))
+            return cli_usage_error("%s is a text file, not a MERL table: did you mean @%s (a list "
+                                   "of tables, one a line)?", in, in);
         else
             rc = add_material(L, in, 0); /* a missing file becomes a failure row */
         if (rc != 0)
@@ -542,7 +545,9 @@ static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples
     memset(&res, 0, sizeof res);
     memset(&err, 0, sizeof err);
     double t0 = now();
+    int note = kernel_note_begin(stderr, R->ctx, model);
     brdffit_status st = brdffit_fit(R->ctx, s, model, &R->b->common.fit, &res, &err);
+    kernel_note_end(stderr, note, R->ctx, model);
     R->seconds_fitting += now() - t0;
     R->P.fit_seconds += now() - t0;
     R->P.fitted_now++;
@@ -591,8 +596,11 @@ static void published_one(batch_run *R, const batch_material *m, const brdffit_s
     memset(&err, 0, sizeof err);
     double e = NAN, t0 = now();
     brdffit_status st = brdffit_params_check(model, &pr->params, &err);
-    if (st == BRDFFIT_OK)
+    if (st == BRDFFIT_OK) {
+        int note = kernel_note_begin(stderr, R->ctx, model);
         st = brdffit_error_of(R->ctx, s, model, &pr->params, &e, &err);
+        kernel_note_end(stderr, note, R->ctx, model);
+    }
     R->seconds_fitting += now() - t0;
     r.ok = st == BRDFFIT_OK;
     r.error = e;

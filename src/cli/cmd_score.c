@@ -68,8 +68,11 @@ static void score_one(score_job *J, brdffit_model model, const brdffit_params *p
     memset(&err, 0, sizeof err);
     double e = NAN;
     brdffit_status st = brdffit_params_check(model, p, &err);
-    if (st == BRDFFIT_OK)
+    if (st == BRDFFIT_OK) {
+        int note = kernel_note_begin(stderr, J->ctx, model);
         st = brdffit_error_of(J->ctx, J->s, model, p, &e, &err);
+        kernel_note_end(stderr, note, J->ctx, model);
+    }
     if (st != BRDFFIT_OK) {
         J->failures++;
         printf("%-18s -  (%s)\n", mi->name, brdffit_strerror(st));

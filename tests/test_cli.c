@@ -29,9 +29,7 @@ static void run_free(run_out *r)
     tu_run_free(r);
 }
 
-#define expect_status(r, want, args)                                                          \
-    ck_assert_msg((r).status == (want), "brdffit %s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
-                  (args), (r).status, (want), (r).out, (r).err)
+#define expect_status TU_EXPECT_STATUS
 
 /* The blue-rubber table from ../shared (NULL, with a note, when unavailable). */
 static const char *blue_rubber(char *buf, size_t len)

@@ -19,23 +19,13 @@ static const char *const all_commands[] = { "fit",    "demo",   "models", "eval"
                                             "report", "render", "plot",   "score" };
 #define NCOMMANDS ((int)(sizeof all_commands / sizeof all_commands[0]))
 
-#define expect_status(r, want, args)                                                          \
-    ck_assert_msg((r).status == (want), "brdffit %s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
-                  (args), (r).status, (want), (r).out, (r).err)
+#define expect_status TU_EXPECT_STATUS
 
 static tu_run_out run_ok(const char *args)
 {
     tu_run_out r = tu_run_cli("", args);
     expect_status(r, 0, args);
     return r;
-}
-
-static int count_lines(const char *s)
-{
-    int n = 0;
-    for (; *s; s++)
-        n += *s == '\n';
-    return n;
 }
 
 /* "\n  NAME " in the list of commands. */
@@ -53,7 +43,7 @@ START_TEST(overview_lists_the_commands)
     for (int i = 0; i < NCOMMANDS; i++)
         ck_assert_msg(lists_command(a.out, all_commands[i]), "no %s in:\n%s", all_commands[i], a.out);
     ck_assert_msg(strstr(a.out, "'brdffit help COMMAND'") != NULL, "%s", a.out);
-    ck_assert_msg(count_lines(a.out) <= 24, "%d lines:\n%s", count_lines(a.out), a.out);
+    ck_assert_msg(tu_count_lines(a.out) <= 24, "%d lines:\n%s", tu_count_lines(a.out), a.out);
     ck_assert_msg(strstr(a.out, "--cutoff") == NULL, "the list of commands has options:\n%s", a.out);
     tu_run_free(&a);
     tu_run_free(&b);

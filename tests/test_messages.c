@@ -17,9 +17,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#define expect_status(r, want, args)                                                          \
-    ck_assert_msg((r).status == (want), "brdffit %s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
-                  (args), (r).status, (want), (r).out, (r).err)
+#define expect_status TU_EXPECT_STATUS
 
 #define expect_in(text, want) ck_assert_msg(strstr((text), (want)) != NULL, "no '%s' in:\n%s", (want), (text))
 

@@ -418,6 +418,14 @@ tu_run_out tu_run_cli(const char *env, const char *args)
     return r;
 }
 
+int tu_count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
 void tu_run_free(tu_run_out *r)
 {
     free(r->out);

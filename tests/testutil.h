@@ -82,6 +82,12 @@ typedef struct tu_run_out {
  * already quoted), stdin from /dev/null. */
 tu_run_out tu_run_cli(const char *env, const char *args);
 void tu_run_free(tu_run_out *r);
+/* Fails the test, showing both outputs, unless the run exited with want. */
+#define TU_EXPECT_STATUS(r, want, args)                                                        \
+    ck_assert_msg((r).status == (want), "brdffit %s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
+                  (args), (r).status, (want), (r).out, (r).err)
+/* The number of '\n' in s. */
+int tu_count_lines(const char *s);
 
 /* What the code between tu_capture_begin and tu_capture_end writes to file
  * descriptor 2 (a compiler inside PoCL writes its diagnostics there): kept

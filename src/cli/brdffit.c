@@ -27,7 +27,8 @@ static const cli_command commands[] = {
       "of *.binary, @LIST) and write the report into DIR: pages,\n"
       "renders, plots, the Error matrix; journaled, resumable",
       { cli_batch_help, cli_options_help } },
-    { "report", cmd_report, "DIR... --out DIR", "merge the journals of batch shards into one report",
+    { "report", cmd_report, "DIR... --out DIR",
+      "merge the journals of batch shards into one report",
       "merge the journals of batch directories (shards) into one report", { cli_report_help } },
     { "render", cmd_render, "TABLE --out DIR [--model LIST|all] [--fits FILE] [OPTIONS]",
       "render a table and its fitted models on a sphere (EXR, PNG)",

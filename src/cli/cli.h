@@ -60,6 +60,10 @@ typedef struct cli_help_block {
     int nitems;
 } cli_help_block;
 
+/* A block's initializer from a title, a note and an array of items. */
+#define CLI_HELP_BLOCK(title, note, items) \
+    { title, note, items, (int)(sizeof items / sizeof items[0]) }
+
 /* Each block is made by a function (a few hold text made at run time). */
 typedef const cli_help_block *(*cli_help_fn)(void);
 #define CLI_MAX_BLOCKS 3

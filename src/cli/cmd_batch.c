@@ -116,10 +116,11 @@ const cli_help_block *cli_batch_help(void)
         { "--quiet", "no progress on stderr (a live line on a terminal,\n"
                      "else one line per material)" },
     };
-    static const cli_help_block block = {
-        "Options of batch", "and the options of fit but --json; INPUT is a MERL table,\n"
-                            "a directory of *.binary, or @LIST: a text file naming one table a line",
-        items, (int)(sizeof items / sizeof items[0]) };
+    static const cli_help_block block = CLI_HELP_BLOCK(
+        "Options of batch",
+        "and the options of fit but --json; INPUT is a MERL table,\n"
+        "a directory of *.binary, or @LIST: a text file naming one table a line",
+        items);
     return &block;
 }
 

@@ -9,13 +9,12 @@ const cli_help_block *cli_eval_help(void)
 {
     static const cli_help_item items[] = {
         { "MODEL", "a model's name (brdffit models), in any case" },
-        { "d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]", "the Lambertian albedo d, the lobe's\n"
-                                                  "scale s and parameters p, in the paper's units" },
+        { "d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]",
+          "the Lambertian albedo d, the lobe's\nscale s and parameters p, in the paper's units" },
         { "--wi X Y Z, --wo X Y Z", "the directions of incidence and view, in the\n"
                                     "surface's frame" },
     };
-    static const cli_help_block block = { "Arguments of eval", NULL, items,
-                                          (int)(sizeof items / sizeof items[0]) };
+    static const cli_help_block block = CLI_HELP_BLOCK("Arguments of eval", NULL, items);
     return &block;
 }
 

@@ -17,10 +17,10 @@ const cli_help_block *cli_draw_help(void)
                          "fit the models now" },
         { "--interp trilinear|nearest", "table lookup (default trilinear)" },
     };
-    static const cli_help_block block = {
-        "Options of render and plot", "and the options of fit: --model, --scale, --cutoff,\n"
-                                      "--starts, --backend, --device",
-        items, (int)(sizeof items / sizeof items[0]) };
+    static const cli_help_block block = CLI_HELP_BLOCK(
+        "Options of render and plot",
+        "and the options of fit: --model, --scale, --cutoff,\n--starts, --backend, --device",
+        items);
     return &block;
 }
 
@@ -38,8 +38,7 @@ const cli_help_block *cli_render_help(void)
         { "--exposure E", "PNG exposure (default: 1 / the 99th percentile of the\n"
                           "reference's max(R, G, B))" },
     };
-    static const cli_help_block block = { "Options of render", NULL, items,
-                                          (int)(sizeof items / sizeof items[0]) };
+    static const cli_help_block block = CLI_HELP_BLOCK("Options of render", NULL, items);
     return &block;
 }
 

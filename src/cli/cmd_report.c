@@ -17,8 +17,7 @@ const cli_help_block *cli_report_help(void)
         { "DIR...", "the --out directories of `brdffit batch` runs (shards)" },
         { "--out DIR", "where the merged report goes" },
     };
-    static const cli_help_block block = { "Arguments of report", NULL, items,
-                                          (int)(sizeof items / sizeof items[0]) };
+    static const cli_help_block block = CLI_HELP_BLOCK("Arguments of report", NULL, items);
     return &block;
 }
 

@@ -20,9 +20,9 @@ const cli_help_block *cli_score_help(void)
         { "--fits FILE", "score the rows of this material (named by TABLE's file)\n"
                          "in an ngan2005-fits.tsv-style TSV" },
     };
-    static const cli_help_block block = {
+    static const cli_help_block block = CLI_HELP_BLOCK(
         "Options of score", "and the options of fit: --scale, --cutoff, --backend, --device",
-        items, (int)(sizeof items / sizeof items[0]) };
+        items);
     return &block;
 }
 

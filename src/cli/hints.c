@@ -37,8 +37,8 @@ int cli_is_text_file(const char *path)
 void cli_hint_unreadable_table(const char *path)
 {
     if (cli_is_directory(path))
-        cli_error("note: %s is a directory; to fit every *.binary in it: brdffit batch %s --out DIR",
-                  path, path);
+        cli_error("note: %s is a directory; to fit every *.binary in it: "
+                  "brdffit batch %s --out DIR", path, path);
     else if (cli_is_text_file(path))
         cli_error("note: %s is text; if it lists tables, one a line: brdffit batch @%s --out DIR",
                   path, path);

@@ -28,15 +28,14 @@ const cli_help_block *cli_options_help(void)
                              "saves wall time but shares the cores with the fits,\n"
                              "so that the fits beside it take longer)" },
     };
-    static const cli_help_block block = { "Options of fit and demo", NULL, items,
-                                          (int)(sizeof items / sizeof items[0]) };
+    static const cli_help_block block = CLI_HELP_BLOCK("Options of fit and demo", NULL, items);
     char names[512], starts[256];
     cli_model_names(names, sizeof names);
     char *wrap = strchr(names + strlen(names) / 2, ' '); /* two lines, at a ", " */
     if (wrap)
         *wrap = '\n';
-    snprintf(model_text, sizeof model_text, "models to fit (repeatable; default all; any case):\n%s",
-             names);
+    snprintf(model_text, sizeof model_text,
+             "models to fit (repeatable; default all; any case):\n%s", names);
     snprintf(starts_text, sizeof starts_text,
              "starting points screened per model, 1..1000\n(default: the model's own, %s)",
              cli_default_starts(starts, sizeof starts));

@@ -105,6 +105,12 @@ static int is_text_byte(unsigned char c)
     return (c >= 0x20 && c < 0x7f) || c == '\t' || c == '\n' || c == '\r';
 }
 
+/* The letter of C's escape of c: t, n, r, or c itself (a quote, a backslash). */
+static char c_escape(unsigned char c)
+{
+    return c == '\t' ? 't' : c == '\n' ? 'n' : c == '\r' ? 'r' : (char)c;
+}
+
 /* The first n (<= 12) bytes of a file for a message, into out (64 bytes):
  * "\"text\"" when they are text (printable ASCII, tabs, line ends; escaped
  * as in C), else "bytes 89 50 4e ..." in hex. */
@@ -118,8 +124,7 @@ static const char *show_bytes(const unsigned char *b, size_t n, char *out, size_
         if (!text)
             used += (size_t)snprintf(out + used, len - used, " %02x", b[i]);
         else if (strchr("\t\n\r\"\\", b[i]))
-            used += (size_t)snprintf(out + used, len - used, "\\%c",
-                                     b[i] == '\t' ? 't' : b[i] == '\n' ? 'n' : b[i] == '\r' ? 'r' : b[i]);
+            used += (size_t)snprintf(out + used, len - used, "\\%c", c_escape(b[i]));
         else
             used += (size_t)snprintf(out + used, len - used, "%c", b[i]);
     }
@@ -162,7 +167,8 @@ static brdffit_status read_header(int fd, const char *path, brdffit_error *err)
         return bf_fail(err, BRDFFIT_E_FILE_DIMS,
                        "%s: not a MERL table: it begins with %s, where a MERL .binary begins with "
                        "the int32 dimensions %d %d %d",
-                       path, show_bytes(hdr, sizeof hdr, shown, sizeof shown), BF_NTH, BF_NTD, BF_NPD);
+                       path, show_bytes(hdr, sizeof hdr, shown, sizeof shown), BF_NTH, BF_NTD,
+                       BF_NPD);
     }
     if (dims[0] != BF_NTH || dims[1] != BF_NTD || dims[2] != BF_NPD)
         return bf_fail(err, BRDFFIT_E_FILE_DIMS, "%s: dims %ldx%ldx%ld, expected %dx%dx%d", path,

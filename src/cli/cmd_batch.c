@@ -546,7 +546,7 @@ static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples
     memset(&res, 0, sizeof res);
     memset(&err, 0, sizeof err);
     double t0 = now();
-    int note = kernel_note_begin(stderr, R->ctx, model);
+    int note = R->P.quiet ? 0 : kernel_note_begin(stderr, R->ctx, model);
     brdffit_status st = brdffit_fit(R->ctx, s, model, &R->b->common.fit, &res, &err);
     kernel_note_end(stderr, note, R->ctx, model);
     R->seconds_fitting += now() - t0;
@@ -598,7 +598,7 @@ static void published_one(batch_run *R, const batch_material *m, const brdffit_s
     double e = NAN, t0 = now();
     brdffit_status st = brdffit_params_check(model, &pr->params, &err);
     if (st == BRDFFIT_OK) {
-        int note = kernel_note_begin(stderr, R->ctx, model);
+        int note = R->P.quiet ? 0 : kernel_note_begin(stderr, R->ctx, model);
         st = brdffit_error_of(R->ctx, s, model, &pr->params, &e, &err);
         kernel_note_end(stderr, note, R->ctx, model);
     }

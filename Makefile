@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # brdffit -- library (libbrdffit.a, libbrdffit.so), program (brdffit), tests, benchmark.
 #
-#   make             build/libbrdffit.a build/libbrdffit.so build/brdffit
+#   make             build/libbrdffit.a build/libbrdffit.so build/brdffit build/brdffit.1
 #   make demo        build, then run the batch on the embedded synthetic material
 #                    (report in build/demo; prints the path of its index.html)
 #   make test        build and run the Check suite and the Python package's tests
@@ -17,7 +17,8 @@
 #   make fidelity-quick  the same on ten materials
 #   make deps        install the Debian packages the build needs (.ci/install-deps)
 #   make install PREFIX=/usr/local [DESTDIR=...]   headers, libraries, brdffit.pc,
-#                    program, and the Python package (python/brdffit) beside the library
+#                    program, its manual page, and the Python package (python/brdffit)
+#                    beside the library
 #   make uninstall PREFIX=/usr/local [DESTDIR=...]  removes what install put there
 #   make clean
 
@@ -85,7 +86,7 @@ TEST_SRC = $(wildcard tests/*.c)
 BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_render.c \
             bench/bench_stream.c bench/cli_run.c
 
-all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
+all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit $(BUILD)/brdffit.1
 
 $(BUILD)/lib $(BUILD)/cli $(BUILD)/tests $(BUILD)/bench: | $(DEPS_STAMP)
 	mkdir -p $@
@@ -143,6 +144,10 @@ $(BUILD)/cli/%.o: src/cli/%.c | $(BUILD)/cli
 
 $(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
+
+# The manual page: the program's help text as roff (src/cli/man.c).
+$(BUILD)/brdffit.1: $(BUILD)/brdffit
+	./$(BUILD)/brdffit help --man > $@.tmp && mv $@.tmp $@
 
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) $(TEST_INC) $(CLI_CFLAGS) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
@@ -313,6 +318,7 @@ bench-ceres:
 LIBDIR     = $(PREFIX)/lib
 INCLUDEDIR = $(PREFIX)/include
 BINDIR     = $(PREFIX)/bin
+MAN1DIR    = $(PREFIX)/share/man/man1
 DROPIN_HEADERS = $(shell $(CC) -MM -MT x -x c kernels/bf_lobe.h | sed -e 's/^x://' -e 's/\\//g')
 # brdffit.pc's Libs carries -Wl,-rpath,${libdir} for every prefix but / and
 # /usr, so that a program linked through `pkg-config --libs brdffit` finds
@@ -345,6 +351,7 @@ install: all
 	ln -sf $(SOFILE) $(DESTDIR)$(LIBDIR)/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libbrdffit.so
 	install -m 755 $(BUILD)/brdffit $(DESTDIR)$(BINDIR)/
+	install -d $(DESTDIR)$(MAN1DIR) && install -m 644 $(BUILD)/brdffit.1 $(DESTDIR)$(MAN1DIR)/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@RPATH@|$(PC_RPATH)|' brdffit.pc.in \
 	    > $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc
 	$(MAKE) --no-print-directory install-python
@@ -370,7 +377,8 @@ install-python:
 uninstall:
 	rm -f $(DESTDIR)$(INCLUDEDIR)/brdffit.h $(DESTDIR)$(LIBDIR)/libbrdffit.a \
 	      $(DESTDIR)$(LIBDIR)/$(SOFILE) $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libbrdffit.so \
-	      $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc $(DESTDIR)$(BINDIR)/brdffit
+	      $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc $(DESTDIR)$(BINDIR)/brdffit \
+	      $(DESTDIR)$(MAN1DIR)/brdffit.1
 	rm -f $(DESTDIR)$(INCLUDEDIR)/brdffit/*.h
 	rmdir $(DESTDIR)$(INCLUDEDIR)/brdffit 2>/dev/null || true
 	$(MAKE) --no-print-directory uninstall-python

@@ -233,7 +233,7 @@ int brdffit_model_count(void);
 const brdffit_model_info *brdffit_model_get(brdffit_model model);
 /* Lobe parameter `index` (0-based) of a model, or NULL when either is out of range. */
 const brdffit_param_info *brdffit_model_param(brdffit_model model, int index);
-/* Look a model up by name ("cook-torrance"; '_' is accepted for '-'):
+/* Look a model up by name ("cook-torrance"; any case, '_' accepted for '-'):
  * BRDFFIT_E_UNKNOWN_MODEL, the message listing the models, for any other. */
 brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brdffit_error *err);
 

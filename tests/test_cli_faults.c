@@ -45,14 +45,6 @@ static const char *table_file(void)
     return table_path;
 }
 
-static int count_lines(const char *s)
-{
-    int n = 0;
-    for (; *s; s++)
-        n += *s == '\n';
-    return n;
-}
-
 #define expect_exit(r, want, what)                                                          \
     ck_assert_msg((r).status == (want), "%s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
                   (what), (r).status, (want), (r).out, (r).err)
@@ -71,7 +63,7 @@ START_TEST(no_device_every_file_recorded)
              "/nonexistent-brdffit-dir/gone.binary", table);
     tu_run_out r = tu_run_cli(env, args);
     expect_exit(r, 1, args);
-    ck_assert_msg(count_lines(r.out) == 3, "%d records, expected 3:\n%s", count_lines(r.out), r.out);
+    ck_assert_msg(tu_count_lines(r.out) == 3, "%d records, expected 3:\n%s", tu_count_lines(r.out), r.out);
     char *second = strchr(r.out, '\n') + 1, *third = strchr(second, '\n') + 1;
     ck_assert_msg(strstr(r.out, "\"status\":\"no OpenCL device\"") < second, "%s", r.out);
     ck_assert_msg(strstr(second, "\"status\":\"cannot open file\"") < third, "%s", r.out);
@@ -164,7 +156,7 @@ START_TEST(tiny_cutoff_refused)
     snprintf(args, sizeof args, "fit --json --cutoff 1e-300 --model ward,he '%s'", table);
     tu_run_out r = tu_run_cli("", args);
     expect_exit(r, 1, args);
-    ck_assert_int_eq(count_lines(r.out), 2);
+    ck_assert_int_eq(tu_count_lines(r.out), 2);
     char want[64];
     snprintf(want, sizeof want, "\"status\":\"%s\"", brdffit_strerror(BRDFFIT_E_TOO_FEW_SAMPLES));
     const char *first = strstr(r.out, want);
@@ -233,7 +225,7 @@ START_TEST(control_characters_escaped)
     expect_exit(r, 1, args);
     ck_assert_msg(!strchr(r.err, '\033'), "a raw ESC reached stderr:\n%s", r.err);
     ck_assert_msg(strstr(r.err, "evil\\x1b[31m\\x0aFAKE.binary: cannot open"), "%s", r.err);
-    ck_assert_msg(count_lines(r.err) == 2, "%d stderr lines:\n%s", count_lines(r.err), r.err);
+    ck_assert_msg(tu_count_lines(r.err) == 2, "%d stderr lines:\n%s", tu_count_lines(r.err), r.err);
     ck_assert_msg(strstr(r.out, "evil\\u001b[31m\\nFAKE.binary"), "%s", r.out);
     tu_run_free(&r);
     /* a usage error quoting an argument */

@@ -8,6 +8,7 @@
 
 #include "bf_lobe.h"
 
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -194,7 +195,7 @@ brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brd
                        !name ? "name" : "out");
     for (int m = 0; m < NMODELS; m++) {
         const char *a = registry[m].info.name, *b = name;
-        while (*a && (*a == *b || (*a == '-' && *b == '_')))
+        while (*a && (tolower((unsigned char)*b) == *a || (*a == '-' && *b == '_')))
             a++, b++;
         if (*a == '\0' && *b == '\0') {
             *out = (brdffit_model)m;

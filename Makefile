@@ -81,7 +81,8 @@ CLI_SRC  = $(wildcard src/cli/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
-BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_render.c \
+BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_record.c \
+            bench/bench_render.c bench/bench_summary.c \
             bench/bench_stream.c bench/cli_run.c
 
 all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
@@ -256,18 +257,23 @@ fuzz:
 	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_journal $(FUZZ_RUN) -max_len=8192 \
 	    -artifact_prefix=build-fuzz/crash-journal- build-fuzz/corpus/journal
 
+# Every figure the benchmarks print is appended to bench/results.tsv through
+# bench/record (BENCH_RECORD= records nothing); BENCH_ARGS: bench_brdffit's
+# options (--quick, --models a,b, --parts 1,2, ...).
+BENCH_RECORD ?= $(CURDIR)/bench/record
+BENCH_RECORD_ARG = $(if $(BENCH_RECORD),--record $(BENCH_RECORD))
 bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache
-	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit
+	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit $(BENCH_RECORD_ARG) $(BENCH_ARGS)
 
 # The whole database (bench/bench_database.c): brdffit fit over the 100 tables
 # x every model, once reading ahead and BENCH_ROUNDS times each fit alone,
-# against the stored run (README: Where issue 15's targets stand).  A few minutes.
+# against the stored run bench/baseline-errors.tsv.  A few minutes.
 BENCH_ROUNDS ?= 3
 bench-database: $(BUILD)/bench_brdffit $(BUILD)/brdffit
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit --database \
-	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv
+	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv $(BENCH_RECORD_ARG)
 
 # The Python package's eval on 1,000,000 pairs against the same call from C.
 $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdffit.so
@@ -275,7 +281,7 @@ $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdff
 
 bench-python: $(BUILD)/bench_eval_c $(BUILD)/libbrdffit.so
 	BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
-	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c
+	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c $(BENCH_RECORD_ARG)
 
 # ---- install / uninstall ----
 # The header, both libraries (libbrdffit.so.VERSION, its soname link and the

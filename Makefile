@@ -206,10 +206,10 @@ test: $(BUILD)/test_brdffit all
 # intercept_tls_get_addr=0: LSan's stop-the-world tracer sometimes crashes at a
 # forked test's exit ("Tracer caught signal 11: addr=0x948", "LeakSanitizer has
 # encountered a fatal error"; google/sanitizers#1322: the dynamic TLS blocks it
-# walks, PoCL's dlopen'd kernels among them), a test body that passed then
-# counted as an error: 31 to 42 of the fit suite's tests in some builds of
-# 2026-12-04, 0 with it (the same binary, repeated).  A pointer kept only in
-# dynamic TLS would then be reported as a leak, not hidden.
+# walks, PoCL's dlopen'd kernels among them), and a test body that passed then
+# counts as an error (dozens of the fit suite's tests in some builds; none
+# with it).  A pointer kept only in dynamic TLS would then be reported as a
+# leak, not hidden.
 sanitize:
 	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	    build-san/test_brdffit build-san/brdffit

@@ -10,7 +10,7 @@
  * and adds the one-time part (the builds) once.  The program reads the next
  * table in a thread while it fits one, and that thread shares the two cores
  * with the fits it runs beside (over the 100 tables, Cook-Torrance's
- * median fit took 1.4-1.7x its time alone), so the per-model medians come from a
+ * median fit takes 1.4-1.7x its time alone), so the per-model medians come from a
  * second run with --no-read-ahead, where each fit has the machine to itself;
  * the first run's are printed beside them. */
 #define _POSIX_C_SOURCE 200809L

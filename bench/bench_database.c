@@ -219,7 +219,7 @@ static void print_baseline(const baseline *b, const char *path, int runs, const 
         { "fits above the stored run count", b->worse },
         { "highest Error / stored ratio", b->worst },
     };
-    bench_record_all(benchmark, f, 3);
+    bench_record_all(benchmark, f, b->compared > 0 ? 3 : 1);
 }
 
 /* The summary: the wall time as it runs by default, each model's median fit. */

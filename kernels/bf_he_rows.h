@@ -387,7 +387,7 @@ BF_FN int bf_he_rows_dead(const bf_he_dir *d, BF_REAL live, const double *p0, co
 
 /* The floor of the rows at p0 (bf_he_row_floor's ldead) into floor[3]: the
  * pass driver makes it once a pass on the host (in every work-item of the
- * kernel it had cost ~4% of a smooth subset pass: K at normal incidence). */
+ * kernel it would cost ~4% of a smooth subset pass: K at normal incidence). */
 BF_FN void bf_he_row_floors(const double *p0, const double *lam, double *floor)
 {
     bf_he_pconst pc;

@@ -34,7 +34,7 @@ typedef struct bf_geom {
  * evaluated with cos t = BF_COS_FLOOR (5.7e-5 deg above it; the direction's
  * length then differs from 1 by less than 1e-12), so that every lobe's
  * quotients stay finite (below it Ward, Ward-Duer, Cook-Torrance,
- * Ashikhmin-Shirley and GGX took 0/0 or x/0 at cosines of 1e-100 and less).
+ * Ashikhmin-Shirley and GGX would take 0/0 or x/0 at cosines of 1e-100 and less).
  * No sample of a MERL table comes near it (the bins' centres lie within
  * 89.5 deg). */
 #define BF_COS_FLOOR 1e-6

@@ -351,9 +351,9 @@ BF_FN_INLINE void bf_acc_two(int nk, int np, const bf_pass_par *pp, BF_REAL a2, 
  * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL.
  *
  * Written so that PoCL keeps a closed-form model's moments in registers
- * through the kernel's loop: it is always inlined there (PoCL had called it
- * with nk and np as run-time arguments the closed-form full passes take
- * 4-32% longer), its loops are written out (BF_UNROLL3: each index into acc
+ * through the kernel's loop: it is always inlined there (called, with nk
+ * and np as run-time arguments, the closed-form full passes take 4-32%
+ * longer), its loops are written out (BF_UNROLL3: each index into acc
  * a constant; the trip counts, 1-3, left as loops), acc never leaves
  * the kernel (bf_fold_add, bf_fold_flush and bf_accumulate_end inlined) and
  * the loop calls nothing (bf_lobe_fd inlined, and the lobes it calls: a call

@@ -424,13 +424,13 @@ static double stored_error(const char *material, const char *model)
     return e;
 }
 
-/* Two He fits that need the start grid's third sigma0
- * round (pickled-oak-260: its minimum at tau ~ 1, sigma0 ~ 0.012, 8% below
- * the stored run) and the polish's tighter tolerances (blue-metallic-paint:
- * the stored run's minimum, 1.3e-10 below it here; with the caller's
- * tolerances 2.6e-8 above) to come to the stored run reach it or go below.
- * blue-metallic-paint gets 1e-8 of room: nearby minima along He's valley differ by ~1e-9, and another
- * CPU's vector code may settle in a neighbour.  black-soft-plastic's tau
+/* Two He fits that need the start grid's third sigma0 round (pickled-oak-260:
+ * its minimum at tau ~ 1, sigma0 ~ 0.012, 8% below the stored run) and the
+ * polish's tighter tolerances (blue-metallic-paint: the stored run's minimum,
+ * 1.3e-10 below it here; with the caller's tolerances 2.6e-8 above) to come
+ * to the stored run reach it or go below.  blue-metallic-paint gets 1e-8 of
+ * room: nearby minima along He's valley differ by ~1e-9, and another CPU's
+ * vector code may settle in a neighbour.  black-soft-plastic's tau
  * ends on its lower bound: there the fit holds tau on the bound for a last
  * run (with the bound restart on the subset alone and no such run, it would
  * end 6.1e-6 above the stored run), so tau is the bound exactly. */

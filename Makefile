@@ -83,7 +83,8 @@ CLI_SRC  = $(wildcard src/cli/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
-BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_render.c \
+BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_record.c \
+            bench/bench_render.c bench/bench_summary.c \
             bench/bench_stream.c bench/cli_run.c
 
 all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit $(BUILD)/brdffit.1
@@ -211,10 +212,10 @@ test: $(BUILD)/test_brdffit all
 # intercept_tls_get_addr=0: LSan's stop-the-world tracer sometimes crashes at a
 # forked test's exit ("Tracer caught signal 11: addr=0x948", "LeakSanitizer has
 # encountered a fatal error"; google/sanitizers#1322: the dynamic TLS blocks it
-# walks, PoCL's dlopen'd kernels among them), a test body that passed then
-# counted as an error: 31 to 42 of the fit suite's tests in some builds of
-# 2026-12-04, 0 with it (the same binary, repeated).  A pointer kept only in
-# dynamic TLS would then be reported as a leak, not hidden.
+# walks, PoCL's dlopen'd kernels among them), and a test body that passed then
+# counts as an error (dozens of the fit suite's tests in some builds; none
+# with it).  A pointer kept only in dynamic TLS would then be reported as a
+# leak, not hidden.
 sanitize:
 	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	    build-san/test_brdffit build-san/brdffit
@@ -262,18 +263,23 @@ fuzz:
 	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_journal $(FUZZ_RUN) -max_len=8192 \
 	    -artifact_prefix=build-fuzz/crash-journal- build-fuzz/corpus/journal
 
+# Every figure the benchmarks print is appended to bench/results.tsv through
+# bench/record (BENCH_RECORD= records nothing); BENCH_ARGS: bench_brdffit's
+# options (--quick, --models a,b, --parts 1,2, ...).
+BENCH_RECORD ?= $(CURDIR)/bench/record
+BENCH_RECORD_ARG = $(if $(BENCH_RECORD),--record $(BENCH_RECORD))
 bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache
-	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit
+	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit $(BENCH_RECORD_ARG) $(BENCH_ARGS)
 
 # The whole database (bench/bench_database.c): brdffit fit over the 100 tables
 # x every model, once reading ahead and BENCH_ROUNDS times each fit alone,
-# against the stored run (docs/performance.md).  A few minutes.
+# against the stored run bench/baseline-errors.tsv (docs/performance.md).  A few minutes.
 BENCH_ROUNDS ?= 3
 bench-database: $(BUILD)/bench_brdffit $(BUILD)/brdffit
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit --database \
-	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv
+	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv $(BENCH_RECORD_ARG)
 
 # The Python package's eval on 1,000,000 pairs against the same call from C.
 $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdffit.so
@@ -281,7 +287,7 @@ $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdff
 
 bench-python: $(BUILD)/bench_eval_c $(BUILD)/libbrdffit.so
 	BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
-	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c
+	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c $(BENCH_RECORD_ARG)
 
 # brdffit's fit against a tuned Ceres Solver fit of the same problem
 # (bench/ceres/fit_ceres.cc says what it solves and how it is tuned), per

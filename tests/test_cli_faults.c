@@ -51,7 +51,7 @@ static const char *table_file(void)
 
 /* No OpenCL platform (the ICD loader pointed at an empty directory) under
  * --backend opencl: each of three files gets its own failure record and
- * message -- the files after the first used to be skipped silently. */
+ * message, none of them skipped silently. */
 START_TEST(no_device_every_file_recorded)
 {
     char icd[] = "/tmp/brdffit-noicd-XXXXXX";
@@ -81,7 +81,7 @@ START_TEST(no_device_every_file_recorded)
 END_TEST
 
 /* --device that matches nothing: an error under --backend opencl; a warning
- * on stderr under auto, and the fit runs on the host (it used to be silent). */
+ * on stderr under auto (not silent), and the fit runs on the host. */
 START_TEST(device_matching_nothing)
 {
     const char *table = table_file();
@@ -117,8 +117,8 @@ START_TEST(device_matching_nothing)
 END_TEST
 
 /* An existing but unwritable POCL_CACHE_DIR (/proc: no file can be made
- * there, even by root): named with why -- every fit used to fail with kernel
- * build -11 and no hint; under auto the host path, said so. */
+ * there, even by root): named with why, not a bare kernel build error -11 on
+ * every fit; under auto the host path, said so. */
 START_TEST(unwritable_cache_named)
 {
     const char *table = table_file();
@@ -148,7 +148,7 @@ START_TEST(unwritable_cache_named)
 END_TEST
 
 /* --cutoff 1e-300 leaves only the normal: every fit refused with a clear
- * status (it used to return ok with s up to 3.6e35). */
+ * status (not ok with s up to 3.6e35). */
 START_TEST(tiny_cutoff_refused)
 {
     const char *table = table_file();

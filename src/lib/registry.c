@@ -104,23 +104,18 @@ static const bf_model_def registry[] = {
      * and refined there by plain Gauss-Newton LM (the secant correction
      * from the first step moved blue-metallic-paint into a minimum 0.37%
      * worse), then on all samples with the correction (README, Fidelity:
-     * the 100 MERL tables measured).  The stride, over the 100 tables:
-     * 8 -> 12 took He's time in fits from 77 s to 69 s with no fit higher
-     * than the stored run; 4 took 92 s; 16 and 24 (69, 64 s) each left one
-     * fit in another minimum (red-fabric 1.1e-6, white-diffuse-bball 9.6e-5
-     * above it).  A subset pass costs more than its share of samples: He's
+     * the 100 MERL tables measured).  The stride 12: shorter fits than 8 with
+     * no fit above the stored run, while 16 and 24 leave a fit in another
+     * minimum (red-fabric, white-diffuse-bball; docs/fitting.md).  A subset
+     * pass costs more than its share of samples: He's
      * memos work per (theta_h, theta_d) bin, and a subset has few samples
      * of each bin.  So its 21 starts are screened on a ninth of the bins
      * and every 12th phi_d (every 3rd theta_h and theta_d index: a 108th of
      * the samples), and the kept ones taken again on the stride subset,
-     * which orders them as a screening there would (every 2nd theta_h and
-     * theta_d index, measured first: every fit the same to the bit, He's
-     * time in fits 92.3 -> 86.9 s with every 6th phi_d and 83.8 -> 76.2 s
-     * with every 12th; every 3rd, over the 100 tables: the screening's
-     * passes 1.84 -> 1.09 s, one fit 4.6e-14 higher (specular-red-phenolic),
-     * the others the same to the bit; every 4th: 0.76 s, three fits moved by
-     * less than 6e-15, a 192nd of the samples, close to SCREEN_MIN_SAMPLES;
-     * every 30th sample: 2 fits moved by less than 1e-9).  Each kept start
+     * which orders them as a screening there would (over the 100 tables,
+     * every fit the same as with screening on the stride subset but one,
+     * 4.6e-14 higher; every 4th index comes close to SCREEN_MIN_SAMPLES;
+     * docs/fitting.md).  Each kept start
      * is then refined by LM on the bin subset first, where a pass costs a
      * third (smooth points) to a ninth of the stride subset's, and only the
      * ends within BINS_MARGIN of the lowest there, not at an earlier run's
@@ -130,9 +125,9 @@ static const bf_model_def registry[] = {
      * are below ~40 degrees at 645 nm and ~60 degrees at 444 nm, and that
      * depends on tau / sigma0 alone, so where along that line the bin
      * subset's run ends is no guide to where the stride subset's would (from
-     * the bin end, polyurethane-foam's fit ended 7.9e-6 above the stored
-     * run; with the line at 0.5 um, blue-metallic-paint2's 3.7e-5 above the
-     * run before; at 0.2 um, nickel's 8.2e-6 above the stored run). */
+     * the bin end, polyurethane-foam's fit ends 7.9e-6 above the stored run;
+     * with the line at 0.5 um or 0.2 um, blue-metallic-paint2's and nickel's
+     * end higher; docs/fitting.md). */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
                   .default_starts = 21 },

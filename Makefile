@@ -319,7 +319,7 @@ bench-ceres:
 # ---- install / uninstall ----
 # The header, both libraries (libbrdffit.so.VERSION, its soname link and the
 # .so link), brdffit.pc, the program, and the drop-in evaluator headers a
-# renderer includes (README): kernels/bf_lobe.h and every header it includes,
+# renderer includes (docs/library.md): kernels/bf_lobe.h and every header it includes,
 # as <brdffit/bf_lobe.h>.
 LIBDIR     = $(PREFIX)/lib
 INCLUDEDIR = $(PREFIX)/include

@@ -4,7 +4,7 @@
 # built and installed libraries promise a caller.
 #
 #   symbols    libbrdffit.so exports only brdffit_* (nm -D --defined-only) and
-#              has soname libbrdffit.so.0; libbrdffit.a defines no global
+#              has soname libbrdffit.so.1; libbrdffit.a defines no global
 #              other than brdffit_*; a caller with its own bf_fail, bf_now, ...
 #              links against either and each side calls its own
 #   install    `make install DESTDIR=...` puts the header, the drop-in
@@ -50,8 +50,8 @@ SOFILE=$BUILD/libbrdffit.so.$VERSION
 
 not_brdffit() { grep -v -E '^brdffit_' || true; }
 
-expect "soname of $SOFILE is libbrdffit.so.0" \
-    sh -c "readelf -d '$SOFILE' | grep -q 'SONAME.*\[libbrdffit.so.0\]'"
+expect "soname of $SOFILE is libbrdffit.so.1" \
+    sh -c "readelf -d '$SOFILE' | grep -q 'SONAME.*\[libbrdffit.so.1\]'"
 nm -D --defined-only "$SOFILE" | awk '{ print $NF }' >"$T/dynsyms"
 if [ -s "$T/dynsyms" ] && [ -z "$(not_brdffit <"$T/dynsyms")" ]; then pass; else
     fail "libbrdffit.so exports names other than brdffit_*: $(not_brdffit <"$T/dynsyms" | tr '\n' ' ')"
@@ -78,9 +78,9 @@ for f in include/brdffit.h include/brdffit/bf_lobe.h include/brdffit/bf_common.h
          lib/libbrdffit.a "lib/libbrdffit.so.$VERSION" lib/pkgconfig/brdffit.pc bin/brdffit; do
     if [ -f "$D$P/$f" ]; then pass; else fail "make install did not install $P/$f"; fi
 done
-if [ "$(readlink "$D$P/lib/libbrdffit.so.0")" = "libbrdffit.so.$VERSION" ] &&
-   [ "$(readlink "$D$P/lib/libbrdffit.so")" = "libbrdffit.so.0" ]; then pass; else
-    fail "the links libbrdffit.so -> libbrdffit.so.0 -> libbrdffit.so.$VERSION are not installed"
+if [ "$(readlink "$D$P/lib/libbrdffit.so.1")" = "libbrdffit.so.$VERSION" ] &&
+   [ "$(readlink "$D$P/lib/libbrdffit.so")" = "libbrdffit.so.1" ]; then pass; else
+    fail "the links libbrdffit.so -> libbrdffit.so.1 -> libbrdffit.so.$VERSION are not installed"
 fi
 expect "the installed program runs" sh -c "'$D$P/bin/brdffit' --version | grep -q '$VERSION'"
 
@@ -120,8 +120,8 @@ for lang in c c++; do
         $comp -Wall -Werror -o "$T/ex-$lang-shared" "$T/example.c" $cflags $libs
     expect "README example, $lang, static: builds" \
         $comp -Wall -Werror -o "$T/ex-$lang-static" "$T/example.c" $cflags -Wl,-Bstatic $slibs
-    if readelf -d "$T/ex-$lang-shared" 2>/dev/null | grep -q 'NEEDED.*libbrdffit.so.0'; then pass; else
-        fail "README example, $lang, shared: does not load libbrdffit.so.0"
+    if readelf -d "$T/ex-$lang-shared" 2>/dev/null | grep -q 'NEEDED.*libbrdffit.so.1'; then pass; else
+        fail "README example, $lang, shared: does not load libbrdffit.so.1"
     fi
     if readelf -d "$T/ex-$lang-static" 2>/dev/null | grep -q 'NEEDED.*libbrdffit'; then
         fail "README example, $lang, static: still needs libbrdffit.so"

@@ -406,8 +406,9 @@ static void check_batch_pages(const char *out)
     char *idx = slurp(path);
     ck_assert_int_eq(count_lines(idx, "class=\"best\""), 3);
     ck_assert_int_eq(count_lines(idx, "not fitted: "), 2);
-    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") && strstr(idx, "0.1.0") &&
-                      strstr(idx, "median Error") && strstr(idx, "headline.svg"),
+    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") &&
+                      strstr(idx, brdffit_version()) && strstr(idx, "median Error") &&
+                      strstr(idx, "headline.svg"),
                   "%s", idx);
     ck_assert_msg(strstr(idx, "published "), "no published Error in the matrix");
     free(idx);

@@ -143,6 +143,22 @@ $(BUILD)/cli/%.o: src/cli/%.c | $(BUILD)/cli
 $(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
+# The tests' build of the program, never installed: fault injection compiled
+# in (-DBRDFFIT_FAULTS; BRDFFIT_FAULT=POINT:N kills it there, src/cli/fault.c).
+# The files that use the hooks are compiled again into cli-faults/, the others
+# are the program's.
+FAULT_SRC = $(shell grep -l 'cli_fault_' $(CLI_SRC))
+FAULT_OBJ = $(FAULT_SRC:src/cli/%.c=$(BUILD)/cli-faults/%.o)
+$(BUILD)/cli-faults: | $(DEPS_STAMP)
+	mkdir -p $@
+
+$(BUILD)/cli-faults/%.o: src/cli/%.c | $(BUILD)/cli-faults
+	$(CC) $(CPPFLAGS) -DBRDFFIT_FAULTS $(CLI_INC) $(CLI_CFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/brdffit-faults: $(filter-out $(FAULT_SRC:src/cli/%.c=$(BUILD)/cli/%.o),$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o)) \
+                         $(FAULT_OBJ) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
+
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) $(TEST_INC) $(CLI_CFLAGS) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
 
@@ -189,9 +205,10 @@ demo: all
 # (exported symbols, the static library's internals, install/uninstall,
 # pkg-config, README's example built and run in C and C++, shared and
 # static).  All always run; any failing fails the goal.
-test: $(BUILD)/test_brdffit all
+test: $(BUILD)/test_brdffit all $(BUILD)/brdffit-faults
 	@mkdir -p $(BUILD)/pocl-cache
-	@rc=0; $(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit ./$(BUILD)/test_brdffit || rc=1; \
+	@rc=0; $(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit BRDFFIT_CLI_FAULTS=./$(BUILD)/brdffit-faults \
+	    ./$(BUILD)/test_brdffit || rc=1; \
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
 	    sh python/tests/run -q || rc=1; \
 	$(RUN_ENV) BUILD=$(BUILD) CC="$(CC)" sh tests/packaging.sh || rc=1; \
@@ -211,9 +228,10 @@ test: $(BUILD)/test_brdffit all
 # dynamic TLS would then be reported as a leak, not hidden.
 sanitize:
 	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
-	    build-san/test_brdffit build-san/brdffit
+	    build-san/test_brdffit build-san/brdffit build-san/brdffit-faults
 	@mkdir -p build-san/pocl-cache
 	POCL_CACHE_DIR="$(CURDIR)/build-san/pocl-cache" BRDFFIT_CLI=./build-san/brdffit \
+	BRDFFIT_CLI_FAULTS=./build-san/brdffit-faults \
 	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-4} \
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:use_sigaltstack=0:intercept_tls_get_addr=0 \
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \

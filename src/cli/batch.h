@@ -286,11 +286,4 @@ int rp_sort_model(const rp_report *rep);
  * often it is the best; NAN / 0 when none. */
 double rp_median(const rp_report *rep, int k, int *nbest, int *nfitted);
 
-/* Assets: the files the renders and plots of a material are, for its page. */
-typedef struct rp_asset {
-    char file[128];       /* relative to the material's directory */
-    char caption[256];
-    int kind;             /* 0 image (PNG), 1 plot (SVG), 2 other (EXR, linked) */
-} rp_asset;
-
 #endif

@@ -261,6 +261,21 @@ typedef struct size_case {
     brdffit_context *ctx;
 } size_case;
 
+/* The small table, its samples and a host context. */
+static void case_open(size_case *c)
+{
+    c->t = small_table();
+    c->s = small_samples(c->t);
+    ck_assert_int_eq(tu_context(BRDFFIT_BACKEND_HOST, &c->ctx, NULL), BRDFFIT_OK);
+}
+
+static void case_close(size_case *c)
+{
+    brdffit_context_free(c->ctx);
+    brdffit_samples_free(c->s);
+    brdffit_table_free(c->t);
+}
+
 /* The call of kind's options struct (all defaults, then `size`). */
 static brdffit_status call_sized(const size_case *c, brdffit_struct_kind kind, size_t size,
                                  brdffit_error *err)
@@ -322,9 +337,7 @@ START_TEST(bad_sizes_refused)
      * in most of them; inside `width` / `ntheta_i`, ints, for the others */
     static const char *const cut[] = { "cutoff_deg", "device", "ftol", "lights", "theta_i_deg" };
     size_case c;
-    c.t = small_table();
-    c.s = small_samples(c.t);
-    ck_assert_int_eq(tu_context(BRDFFIT_BACKEND_HOST, &c.ctx, NULL), BRDFFIT_OK);
+    case_open(&c);
     for (size_t k = 0; k < NSIZED; k++) {
         size_t full = brdffit_struct_size(sized[k]);
         size_t inside = brdffit_struct_offset(sized[k], cut[k]) + 1;
@@ -350,9 +363,7 @@ START_TEST(bad_sizes_refused)
         ck_assert_msg(call_sized(&c, sized[k], sizeof(size_t), &err) == BRDFFIT_OK, "%s: %s",
                       names[k], err.message);
     }
-    brdffit_context_free(c.ctx);
-    brdffit_samples_free(c.s);
-    brdffit_table_free(c.t);
+    case_close(&c);
 }
 END_TEST
 
@@ -399,16 +410,32 @@ _Static_assert(sizeof(old_fit_result) < sizeof(brdffit_fit_result),
 #define GUARD 64
 #define GUARD_BYTE 0xA5
 
+/* A call refused for the size of the result it was given (struct `name`,
+ * bytes[0..n) with `size` first): BRDFFIT_E_OPTIONS_SIZE, the message naming
+ * the struct and saying why, and no byte after `size` written. */
+static void expect_size_refused(brdffit_status st, const brdffit_error *err, const char *name,
+                                size_t size, const char *why, const unsigned char *bytes, size_t n)
+{
+    ck_assert_msg(st == BRDFFIT_E_OPTIONS_SIZE, "%s size %zu: status %d (%s)", name, size,
+                  (int)st, err->message);
+    ck_assert_msg(strncmp(err->message, name, strlen(name)) == 0 &&
+                      err->message[strlen(name)] == ':', "%s", err->message);
+    ck_assert_msg(strstr(err->message, why), "size %zu: %s", size, err->message);
+    size_t got;
+    memcpy(&got, bytes, sizeof got);
+    ck_assert_uint_eq(got, size);
+    for (size_t b = sizeof got; b < n; b++)
+        ck_assert_msg(bytes[b] == GUARD_BYTE, "%s size %zu: byte %zu written", name, size, b);
+}
+
 /* A fit into an old caller's result: the members it has are those of the same
  * fit into the whole struct; not a byte after its size is written (guard bytes
  * after it; an exactly sized heap block for AddressSanitizer). */
 START_TEST(old_fit_result_written_within_size)
 {
-    brdffit_table *t = small_table();
-    brdffit_samples *s = small_samples(t);
-    brdffit_context *ctx = NULL;
+    size_case c;
+    case_open(&c);
     brdffit_error err;
-    ck_assert_int_eq(tu_context(BRDFFIT_BACKEND_HOST, &ctx, &err), BRDFFIT_OK);
     brdffit_fit_options fo;
     brdffit_fit_options_default(&fo);
     fo.starts = 2;
@@ -417,7 +444,7 @@ START_TEST(old_fit_result_written_within_size)
     ck_assert_uint_eq(want.size, sizeof want);
     ck_assert_int_eq(want.model, 0);
     ck_assert(want.error == 0 && want.seconds_build == 0);
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD_DUER, &fo, &want, &err) == BRDFFIT_OK, "%s",
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, &want, &err) == BRDFFIT_OK, "%s",
                   err.message);
     ck_assert_uint_eq(want.size, sizeof want);
 
@@ -427,7 +454,7 @@ START_TEST(old_fit_result_written_within_size)
     } buf;
     memset(&buf, GUARD_BYTE, sizeof buf);
     buf.r.size = sizeof buf.r;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD_DUER, &fo, (brdffit_fit_result *)&buf.r,
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, (brdffit_fit_result *)&buf.r,
                               &err) == BRDFFIT_OK, "%s", err.message);
     for (size_t b = sizeof buf.r; b < sizeof buf; b++)
         ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "byte %zu after the old result written", b);
@@ -441,7 +468,7 @@ START_TEST(old_fit_result_written_within_size)
     ck_assert_int_eq(o->passes, want.passes);
     ck_assert(o->seconds > 0 && o->seconds >= o->seconds_passes);
     ck_assert_uint_eq(o->samples, want.samples);
-    ck_assert_uint_eq(o->samples, brdffit_samples_count(s));
+    ck_assert_uint_eq(o->samples, brdffit_samples_count(c.s));
     ck_assert_int_eq(o->backend, BRDFFIT_BACKEND_HOST);
     ck_assert_uint_eq(o->at_bound, want.at_bound);
     ck_assert_uint_eq(o->flags, want.flags);
@@ -449,13 +476,11 @@ START_TEST(old_fit_result_written_within_size)
     old_fit_result *heap = malloc(sizeof *heap);
     ck_assert_ptr_nonnull(heap);
     heap->size = sizeof *heap;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD_DUER, &fo, (brdffit_fit_result *)heap, &err) ==
-                      BRDFFIT_OK, "%s", err.message);
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, (brdffit_fit_result *)heap,
+                              &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert(heap->error == want.error);
     free(heap);
-    brdffit_context_free(ctx);
-    brdffit_samples_free(s);
-    brdffit_table_free(t);
+    case_close(&c);
 }
 END_TEST
 
@@ -464,11 +489,9 @@ END_TEST
  * the first sized layout exactly is taken. */
 START_TEST(result_bad_sizes_refused)
 {
-    brdffit_table *t = small_table();
-    brdffit_samples *s = small_samples(t);
-    brdffit_context *ctx = NULL;
+    size_case c;
+    case_open(&c);
     brdffit_error err;
-    ck_assert_int_eq(tu_context(BRDFFIT_BACKEND_HOST, &ctx, &err), BRDFFIT_OK);
     brdffit_fit_options fo;
     brdffit_fit_options_default(&fo);
     fo.starts = 1;
@@ -490,28 +513,21 @@ START_TEST(result_bad_sizes_refused)
         memset(&buf, GUARD_BYTE, sizeof buf);
         buf.r.size = bad[q];
         memset(&err, 0, sizeof err);
-        brdffit_status st = brdffit_fit(ctx, s, BRDFFIT_WARD_DUER, &fo, &buf.r, &err);
-        ck_assert_msg(st == BRDFFIT_E_OPTIONS_SIZE, "size %zu: status %d (%s)", bad[q], (int)st,
-                      err.message);
-        ck_assert_msg(strncmp(err.message, "brdffit_fit_result: ", 20) == 0, "%s", err.message);
-        ck_assert_msg(strstr(err.message, what[q]), "size %zu: %s", bad[q], err.message);
+        brdffit_status st = brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, &buf.r, &err);
+        expect_size_refused(st, &err, "brdffit_fit_result", bad[q], what[q], buf.bytes,
+                            sizeof buf);
         if (q == 3)
             ck_assert_ptr_nonnull(strstr(err.message, "'seconds_build'"));
-        ck_assert_uint_eq(buf.r.size, bad[q]);
-        for (size_t b = sizeof buf.r.size; b < sizeof buf; b++)
-            ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "size %zu: byte %zu written", bad[q], b);
     }
     memset(&buf, GUARD_BYTE, sizeof buf);
     buf.r.size = first;
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD_DUER, &fo, &buf.r, &err) == BRDFFIT_OK, "%s",
-                  err.message);
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, &buf.r, &err) == BRDFFIT_OK,
+                  "%s", err.message);
     ck_assert_int_eq(buf.r.model, BRDFFIT_WARD_DUER);
     ck_assert(isfinite(buf.r.error));
     for (size_t b = first; b < sizeof buf; b++)
         ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "byte %zu after size %zu written", b, first);
-    brdffit_context_free(ctx);
-    brdffit_samples_free(s);
-    brdffit_table_free(t);
+    case_close(&c);
 }
 END_TEST
 
@@ -550,11 +566,8 @@ START_TEST(sample_sized)
     for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
         memset(&buf, GUARD_BYTE, sizeof buf);
         buf.x.size = bad[q];
-        ck_assert_int_eq(brdffit_samples_get(s, 0, &buf.x, &err), BRDFFIT_E_OPTIONS_SIZE);
-        ck_assert_msg(strncmp(err.message, "brdffit_sample: ", 16) == 0, "%s", err.message);
-        ck_assert_msg(strstr(err.message, what[q]), "size %zu: %s", bad[q], err.message);
-        for (size_t b = sizeof buf.x.size; b < sizeof buf; b++)
-            ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "size %zu: byte %zu written", bad[q], b);
+        expect_size_refused(brdffit_samples_get(s, 0, &buf.x, &err), &err, "brdffit_sample",
+                            bad[q], what[q], buf.bytes, sizeof buf);
     }
     brdffit_samples_free(s);
     brdffit_table_free(t);

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # brdffit -- library (libbrdffit.a, libbrdffit.so), program (brdffit), tests, benchmark.
 #
-#   make             build/libbrdffit.a build/libbrdffit.so build/brdffit
+#   make             build/libbrdffit.a build/libbrdffit.so build/brdffit build/brdffit.1
 #   make demo        build, then run the batch on the embedded synthetic material
 #                    (report in build/demo; prints the path of its index.html)
 #   make test        build and run the Check suite and the Python package's tests
@@ -9,14 +9,16 @@
 #   make sanitize    the suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make tsan        the threaded tests under ThreadSanitizer (clang)
 #   make fuzz        the fuzz targets (tests/fuzz/, libFuzzer), FUZZ_SECONDS each (default 60)
-#   make bench       the benchmark (bench/), figures as in README.md
+#   make bench       the benchmark (bench/), figures: docs/performance.md
 #   make bench-python  only its Python part (eval from NumPy against C)
 #   make bench-database  the 100 tables x every model end to end (a few minutes)
+#   make bench-ceres  brdffit's fit against a tuned Ceres Solver fit (installs Ceres)
 #   make fidelity    every published material x model against the paper and a stored run
 #   make fidelity-quick  the same on ten materials
 #   make deps        install the Debian packages the build needs (.ci/install-deps)
 #   make install PREFIX=/usr/local [DESTDIR=...]   headers, libraries, brdffit.pc,
-#                    program, and the Python package (python/brdffit) beside the library
+#                    program, its manual page, and the Python package (python/brdffit)
+#                    beside the library
 #   make uninstall PREFIX=/usr/local [DESTDIR=...]  removes what install put there
 #   make clean
 
@@ -81,10 +83,11 @@ CLI_SRC  = $(wildcard src/cli/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
-BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_render.c \
+BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_record.c \
+            bench/bench_render.c bench/bench_summary.c \
             bench/bench_stream.c bench/cli_run.c
 
-all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit
+all: $(BUILD)/libbrdffit.a $(BUILD)/libbrdffit.so $(BUILD)/brdffit $(BUILD)/brdffit.1
 
 $(BUILD)/lib $(BUILD)/cli $(BUILD)/tests $(BUILD)/bench: | $(DEPS_STAMP)
 	mkdir -p $@
@@ -159,6 +162,10 @@ $(BUILD)/brdffit-faults: $(filter-out $(FAULT_SRC:src/cli/%.c=$(BUILD)/cli/%.o),
                          $(FAULT_OBJ) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
+# The manual page: the program's help text as roff (src/cli/man.c).
+$(BUILD)/brdffit.1: $(BUILD)/brdffit
+	./$(BUILD)/brdffit help --man > $@.tmp && mv $@.tmp $@
+
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) $(TEST_INC) $(CLI_CFLAGS) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<
 
@@ -222,10 +229,10 @@ test: $(BUILD)/test_brdffit all $(BUILD)/brdffit-faults
 # intercept_tls_get_addr=0: LSan's stop-the-world tracer sometimes crashes at a
 # forked test's exit ("Tracer caught signal 11: addr=0x948", "LeakSanitizer has
 # encountered a fatal error"; google/sanitizers#1322: the dynamic TLS blocks it
-# walks, PoCL's dlopen'd kernels among them), a test body that passed then
-# counted as an error: 31 to 42 of the fit suite's tests in some builds of
-# 2026-12-04, 0 with it (the same binary, repeated).  A pointer kept only in
-# dynamic TLS would then be reported as a leak, not hidden.
+# walks, PoCL's dlopen'd kernels among them), and a test body that passed then
+# counts as an error (dozens of the fit suite's tests in some builds; none
+# with it).  A pointer kept only in dynamic TLS would then be reported as a
+# leak, not hidden.
 sanitize:
 	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	    build-san/test_brdffit build-san/brdffit build-san/brdffit-faults
@@ -274,18 +281,23 @@ fuzz:
 	ASAN_OPTIONS=detect_leaks=1 ./build-fuzz/fuzz/fuzz_journal $(FUZZ_RUN) -max_len=8192 \
 	    -artifact_prefix=build-fuzz/crash-journal- build-fuzz/corpus/journal
 
+# Every figure the benchmarks print is appended to bench/results.tsv through
+# bench/record (BENCH_RECORD= records nothing); BENCH_ARGS: bench_brdffit's
+# options (--quick, --models a,b, --parts 1,2, ...).
+BENCH_RECORD ?= $(CURDIR)/bench/record
+BENCH_RECORD_ARG = $(if $(BENCH_RECORD),--record $(BENCH_RECORD))
 bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 	@mkdir -p $(BUILD)/pocl-cache
-	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit
+	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit $(BENCH_RECORD_ARG) $(BENCH_ARGS)
 
 # The whole database (bench/bench_database.c): brdffit fit over the 100 tables
 # x every model, once reading ahead and BENCH_ROUNDS times each fit alone,
-# against the stored run (README: Where issue 15's targets stand).  A few minutes.
+# against the stored run bench/baseline-errors.tsv (docs/performance.md).  A few minutes.
 BENCH_ROUNDS ?= 3
 bench-database: $(BUILD)/bench_brdffit $(BUILD)/brdffit
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit --database \
-	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv
+	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv $(BENCH_RECORD_ARG)
 
 # The Python package's eval on 1,000,000 pairs against the same call from C.
 $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdffit.so
@@ -293,22 +305,59 @@ $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdff
 
 bench-python: $(BUILD)/bench_eval_c $(BUILD)/libbrdffit.so
 	BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
-	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c
+	    "$$(sh python/find-python numpy)" bench/python/eval_numpy.py ./$(BUILD)/bench_eval_c $(BENCH_RECORD_ARG)
+
+# brdffit's fit against a tuned Ceres Solver fit of the same problem
+# (bench/ceres/fit_ceres.cc says what it solves and how it is tuned), per
+# model and table, each figure appended to bench/results.tsv (bench/record).
+# Ceres comes from Debian (.ci/install-deps ceres); nothing else needs it.
+# CERES_ARGS: more options (--models, --materials, --reps, ...).
+CXX      ?= g++
+CERES_CXXFLAGS = -std=c++17 $(OPT) -g -Wall -Wextra -MMD -MP -pthread -I/usr/include/eigen3
+CERES_LIBS     = -lceres -lglog -lgflags
+$(BUILD)/bench-ceres: | $(DEPS_STAMP)
+	mkdir -p $@
+
+$(BUILD)/bench-ceres/fc_shim.o: bench/ceres/fc_shim.c bench/ceres/fc_shim.h | $(BUILD)/bench-ceres
+	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/bench-ceres/fit_ceres.o: bench/ceres/fit_ceres.cc bench/ceres/fc_shim.h | $(BUILD)/bench-ceres
+	sh .ci/install-deps ceres
+	$(CXX) $(CPPFLAGS) -Ibench/ceres -Itests $(CERES_CXXFLAGS) -c -o $@ $<
+
+$(BUILD)/bench_ceres: $(BUILD)/bench-ceres/fit_ceres.o $(BUILD)/bench-ceres/fc_shim.o $(BUILD)/tests/testutil.o $(BUILD)/libbrdffit-internal.a
+	$(CXX) $(LDFLAGS) -o $@ $^ $(CERES_LIBS) $(LDLIBS)
+
+bench-ceres:
+	sh .ci/install-deps ceres
+	$(MAKE) $(BUILD)/bench_ceres
+	@mkdir -p $(BUILD)/pocl-cache
+	$(RUN_ENV) ./$(BUILD)/bench_ceres --record bench/record $(CERES_ARGS)
 
 # ---- install / uninstall ----
 # The header, both libraries (libbrdffit.so.VERSION, its soname link and the
 # .so link), brdffit.pc, the program, and the drop-in evaluator headers a
-# renderer includes (README): kernels/bf_lobe.h and every header it includes,
+# renderer includes (docs/library.md): kernels/bf_lobe.h and every header it includes,
 # as <brdffit/bf_lobe.h>.
 LIBDIR     = $(PREFIX)/lib
 INCLUDEDIR = $(PREFIX)/include
 BINDIR     = $(PREFIX)/bin
+MAN1DIR    = $(PREFIX)/share/man/man1
 DROPIN_HEADERS = $(shell $(CC) -MM -MT x -x c kernels/bf_lobe.h | sed -e 's/^x://' -e 's/\\//g')
+# brdffit.pc's Libs carries -Wl,-rpath,${libdir} for every prefix but / and
+# /usr, so that a program linked through `pkg-config --libs brdffit` finds
+# libbrdffit.so.1 where it was installed, without LD_LIBRARY_PATH.  /usr/lib
+# is the dynamic loader's own; /usr/local/lib gets the run path too: Debian's
+# ld.so.conf names it, but the loader finds a library there only after
+# ldconfig has run, which `make install` does not do (the run path is harmless
+# once it has).
+comma := ,
+PC_RPATH = $(if $(filter / /usr,$(PREFIX) $(patsubst %/,%,$(PREFIX))),,-Wl$(comma)-rpath$(comma)$${libdir})
 $(BUILD)/bench_fidelity: $(BUILD)/bench/fidelity.o $(BUILD)/libbrdffit-internal.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 # Every published material x every model, against the published parameters
-# and the stored run bench/baseline-errors.tsv (README: Fidelity).
+# and the stored run bench/baseline-errors.tsv (docs/fidelity.md).
 fidelity: $(BUILD)/bench_fidelity
 	@mkdir -p $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/bench_fidelity --baseline bench/baseline-errors.tsv $(FIDELITY_ARGS)
@@ -326,7 +375,8 @@ install: all
 	ln -sf $(SOFILE) $(DESTDIR)$(LIBDIR)/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libbrdffit.so
 	install -m 755 $(BUILD)/brdffit $(DESTDIR)$(BINDIR)/
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' brdffit.pc.in \
+	install -d $(DESTDIR)$(MAN1DIR) && install -m 644 $(BUILD)/brdffit.1 $(DESTDIR)$(MAN1DIR)/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@RPATH@|$(PC_RPATH)|' brdffit.pc.in \
 	    > $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc
 	$(MAKE) --no-print-directory install-python
 
@@ -351,7 +401,8 @@ install-python:
 uninstall:
 	rm -f $(DESTDIR)$(INCLUDEDIR)/brdffit.h $(DESTDIR)$(LIBDIR)/libbrdffit.a \
 	      $(DESTDIR)$(LIBDIR)/$(SOFILE) $(DESTDIR)$(LIBDIR)/$(SONAME) $(DESTDIR)$(LIBDIR)/libbrdffit.so \
-	      $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc $(DESTDIR)$(BINDIR)/brdffit
+	      $(DESTDIR)$(LIBDIR)/pkgconfig/brdffit.pc $(DESTDIR)$(BINDIR)/brdffit \
+	      $(DESTDIR)$(MAN1DIR)/brdffit.1
 	rm -f $(DESTDIR)$(INCLUDEDIR)/brdffit/*.h
 	rmdir $(DESTDIR)$(INCLUDEDIR)/brdffit 2>/dev/null || true
 	$(MAKE) --no-print-directory uninstall-python
@@ -374,5 +425,5 @@ clean:
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d)
 
-.PHONY: all demo test sanitize tsan fuzz bench bench-database bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan fuzz bench bench-ceres bench-database bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* bench.c -- `make bench`: the figures README.md reports.
+/* bench.c -- `make bench`: the figures docs/performance.md reports.
  *
  *  1. per model, on the full alum-bronze table: its kernel build time
  *     (brdffit_context_prepare), then one OpenCL data pass (value + Jacobian
@@ -21,13 +21,18 @@
  *  5. a material's renders and plots (bench_render.c; --renders: this alone);
  *  6. only with --database (`make bench-database`, a few minutes): `brdffit fit`
  *     over all 100 tables x every model, once reading ahead and --rounds N
- *     (3) times each fit alone: issue 15's targets over the whole database
- *     (bench_database.c).
+ *     (3) times each fit alone: the wall time, per-model medians, He /
+ *     Cook-Torrance and the fits against a stored run (bench_database.c).
+ *
+ * Then, after parts 1-2, the figures for README (bench_summary.c).  With
+ * --record SCRIPT (bench/record) every figure printed is also appended to
+ * bench/results.tsv, one row a figure (bench_record.c names them).
  *
  * Tables come from ../shared/tools/merl-table (BRDFFIT_SHARED overrides).
  * Usage: bench_brdffit [--quick] [--models a,b,...] [--materials N] [--parts 1,3,...]
- *                      [--renders] (--renders: --parts 5)
+ *                      [--renders] [--record SCRIPT] (--renders: --parts 5)
  *        bench_brdffit --database [--rounds N] [--baseline FILE] [--models a,b,...]
+ *                      [--record SCRIPT]
  */
 #define _POSIX_C_SOURCE 200809L
 #include "pass.h"
@@ -35,8 +40,10 @@
 #include "bench_batch.h"
 #include "bench_cli.h"
 #include "bench_database.h"
+#include "bench_record.h"
 #include "bench_render.h"
 #include "bench_stream.h"
+#include "bench_summary.h"
 #include "registry.h"
 #include "samples.h"
 
@@ -133,6 +140,7 @@ typedef struct bench_args {
                            * --database: 6) */
     int rounds;           /* --rounds N: part 6's runs each fit alone (1..20) */
     const char *baseline; /* --baseline FILE: part 6 compares with its Errors */
+    const char *record;   /* --record SCRIPT: each figure appended through it */
 } bench_args;
 
 #define PART(k) (1u << (k))
@@ -159,6 +167,7 @@ static int parse_args(int argc, char **argv, bench_args *a)
     a->parts = PART(1) | PART(2) | PART(3) | PART(4) | PART(5);
     a->rounds = 3;
     a->baseline = NULL;
+    a->record = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--quick"))
             a->quick = 1, a->nmat = 2;
@@ -170,6 +179,8 @@ static int parse_args(int argc, char **argv, bench_args *a)
             a->rounds = atoi(argv[++i]);
         else if (!strcmp(argv[i], "--baseline") && i + 1 < argc)
             a->baseline = argv[++i];
+        else if (!strcmp(argv[i], "--record") && i + 1 < argc)
+            a->record = argv[++i];
         else if (!strcmp(argv[i], "--parts") && i + 1 < argc && parse_parts(argv[++i], &a->parts))
             ;
         else if (!strcmp(argv[i], "--models") && i + 1 < argc)
@@ -178,7 +189,8 @@ static int parse_args(int argc, char **argv, bench_args *a)
             a->nmat = atoi(argv[++i]);
         else {
             fprintf(stderr, "usage: %s [--quick] [--models a,b] [--materials N] [--parts 1,2,..] [--renders]\n"
-                            "       %s --database [--rounds N] [--baseline FILE] [--models a,b]\n",
+                            "          [--record SCRIPT]\n"
+                            "       %s --database [--rounds N] [--baseline FILE] [--models a,b] [--record SCRIPT]\n",
                     argv[0], argv[0]);
             return 2;
         }
@@ -240,10 +252,37 @@ failed:
     return 1;
 }
 
-/* Part 1's row of model m at point pp (its name and `tag`): 0, or 1 after
- * printing why. */
+/* Part 1's figures of model m at its typical start or at its fit (at_fit),
+ * recorded: pass/MODEL/alum-bronze/start|fit, and the kernel build once,
+ * build/MODEL. */
+static void record_pass(brdffit_model m, int at_fit, double build_s, const pass_times *t, double bytes)
+{
+    const char *name = brdffit_model_get(m)->name;
+    char benchmark[96];
+    if (!at_fit) {
+        snprintf(benchmark, sizeof benchmark, "build/%s", name);
+        bench_record(benchmark, "kernel build seconds", build_s);
+    }
+    const bench_figure f[] = {
+        { "C loop ms", t->c_loop * 1e3 },
+        { "value pass ms", t->value * 1e3 },
+        { "full pass ms", t->full * 1e3 },
+        { "stream ms", t->stream * 1e3 },
+        { "value/stream ratio", t->value / t->stream },
+        { "full/stream ratio", t->full / t->stream },
+        { "C loop/full ratio", t->c_loop / t->full },
+        { "stream GB/s", bytes / t->stream * 1e-9 },
+    };
+    snprintf(benchmark, sizeof benchmark, "pass/%s/alum-bronze/%s", name, at_fit ? "fit" : "start");
+    bench_record_all(benchmark, f, (int)(sizeof f / sizeof f[0]));
+}
+
+/* Part 1's row of model m at point pp (its typical start, or its fit:
+ * at_fit), printed and recorded; full / stream at the start into sum.  0, or
+ * 1 after printing why. */
 static int pass_row(brdffit_context *ctx, const brdffit_samples *s, brdffit_model m,
-                    const bf_pass_par *pp, const char *tag, bench_stream *bs, int reps, int creps)
+                    const bf_pass_par *pp, int at_fit, bench_stream *bs, int reps, int creps,
+                    bench_summary *sum)
 {
     double bytes = (double)BF_NFIELDS * sizeof(double) * (double)s->npad;
     brdffit_error err;
@@ -261,11 +300,14 @@ static int pass_row(brdffit_context *ctx, const brdffit_samples *s, brdffit_mode
     bf_driver_close(&dr);
     if (rc == 0) {
         char name[32];
-        snprintf(name, sizeof name, "%s%s", brdffit_model_get(m)->name, tag);
+        snprintf(name, sizeof name, "%s%s", brdffit_model_get(m)->name, at_fit ? " @fit" : "");
         printf("%-18s %7.2f %7.1f %9.1f %9.1f %9.1f %9.1f %7.2fx %7.2fx %6.1fx %9.1f\n", name,
                brdffit_context_build_seconds(ctx, m), bytes / (double)s->n, t.c_loop * 1e3,
                t.value * 1e3, t.full * 1e3, t.stream * 1e3, t.value / t.stream, t.full / t.stream,
                t.c_loop / t.full, bytes / t.stream * 1e-9);
+        record_pass(m, at_fit, brdffit_context_build_seconds(ctx, m), &t, bytes);
+        if (!at_fit)
+            sum->full_per_read[m] = t.full / t.stream;
     }
     return rc;
 }
@@ -275,7 +317,8 @@ static int pass_row(brdffit_context *ctx, const brdffit_samples *s, brdffit_mode
  * passes against a streaming read of the same bytes (bench_stream.c), at the
  * model's typical start, and He's also at its fit of the table; the host's
  * memcpy and sum of the buffer for context. */
-static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const bench_args *a)
+static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const bench_args *a,
+                        bench_summary *sum)
 {
     int reps = a->quick ? 2 : 20, creps = a->quick ? 1 : 2; /* passes of ~1 ms: the machine's
                                                               * hiccups need many to miss */
@@ -298,6 +341,13 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const 
            s->n, set->n, (int)BF_NFIELDS, bytes / (double)s->n, bytes * 1e-6, copy_s * 1e3,
            bytes / copy_s * 1e-9,
            sum_s * 1e3, bytes / sum_s * 1e-9);
+    const bench_figure host[] = {
+        { "memcpy ms", copy_s * 1e3 },
+        { "memcpy GB/s", bytes / copy_s * 1e-9 },
+        { "sum ms", sum_s * 1e3 },
+        { "sum GB/s", bytes / sum_s * 1e-9 },
+    };
+    bench_record_all("host-memory/alum-bronze", host, (int)(sizeof host / sizeof host[0]));
     printf("%-18s %7s %7s %9s %9s %9s %9s %8s %8s %7s %9s\n", "model", "build s", "B/smp", "C loop ms",
            "value ms", "full ms", "stream ms", "value/st", "full/st", "C/full", "stream GB/s");
     bench_stream bs;
@@ -308,7 +358,7 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const 
             continue;
         bf_pass_par pp;
         point_of((brdffit_model)m, &pp);
-        rc = pass_row(ctx, s, (brdffit_model)m, &pp, "", &bs, reps, creps);
+        rc = pass_row(ctx, s, (brdffit_model)m, &pp, 0, &bs, reps, creps, sum);
         if (rc == 0 && m == BRDFFIT_HE) { /* and at its fit, where most samples are flat */
             brdffit_fit_result r;
             brdffit_fit_result_init(&r);
@@ -317,7 +367,7 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const 
                 rc = 1;
             } else {
                 point_at(BRDFFIT_HE, r.params.p, &r.params, &pp);
-                rc = pass_row(ctx, s, BRDFFIT_HE, &pp, " @fit", &bs, reps, creps);
+                rc = pass_row(ctx, s, BRDFFIT_HE, &pp, 1, &bs, reps, creps, sum);
             }
         }
     }
@@ -325,9 +375,26 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const 
     return rc;
 }
 
+/* Part 2's figures of model m's fastest fit r, recorded: fit/MODEL/alum-bronze. */
+static void record_fit(brdffit_model m, const brdffit_fit_result *r)
+{
+    const bench_figure f[] = {
+        { "fit seconds", r->seconds },
+        { "passes count", r->passes },
+        { "LM iterations count", r->iterations },
+        { "passes seconds", r->seconds_passes },
+        { "cminpack percent", 100.0 * r->seconds_solver / r->seconds },
+        { "Error", r->error },
+    };
+    char benchmark[96];
+    snprintf(benchmark, sizeof benchmark, "fit/%s/alum-bronze", brdffit_model_get(m)->name);
+    bench_record_all(benchmark, f, (int)(sizeof f / sizeof f[0]));
+}
+
 /* 2. per model one complete fit (kernels built beforehand), the fastest of
- * 3; then the He / Cook-Torrance ratio. */
-static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a)
+ * 3; then the He / Cook-Torrance ratio.  Printed, recorded, and into sum. */
+static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a,
+                      bench_summary *sum)
 {
     double fit_seconds[BRDFFIT_MODEL_COUNT] = { 0 };
     printf("\n2. one complete fit, alum-bronze (default options; kernels built and the set's\n"
@@ -351,6 +418,9 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
         printf("%-18s %10.3e %7d %7d %10.3f %10.3f %11.3f%%\n", brdffit_model_get((brdffit_model)m)->name,
                r.error, r.passes, r.iterations, r.seconds, r.seconds_passes,
                100.0 * r.seconds_solver / r.seconds);
+        record_fit((brdffit_model)m, &r);
+        sum->fit_seconds[m] = r.seconds;
+        sum->passes[m] = r.passes;
     }
 
     /* The He / Cook-Torrance ratio: the two fits alternately (so that a burst
@@ -367,6 +437,8 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
                "  each, alternating, and the above)\n",
                fit_seconds[BRDFFIT_HE] / fit_seconds[BRDFFIT_COOK_TORRANCE],
                fit_seconds[BRDFFIT_HE], fit_seconds[BRDFFIT_COOK_TORRANCE], pairs);
+        sum->he_per_ct = fit_seconds[BRDFFIT_HE] / fit_seconds[BRDFFIT_COOK_TORRANCE];
+        bench_record("fit/he/alum-bronze", "fit / cook-torrance's fit ratio", sum->he_per_ct);
     }
     return 0;
 }
@@ -376,6 +448,9 @@ int main(int argc, char **argv)
     bench_args a;
     if (parse_args(argc, argv, &a) != 0)
         return 2;
+    bench_record_use(a.record);
+    bench_summary sum;
+    memset(&sum, 0, sizeof sum);
     brdffit_error err;
     brdffit_context *ctx = NULL;
     brdffit_samples *s = NULL;
@@ -392,8 +467,8 @@ int main(int argc, char **argv)
             goto done;
         printf("alum-bronze: %zu valid samples (cutoff 80 deg, standard scale)\n\n", brdffit_samples_count(s));
     }
-    if (((a.parts & PART(1)) && bench_passes(ctx, s, &a) != 0) ||
-        ((a.parts & PART(2)) && bench_fits(ctx, s, &a) != 0))
+    if (((a.parts & PART(1)) && bench_passes(ctx, s, &a, &sum) != 0) ||
+        ((a.parts & PART(2)) && bench_fits(ctx, s, &a, &sum) != 0))
         goto done;
     brdffit_samples_free(s);
     s = NULL;
@@ -408,6 +483,7 @@ int main(int argc, char **argv)
         rc = 1;
     if ((a.parts & PART(6)) && bench_database(a.rounds, a.models, a.baseline) != 0)
         rc = 1;
+    bench_summary_print(&sum);
 done:
     brdffit_samples_free(s);
     brdffit_context_free(ctx);

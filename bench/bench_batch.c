@@ -3,9 +3,11 @@
  * materials end to end (the program, $BRDFFIT_CLI, into a fresh directory),
  * and the share of its time spent outside fitting (reading and hashing the
  * tables, sample sets, renders, plots, pages), as the batch itself reports
- * it on stderr.  Target: <= 10% of the total. */
+ * it on stderr.  Target: <= 10% of the total.  Recorded as
+ * program-batch/MODELS/N-tables (MODELS: the --model list, or every-model). */
 #define _POSIX_C_SOURCE 200809L
 #include "bench_batch.h"
+#include "bench_record.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -72,6 +74,16 @@ int bench_batch(const char *const *materials, int nmat, const char *models)
     printf("  %d fits in %.1f s, of which %.1f s fitting: %.1f%% outside fitting (reading, renders,\n"
            "  plots, pages; target <= 10%%)\n",
            fits, total, fitting, 100 * (total - fitting) / total);
+    const bench_figure f[] = {
+        { "fits count", fits },
+        { "wall seconds", total },
+        { "fitting seconds", fitting },
+        { "outside fitting percent", 100 * (total - fitting) / total },
+    };
+    char benchmark[256];
+    snprintf(benchmark, sizeof benchmark, "program-batch/%s/%d-tables", models ? models : "every-model",
+             nmat);
+    bench_record_all(benchmark, f, (int)(sizeof f / sizeof f[0]));
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0)
         fprintf(stderr, "bench: could not remove %s\n", dir);

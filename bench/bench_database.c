@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* bench_database.c -- `make bench-database` (bench_brdffit --database): issue
- * 15's targets over the whole database, from one command, as README reports
- * them.  `brdffit fit` over every table of ../shared/tools/merl-table --list
+/* bench_database.c -- `make bench-database` (bench_brdffit --database): the
+ * whole database's figures, from one command, as docs/performance.md reports them.
+ * `brdffit fit` over every table of ../shared/tools/merl-table --list
  * x every model, --scale flat --json, the program as a user runs it (one
  * process, one context, every table read and sampled, every kernel built
  * once):
@@ -9,7 +9,7 @@
  *     its wall time (target: the 100 tables x every model in 3 minutes);
  *   - then `rounds` times with --no-read-ahead, each fit having the two
  *     cores to itself (the thread reading ahead slows the fits beside it,
- *     Cook-Torrance's median by 1.4-1.7x: README, Performance): each run's
+ *     Cook-Torrance's median by 1.4-1.7x: docs/performance.md): each run's
  *     per-model medians and He / Cook-Torrance, then the same from each
  *     table's fastest fit over the rounds, which takes most of the shared
  *     machine's noise out of each fit (target: He's median at most 3x
@@ -17,9 +17,12 @@
  *   - every fit of every run against a stored run's Error (--baseline):
  *     how many end above it by more than 1e-9 relative (target: none).
  * The figures are printed, not judged: the exit status says only whether
- * every run completed. */
+ * every run completed.  Last, a summary: the wall time reading ahead and
+ * each model's median fit.  Recorded (bench_record.c) as database/MODELS
+ * (MODELS: the --model list, or every-model) and database/MODEL. */
 #define _POSIX_C_SOURCE 200809L
 #include "bench_database.h"
+#include "bench_record.h"
 #include "cli_run.h"
 #include "testutil.h"
 
@@ -133,11 +136,13 @@ static void print_medians(const double *med)
     printf("\n");
 }
 
-/* The medians of each table's fastest fits, and He's fits either side of
- * its median (the median of 100 is the mean of the 50th and 51st). */
-static void print_fastest(fastest best, char (*names)[64], int ntab, int rounds)
+/* The medians of each table's fastest fits into med, printed and recorded
+ * (database/MODEL), and He's fits either side of its median (the median of
+ * 100 is the mean of the 50th and 51st). */
+static void print_fastest(fastest best, char (*names)[64], int ntab, int rounds,
+                          double med[BRDFFIT_MODEL_COUNT])
 {
-    double med[BRDFFIT_MODEL_COUNT], v[MAX_TABLES];
+    double v[MAX_TABLES];
     int idx[MAX_TABLES], nhe = 0;
     for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
         int k = 0;
@@ -148,6 +153,10 @@ static void print_fastest(fastest best, char (*names)[64], int ntab, int rounds)
     }
     printf("  each table's fastest fit over the %d runs alone:\n    medians:", rounds);
     print_medians(med);
+    bench_record_models("database", NULL, "median fastest-fit seconds", med);
+    if (med[BRDFFIT_HE] > 0 && med[BRDFFIT_COOK_TORRANCE] > 0)
+        bench_record("database/he", "median fastest-fit / cook-torrance's ratio",
+                     med[BRDFFIT_HE] / med[BRDFFIT_COOK_TORRANCE]);
     for (int t = 0; t < ntab; t++)
         if (best[t][BRDFFIT_HE] > 0)
             idx[nhe++] = t;
@@ -166,9 +175,11 @@ static void print_fastest(fastest best, char (*names)[64], int ntab, int rounds)
     }
 }
 
-/* One run of cmd: its figures printed, its fits into best and b. */
-static int one_run(const char *cmd, const char *label, char (*names)[64], int ntab,
-                   fastest best, baseline *b)
+/* One run of cmd: its figures printed and recorded under `benchmark` (the
+ * metrics' last words: `how`), its wall time into *wall, its fits into best
+ * and b. */
+static int one_run(const char *cmd, const char *label, const char *benchmark, const char *how,
+                   char (*names)[64], int ntab, fastest best, baseline *b, double *wall)
 {
     cli_run r;
     double med[BRDFFIT_MODEL_COUNT];
@@ -178,6 +189,13 @@ static int one_run(const char *cmd, const char *label, char (*names)[64], int nt
     }
     printf("  %s: %d fits, %.1f s wall, %.1f s inside the fits (%.1f s of kernel builds)\n",
            label, r.n, r.wall, r.in_fits, r.builds);
+    char metric[3][64];
+    snprintf(metric[0], sizeof metric[0], "wall seconds %s", how);
+    snprintf(metric[1], sizeof metric[1], "inside fits seconds %s", how);
+    snprintf(metric[2], sizeof metric[2], "kernel builds seconds %s", how);
+    const bench_figure f[] = { { metric[0], r.wall }, { metric[1], r.in_fits }, { metric[2], r.builds } };
+    bench_record_all(benchmark, f, 3);
+    *wall = r.wall;
     if (best && cli_model_medians(&r, med) == 0) {
         printf("    medians:");
         print_medians(med);
@@ -190,11 +208,37 @@ static int one_run(const char *cmd, const char *label, char (*names)[64], int nt
     return 0;
 }
 
+/* The figures against the stored run, printed and recorded under benchmark. */
+static void print_baseline(const baseline *b, const char *path, int runs, const char *benchmark)
+{
+    printf("  against the stored run %s: %d fits compared over the %d runs, %d above it by more\n"
+           "  than 1e-9 relative; the highest %s, 1 %+.1e\n",
+           path, b->compared, runs, b->worse, b->worst_fit, b->worst - 1.0);
+    const bench_figure f[] = {
+        { "fits compared with the stored run count", b->compared },
+        { "fits above the stored run count", b->worse },
+        { "highest Error / stored - 1", b->worst - 1.0 }, /* as printed: the ratio to 6 digits is 1 */
+    };
+    bench_record_all(benchmark, f, b->compared > 0 ? 3 : 1);
+}
+
+/* The summary: the wall time as it runs by default, each model's median fit. */
+static void print_summary(int ntab, const char *models, double wall, const double *med, int rounds)
+{
+    printf("\nthe whole database, %d tables x %s: %.1f s wall (reading ahead, as it runs by\n"
+           "default); median seconds per fit (each table's fastest of %d runs alone):\n ",
+           ntab, models ? models : "every model", wall, rounds);
+    print_medians(med);
+}
+
 int bench_database(int rounds, const char *models, const char *baseline_path)
 {
     static char names[MAX_TABLES][64];
     static fastest best;
     baseline b = { 0 };
+    char benchmark[256];
+    double wall_ahead = 0.0, wall, med[BRDFFIT_MODEL_COUNT] = { 0 };
+    snprintf(benchmark, sizeof benchmark, "database/%s", models ? models : "every-model");
     char *cmd = NULL, *alone = NULL;
     const char *list[MAX_TABLES];
     int rc = -1, ntab = cli_material_list(names, MAX_TABLES);
@@ -208,19 +252,19 @@ int bench_database(int rounds, const char *models, const char *baseline_path)
     printf("\nthe whole database: brdffit fit over the %d tables x %s, --scale flat --json\n", ntab,
            models ? models : "every model");
     fflush(stdout);
-    if (one_run(cmd, "reading ahead (as it runs by default)", names, ntab, NULL, &b) != 0)
+    if (one_run(cmd, "reading ahead (as it runs by default)", benchmark, "reading ahead", names, ntab,
+                NULL, &b, &wall_ahead) != 0)
         goto done;
     for (int k = 0; k < rounds; k++) {
         char label[64];
         snprintf(label, sizeof label, "each fit alone (--no-read-ahead), run %d of %d", k + 1, rounds);
-        if (one_run(alone, label, names, ntab, best, &b) != 0)
+        if (one_run(alone, label, benchmark, "alone", names, ntab, best, &b, &wall) != 0)
             goto done;
     }
-    print_fastest(best, names, ntab, rounds);
+    print_fastest(best, names, ntab, rounds, med);
     if (b.rows)
-        printf("  against the stored run %s: %d fits compared over the %d runs, %d above it by more\n"
-               "  than 1e-9 relative; the highest %s, 1 %+.1e\n",
-               baseline_path, b.compared, rounds + 1, b.worse, b.worst_fit, b.worst - 1.0);
+        print_baseline(&b, baseline_path, rounds + 1, benchmark);
+    print_summary(ntab, models, wall_ahead, med, rounds);
     rc = 0;
 done:
     free(b.rows);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* bench_database.h -- `make bench-database`: `brdffit fit` over the whole
- * database, issue 15's targets there (bench_database.c). */
+ * database, its wall time and per-model medians (bench_database.c). */
 #ifndef BRDFFIT_BENCH_DATABASE_H
 #define BRDFFIT_BENCH_DATABASE_H
 

@@ -1,7 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* bench_render.c -- part 5 of the bench: a material's renders and plots
- * (library renders, curves, and the program's files), see README.md. */
+ * (library renders, curves, and the program's files), see docs/performance.md.
+ * Recorded as render/every-model/alum-bronze, plot/every-model/alum-bronze,
+ * material-files/every-model/alum-bronze and render-env/MODEL/alum-bronze
+ * (render-env/table/alum-bronze: the table itself). */
 #include "bench_render.h"
+#include "bench_record.h"
 #include "internal.h"
 #include "render_files.h"
 #include "testutil.h"
@@ -91,6 +95,9 @@ int bench_renders(int quick)
     printf("   renders 256^2, default lights, reference + every model (library): %.3f s (target <= 1 s)\n", best[0]);
     printf("   plots of every model (SVG files, curves included):               %.3f s\n", best[1]);
     printf("   all files of the material (renders EXR+PNG+diff, plots, json):   %.3f s\n", best[2]);
+    bench_record("render/every-model/alum-bronze", "256^2 default lights seconds", best[0]);
+    bench_record("plot/every-model/alum-bronze", "SVG files seconds", best[1]);
+    bench_record("material-files/every-model/alum-bronze", "seconds", best[2]);
     o.width = 128;
     o.nlights = 0;
     o.env_width = 256, o.env_height = 128;
@@ -100,12 +107,17 @@ int bench_renders(int quick)
     printf("   environment 128^2, 256 samples per pixel:\n");
     double t0 = bf_now();
     brdffit_render_table(t, &o, img, 0, NULL);
-    printf("     %-18s %7.3f s\n", "reference", bf_now() - t0);
+    double seconds = bf_now() - t0;
+    printf("     %-18s %7.3f s\n", "reference", seconds);
+    bench_record("render-env/table/alum-bronze", "128^2 256 samples seconds", seconds);
+    double env_s[BRDFFIT_MODEL_COUNT] = { 0 };
     for (int m = 0; m < nm; m++) {
         t0 = bf_now();
         brdffit_render_model(fits[m].model, &fits[m].params, &o, img, 0, NULL);
-        printf("     %-18s %7.3f s\n", brdffit_model_get(fits[m].model)->name, bf_now() - t0);
+        env_s[m] = bf_now() - t0;
+        printf("     %-18s %7.3f s\n", brdffit_model_get(fits[m].model)->name, env_s[m]);
     }
+    bench_record_models("render-env", "alum-bronze", "128^2 256 samples seconds", env_s);
     free(env);
     free(img);
     brdffit_table_free(t);

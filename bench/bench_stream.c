@@ -10,9 +10,9 @@
  * loads cannot be optimised away and a wrong walk is caught (to 1e-9 of the
  * field's sum of |x|: the two add ~1e6 terms in different orders; one vector
  * missed or read twice would be ~1e-5).  The twelve sums are twelve named
- * vectors, not an array: PoCL kept an array's in memory, and that walk read
- * 22-27 GB/s where this one reads 40-50 GB/s on the same machine (2026-12-03,
- * an AVX-512 EPYC), slower than the value passes it was meant to bound. */
+ * vectors, not an array: PoCL keeps an array's in memory, and such a walk
+ * reads about half as fast, slower than the value passes it is meant to
+ * bound (docs/performance.md). */
 #define _POSIX_C_SOURCE 200809L
 #include "bench_stream.h"
 #include "context.h"

@@ -29,8 +29,8 @@
 
 /* A fit is worse than the stored run's when its Error exceeds it by more than
  * WORSE_TOL (relative); the summary also counts the fits beyond the wider
- * band WIDE_TOL, where two runs' LM stopped within their convergence
- * tolerance used to differ, and those better by more than it. */
+ * band WIDE_TOL, within which two runs' LM stopping inside their convergence
+ * tolerance can differ, and those better by more than it. */
 #define WORSE_TOL 1e-9
 #define WIDE_TOL 1e-7
 

@@ -10,7 +10,8 @@
  * argument, the index, the value.  The library never prints, exits or
  * aborts.
  *
- * CONVENTIONS (all of them; README.md repeats them)
+ * CONVENTIONS (a summary: docs/conventions.md is the normative statement;
+ * python/tests/test_docs.py checks the figures both state against the code)
  *
  *   Frame.  Local shading frame, z is the surface normal N.  wi points from
  *   the surface TOWARD THE LIGHT, wo TOWARD THE VIEWER, both unit vectors
@@ -253,7 +254,7 @@ int brdffit_model_count(void);
 const brdffit_model_info *brdffit_model_get(brdffit_model model);
 /* Lobe parameter `index` (0-based) of a model, or NULL when either is out of range. */
 const brdffit_param_info *brdffit_model_param(brdffit_model model, int index);
-/* Look a model up by name ("cook-torrance"; '_' is accepted for '-'):
+/* Look a model up by name ("cook-torrance"; any case, '_' accepted for '-'):
  * BRDFFIT_E_UNKNOWN_MODEL, the message listing the models, for any other. */
 brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brdffit_error *err);
 
@@ -414,16 +415,16 @@ brdffit_status brdffit_samples_options(const brdffit_samples *samples,
                                        brdffit_sample_options *out, brdffit_error *err);
 /* Make now what fits of `model` derive from the set and share: the mirror
  * set its passes on all samples read (each pair of samples at phi_d and
- * pi - phi_d, which every model gives one value, merged into one: README,
- * How a fit works), the subsets its starts are screened on (every 8th
+ * pi - phi_d, which every model gives one value, merged into one:
+ * docs/fitting.md), the subsets its starts are screened on (every 8th
  * sample, He: every 12th and a bin subset) and, for He, the bin tables of
  * the mirror set and of those subsets.  A set keeps them until it is freed,
  * and every fit of it (any context, any thread) uses the same ones, so that
  * a fit need not read the whole set to make them (~8 ms each for a MERL
- * table on the machine of README's figures).  Optional: without it the
+ * table: docs/performance.md).  Optional: without it the
  * first fit that needs one makes it, and that fit's `seconds` include it.
- * Memory: ~0.8 of the set's own for all the models (README: How a fit
- * works, Starts).  Safe while other threads fit the set.
+ * Memory: ~0.8 of the set's own for all the models
+ * (docs/fitting.md).  Safe while other threads fit the set.
  * BRDFFIT_E_INVALID_ARGUMENT (NULL samples), BRDFFIT_E_UNKNOWN_MODEL,
  * BRDFFIT_E_NO_MEMORY (nothing is kept then). */
 brdffit_status brdffit_samples_prepare(const brdffit_samples *samples, brdffit_model model,
@@ -580,7 +581,7 @@ typedef enum brdffit_fit_flag {
 /* Fit a model to a sample set.  opt may be NULL for the defaults.  The
  * starts are screened on every 8th sample of a large set (He: 12th), and
  * He's kept starts are refined there first; the result (params, error) is always that
- * of all samples (README: How a fit works).  A sample
+ * of all samples (docs/fitting.md).  A sample
  * set with fewer distinct geometries than the model's unknowns per channel
  * (d, s and the lobe parameters; directions differing only by a turn about
  * the normal or by exchanging wi and wo count once) is refused with
@@ -596,11 +597,12 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
  * Fits and Errors come from data passes (OpenCL kernel or host loop) over
  * the sample set's mirror set: each pair of samples at phi_d and pi - phi_d,
  * which every model gives one value, merged into one sample, with the same
- * sums up to rounding (README: How a fit works).  For He a pass takes a
+ * sums up to rounding (docs/fitting.md).  For He a pass takes a
  * flat sample's K from its (theta_h, theta_d) bin's row and the others'
  * series from their bin's table; its K then agrees with brdffit_eval's to
  * ~1e-12 relative (tested), not bit for bit, and a flat sample's K below
- * e^-60 of K at normal incidence counts as 0 (README: Conventions). */
+ * e^-28 of K at normal incidence counts as 0 (BF_HE_ROW_FLOOR in
+ * kernels/bf_he_rows.h; docs/conventions.md, He). */
 brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *samples,
                                 brdffit_model model, const brdffit_params *params,
                                 double *error, brdffit_error *err);
@@ -639,7 +641,7 @@ size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member);
 
 /* ------------------------------------------------------------------ renders
  *
- * Render conventions (README.md repeats them):
+ * Render conventions (docs/conventions.md, Renders, states them for users):
  *   Scene.  A unit sphere at the origin seen by an orthographic camera looking
  *   down -z: camera frame x right, y up, z toward the viewer, so the view
  *   direction wo = (0, 0, 1) at every pixel.  The sphere fills the N x N image

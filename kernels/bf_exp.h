@@ -90,8 +90,8 @@ BF_FN_INLINE BF_REAL bf_exp_poly(BF_REAL x)
     return p * BF_POW2I(n);
 }
 
-/* (A Lafortune value pass with most lanes below -745.2 took twice as long
- * when the product underflowed there.) */
+/* (Were the product to underflow there, a Lafortune value pass with most
+ * lanes below -745.2 would take twice as long.) */
 BF_FN_INLINE BF_REAL bf_exp_wide_poly(BF_REAL x)
 {
     BF_REAL n;

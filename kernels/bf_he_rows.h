@@ -251,10 +251,8 @@ BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const 
  * >= 0.99 (u >= 2), it needs F < 1e-307, and F >= ((n - 1) / (n + 1))^2 /
  * 2 >= 1e-37 for n in (1, 30] (n - 1 >= 2.2e-16), 0 at n = 1, where the
  * rows are 0 (bf_he_fd_channel's zero flag) and so is K.
- * Measured (thirtieth session, alum-bronze's mirror set at the typical
- * start): the samples not served by the rows 35919 -> 1601 of 467468; a
- * value pass 2.8 -> 1.6 ms, a full pass 3.9 -> 2.7 ms (u >= 2.5 the same,
- * u >= 3 as before; u >= 4 had been the bound, for sigma = sigma0). */
+ * At the typical start on alum-bronze's mirror set this serves all but ~0.3%
+ * of the samples from the rows (docs/he-model.md). */
 #define BF_HE_W_CARRY 1e-7
 /* G of a bin whose rows carry no lane (bf_he_row_carry). */
 #define BF_HE_ROW_NONE 1e300
@@ -330,15 +328,11 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
  * differ from those of the samples evaluated one by one by ~1e-13 and its
  * Jacobian moments by ~2e-11 (relative; tests/test_pass.c, fold_equals_plain
  * and subset_every_8th), far below the forward differences' own error.
- * Measured over the 100 MERL tables (He, --scale flat): each fit's Error, at
- * its parameters, within -3.3e-13 to +2.7e-12 (relative) of the same Error
- * with the floor at e^-60, and no fit above the stored run
- * (bench/baseline-errors.tsv) by 1e-9; a stride-subset pass at brass's and
- * two-layer-gold's fits 20-22% less than at e^-60, nickel's 14%, and the
- * smooth fits around He's median 5-17% less (fastest of six).  At e^-25
- * the Errors moved by up to 1.6e-11 at the same parameters and the
- * Jacobian moments by 2e-8; at e^-20 the Errors by up to 2.7e-9.  At e^-60
- * (and at e^-100, the first floor) every fit was the same to the bit. */
+ * Over the 100 MERL tables (He, --scale flat) each fit's Error at its
+ * parameters is within 3e-12 (relative) of the same with the floor at
+ * e^-60, no fit above the stored run (bench/baseline-errors.tsv), and
+ * stride-subset passes take 5-22% less; lower floors (e^-25, e^-20) move
+ * the Errors by up to 1.6e-11 and 2.7e-9 (docs/he-model.md). */
 #define BF_HE_ROW_FLOOR 28.0
 
 BF_FN void bf_he_row_floor(const double *p0, const double *lam, bf_he_pconst *pc)
@@ -393,7 +387,7 @@ BF_FN int bf_he_rows_dead(const bf_he_dir *d, BF_REAL live, const double *p0, co
 
 /* The floor of the rows at p0 (bf_he_row_floor's ldead) into floor[3]: the
  * pass driver makes it once a pass on the host (in every work-item of the
- * kernel it had cost ~4% of a smooth subset pass: K at normal incidence). */
+ * kernel it would cost ~4% of a smooth subset pass: K at normal incidence). */
 BF_FN void bf_he_row_floors(const double *p0, const double *lam, double *floor)
 {
     bf_he_pconst pc;
@@ -437,7 +431,7 @@ BF_FN void bf_he_row_carry(const bf_he_base *b, BF_REAL K0, double lam, int ch, 
  * p[0] (BF_B_COT, with a margin for rounding) is skipped: no lane of theirs
  * reads its row (neither a flat one nor one near them: bf_he_near_serve).
  * Rows made from u >= BF_HE_U_ROW instead of BF_HE_U_FLAT: at alum-bronze's
- * He fit a pass the same (0.50-0.58 ms on all samples either way). */
+ * He fit a pass takes the same time either way. */
 BF_FN void bf_he_bin_rows(BF_GLOBAL const double *bins, int h0, int h1, const double (*p)[3],
                           int np, const double *lam, const double *floor, BF_GLOBAL double *rows,
                           int nrows)

@@ -229,8 +229,8 @@ BF_HE_CONSTANT double bf_he_rcp[BF_HE_MMAX + 1] = {
 /* d(m) = ln(T_{m+1} / T_m), T_m = g^m e^-g / (m! m) e^(-a/m): decreasing in m,
  * for whole m in [1, BF_HE_MMAX - 1] (larger m read as BF_HE_MMAX - 1).
  * ln((m + 1)^2 / m) is bf_he_lkk[m + 1] - bf_he_lkk[m], to ~5e-13 absolute
- * (the table's rounding at ~2000): a lane's two logarithms were most of a
- * peak search.  So the sign is exact but where two terms tie to within
+ * (the table's rounding at ~2000): a lane's two logarithms would be most of
+ * a peak search.  So the sign is exact but where two terms tie to within
  * e^(5e-13) (either is then a peak: the sums agree to rounding). */
 BF_FN BF_REAL bf_he_dlog(BF_REAL m, BF_REAL lng, BF_REAL a)
 {

@@ -174,9 +174,9 @@ BF_FN BF_REAL bf_he_dshadow_lu(BF_REAL u, BF_REAL h, BF_REAL lu, BF_REAL ex)
  * root (against a long double Newton; tests/test_he.c, newton_x).  Above,
  * Newton on ln x + x^2/2 - ln r (no overflow for any r): for r up to
  * BF_HE_R_FIT = 2 from r P / Q (bf_he_x_start_pq), within 5.7e-11 of the root, so that
- * one step ends it (the rough samples' r are mostly below 1, and a vector
- * took the four steps of its slowest lane from x = r: a rough full pass 5%
- * faster), above from max(sqrt(2 ln r), 0.75) (monotone on either side of
+ * one step ends it (the rough samples' r are mostly below 1, and from x = r
+ * a vector would take the four steps of its slowest lane: a rough full pass
+ * 5% faster this way), above from max(sqrt(2 ln r), 0.75) (monotone on either side of
  * x = 1).  A lane stops after a step |dx| <= 1e-8 x: with
  * F = ln x + x^2/2 - ln r the relative error after a step is
  * (x F'' / 2F') (dx / x)^2 and |x F'' / 2F'| = |x^2 - 1| / (2 (1 + x^2))

@@ -34,7 +34,7 @@ typedef struct bf_geom {
  * evaluated with cos t = BF_COS_FLOOR (5.7e-5 deg above it; the direction's
  * length then differs from 1 by less than 1e-12), so that every lobe's
  * quotients stay finite (below it Ward, Ward-Duer, Cook-Torrance,
- * Ashikhmin-Shirley and GGX took 0/0 or x/0 at cosines of 1e-100 and less).
+ * Ashikhmin-Shirley and GGX would take 0/0 or x/0 at cosines of 1e-100 and less).
  * No sample of a MERL table comes near it (the bins' centres lie within
  * 89.5 deg). */
 #define BF_COS_FLOOR 1e-6
@@ -163,9 +163,8 @@ BF_FN BF_REAL bf_blinn_phong_vdk(const bf_geom *g, const double *p, BF_REAL *dK)
 /* Lafortune [Cxy, Cz, n]: the base is normalised by max(|Cxy|, |Cz|) before
  * the power, so that large n cannot underflow the normalisation.  The
  * weights are divided by it once a call, not each sample's base and
- * partials (three vector divisions less: a full pass on alum-bronze's
- * mirror set 1.28-1.33 -> 1.19-1.25 ms, scratch timer, best of 200,
- * alternated). */
+ * partials (three vector divisions less a sample: a full pass ~7% shorter,
+ * docs/performance.md). */
 BF_FN BF_REAL bf_lafortune_x(const bf_geom *g, double cxy, double cz)
 {
     const double rm = 1.0 / fmax(fabs(cxy), fabs(cz));
@@ -210,9 +209,8 @@ BF_FN_INLINE BF_REAL bf_lafortune_vdk(const bf_geom *g, const double *p, BF_REAL
  * R = G D / (cos ti cos to), G = min(1, 2 N.H min(cos ti, cos to) / V.H),
  * D = e^(-tan^2 delta / m^2) / (4 pi m^2 cos^4 delta).  Written with one
  * division a sample: 1 / cos^2 delta (for tan^2 delta) and the rest's
- * denominator both from 1 / (cos^2 delta V.H cos ti cos to) (it took five:
- * on alum-bronze's mirror set the full pass 1.9-2.1 -> 1.4-1.6 ms and the value
- * pass 1.1 -> 0.8-0.9 ms, bench part 1 alternated, twenty-sixth session).
+ * denominator both from 1 / (cos^2 delta V.H cos ti cos to) (written with
+ * five, a full pass takes ~30% longer: docs/performance.md).
  * *t gets tan^2 delta, for the partial. */
 BF_FN BF_REAL bf_cook_torrance_rest_t(const bf_geom *g, double m, BF_REAL *t)
 {

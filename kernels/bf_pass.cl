@@ -23,9 +23,9 @@
 #error "build with -DBF_MODEL=<model id>"
 #endif
 /* BF_ROWS: 1 when the model's pass has bin rows (bf_lobe_has_own_fd: He).
- * The whole-bin code is compiled only into such a kernel: the others keep
- * the loop they had (Cook-Torrance's full pass was ~5% slower with it
- * compiled in and never run, the same to the bit). */
+ * The whole-bin code is compiled only into such a kernel: compiled in and
+ * never run, it makes the others' full passes ~5% slower (Cook-Torrance),
+ * with the same results to the bit. */
 #ifndef BF_ROWS
 #error "build with -DBF_ROWS=<1 for a model with bin rows, else 0>"
 #endif

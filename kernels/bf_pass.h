@@ -44,7 +44,7 @@ typedef struct bf_fold {
 /* BF_PAIRS: 1 where bf_accumulate may hold a vector back (bf_pair): the
  * host's loop, and the kernel of a model with bin rows (He).  The other
  * kernels have no such state: with it, though never used, their full
- * passes took 2-4% longer (Cook-Torrance's 1.12 -> 1.15 ms). */
+ * passes take 2-4% longer (docs/performance.md). */
 #if defined(__OPENCL_VERSION__) && !BF_ROWS
 #define BF_PAIRS 0
 #else
@@ -262,13 +262,9 @@ BF_FN_INLINE int bf_pass_bins_skip(const bf_pass_state *ps, BF_REAL vhd, long i0
  * difference quotient of the neighbours bf_lobe_fd gives, K(p_0) +
  * dK . (p_j - p_0), without their rounding: subtracting K(p_0) again lost
  * ~1e-16 K / h of each G_j (~1e-9 K at a fit's h = 1e-7).  The pass so
- * stores and reloads no neighbour (PoCL had kept the three in memory, a
- * store and a load each per vector): a full pass on alum-bronze's mirror
- * set (scratch timer, best of 200, alternated) 0.89 -> 0.84-0.85 ms for
- * Cook-Torrance, 1.10-1.16 -> 0.95-0.99 ms Ashikhmin-Shirley, 1.19-1.25 ->
- * 1.16-1.18 ms Lafortune.  Over the 100 MERL tables every fit of these
- * models moved by less than 1e-15 relative but Lafortune's (-7.4e-11 ..
- * +2.2e-12); He, which has no partials, the same to the bit. */
+ * stores and reloads no neighbour (PoCL keeps stored neighbours in memory, a
+ * store and a load each per vector), and a full pass of the models with
+ * partials is shorter (docs/performance.md). */
 BF_FN_INLINE void bf_pass_partials(int model, int np, const bf_pass_par *pp, const bf_geom *g,
                                    BF_REAL *K0, BF_REAL (*G)[BF_MAX_NP])
 {
@@ -317,9 +313,8 @@ BF_FN_INLINE void bf_acc_one(int nk, int np, const bf_pass_par *pp, BF_REAL a2, 
  * moment's two terms added before acc: one load and store of each moment
  * for the two.  He's 61 moments do not fit the registers (PoCL keeps them
  * in memory, a load and a store a moment and vector); summed in pairs, a
- * full pass at its typical start (tau = 16, sigma0 = 0.5, n = 2) on
- * alum-bronze's mirror set 2.41 -> 2.27 ms (a scratch timer, fastest of
- * 500, alternated three times). */
+ * full pass at its typical start (tau = 16, sigma0 = 0.5, n = 2) ~6%
+ * shorter (docs/performance.md). */
 BF_FN_INLINE void bf_acc_two(int nk, int np, const bf_pass_par *pp, BF_REAL a2, const BF_REAL *K0,
                              BF_REAL (*G)[BF_MAX_NP], const BF_REAL *rho, BF_REAL b2,
                              const BF_REAL *L0, BF_REAL (*H)[BF_MAX_NP], const BF_REAL *sig,
@@ -356,18 +351,16 @@ BF_FN_INLINE void bf_acc_two(int nk, int np, const bf_pass_par *pp, BF_REAL a2, 
  * (bf_pass_state_clear at its start, bf_accumulate_end at its end), or NULL.
  *
  * Written so that PoCL keeps a closed-form model's moments in registers
- * through the kernel's loop: it is always inlined there (PoCL had called it
- * with nk and np as run-time arguments: the closed-form full passes took
- * 4-32% longer), its loops are written out (BF_UNROLL3: each index into acc
- * a constant; the trip counts, 1-3, were left as loops), acc never leaves
+ * through the kernel's loop: it is always inlined there (called, with nk
+ * and np as run-time arguments, the closed-form full passes take 4-32%
+ * longer), its loops are written out (BF_UNROLL3: each index into acc
+ * a constant; the trip counts, 1-3, left as loops), acc never leaves
  * the kernel (bf_fold_add, bf_fold_flush and bf_accumulate_end inlined) and
  * the loop calls nothing (bf_lobe_fd inlined, and the lobes it calls: a call
- * clobbers every vector register, so the sums were stored and loaded around
- * it).  PoCL had kept acc in memory, a load and a store per moment and
- * vector; registers take off a full pass on alum-bronze (a scratch timer
- * alternating the builds, 2026-12-04) 27-33% of its time for Blinn-Phong,
- * 20% Lafortune, 18-21% Cook-Torrance, 13-17% Ward, 8-15% Ward-Duer, 9%
- * Ashikhmin-Shirley, 4-11% GGX.  He's 61 moments do not fit the registers:
+ * clobbers every vector register, so the sums would be stored and loaded
+ * around it).  Otherwise PoCL keeps acc in memory, a load and a store per
+ * moment and vector; in registers a full pass takes 4-33% less time,
+ * depending on the model (docs/performance.md).  He's 61 moments do not fit the registers:
  * with a run's state, its vectors that are not folded are summed in pairs
  * (bf_acc_two; the first of a pair held in ps->pair, a last one left
  * alone summed by bf_accumulate_end). */

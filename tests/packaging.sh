@@ -10,7 +10,11 @@
 #   install    `make install DESTDIR=...` puts the header, the drop-in
 #              evaluator headers, both libraries and their links, brdffit.pc
 #              and the program there; `make uninstall` removes every file
-#   pkg-config --cflags (brdffit's folder only), --libs, --static --libs
+#   pkg-config --cflags (brdffit's folder only), --libs, --static --libs;
+#              Libs has the run path ${libdir} for a prefix other than /usr
+#   prefix     `make install PREFIX=dir` (no DESTDIR): README's example built
+#              with PKG_CONFIG_PATH=dir/lib/pkgconfig and pkg-config runs
+#              without LD_LIBRARY_PATH (RUNPATH dir/lib); linked without it, not
 #   README     its library example, built from the README text with
 #              pkg-config in C and C++, shared and static (the static ones
 #              need no libbrdffit.so), run on a synthetic table: it fits the
@@ -95,10 +99,11 @@ slibs=$(pkg-config --static --libs brdffit)
 if [ "$(echo $cflags)" = "-I$D$P/include" ]; then pass; else
     fail "pkg-config --cflags brdffit is '$cflags', expected only -I$D$P/include"
 fi
-if [ "$(echo $libs)" = "-L$D$P/lib -lbrdffit" ]; then pass; else
+# the run path of a prefix other than /usr (pkgconf puts the sysroot before it too)
+if [ "$(echo $libs)" = "-L$D$P/lib -Wl,-rpath,$D$P/lib -lbrdffit" ]; then pass; else
     fail "pkg-config --libs brdffit is '$libs'"
 fi
-if [ "$(echo $slibs)" = "-L$D$P/lib -lbrdffit -Wl,-Bdynamic -lcminpack -lOpenCL -lm -pthread" ]; then pass; else
+if [ "$(echo $slibs)" = "-L$D$P/lib -Wl,-rpath,$D$P/lib -lbrdffit -Wl,-Bdynamic -lcminpack -lOpenCL -lm -pthread" ]; then pass; else
     fail "pkg-config --static --libs brdffit is '$slibs'"
 fi
 
@@ -114,6 +119,13 @@ expect "the synthetic table for the example" \
     $CC -std=c11 -o "$T/mktable" tests/packaging/mktable.c $cflags $libs
 expect "writing it" env LD_LIBRARY_PATH="$D$P/lib" "$T/mktable" "$T/ct.binary"
 
+# fits_back OUTPUT: the example's output is a fit of the model to the table
+# Cook-Torrance F0 0.4, m 0.15 made
+fits_back() {
+    awk '/^F0 / { ok = ($2 > 0.399 && $2 < 0.401 && $4 > 0.1499 && $4 < 0.1501 && $6 < 1e-6) }
+         END { exit !ok }' "$1"
+}
+
 for lang in c c++; do
     if [ $lang = c ]; then comp="$CC -std=c11 -x c"; else comp="$CXX -std=c++11 -x c++"; fi
     expect "README example, $lang, shared: builds" \
@@ -127,10 +139,8 @@ for lang in c c++; do
         fail "README example, $lang, static: still needs libbrdffit.so"
     else pass; fi
     for kind in shared static; do
-        # a fit of the example's model to the table Cook-Torrance F0 0.4, m 0.15 made
         if env LD_LIBRARY_PATH="$D$P/lib" "$T/ex-$lang-$kind" "$T/ct.binary" >"$T/out" 2>&1 &&
-           awk '/^F0 / { ok = ($2 > 0.399 && $2 < 0.401 && $4 > 0.1499 && $4 < 0.1501 && $6 < 1e-6) }
-                END { exit !ok }' "$T/out"; then pass; else
+           fits_back "$T/out"; then pass; else
             fail "README example, $lang, $kind: did not fit the table back:"
             sed 's/^/    /' "$T/out" >&2
         fi
@@ -149,6 +159,54 @@ unset PKG_CONFIG_PATH PKG_CONFIG_SYSROOT_DIR
 expect "make uninstall DESTDIR=$D" $MAKE -s uninstall DESTDIR="$D" PREFIX=$P BUILD="$BUILD"
 left=$(find "$D" ! -type d)
 if [ -z "$left" ]; then pass; else fail "make uninstall left: $left"; fi
+
+# ------------------------------------------------------------------ /usr: no run path
+
+U=$T/usr-root
+expect "make install DESTDIR=$U PREFIX=/usr" $MAKE -s install DESTDIR="$U" PREFIX=/usr BUILD="$BUILD"
+if grep -q '^Libs: -L${libdir} *-lbrdffit$' "$U/usr/lib/pkgconfig/brdffit.pc"; then pass; else
+    fail "brdffit.pc for /usr: Libs is not only -L\${libdir} -lbrdffit: $(grep '^Libs:' "$U/usr/lib/pkgconfig/brdffit.pc")"
+fi
+expect "make uninstall DESTDIR=$U PREFIX=/usr" $MAKE -s uninstall DESTDIR="$U" PREFIX=/usr BUILD="$BUILD"
+
+# ------------------------------------------------------------------ a prefix of one's own
+
+# `make install PREFIX=dir` (no DESTDIR): README's example, built through
+# pkg-config with only PKG_CONFIG_PATH set, runs without LD_LIBRARY_PATH,
+# because brdffit.pc gives it the run path dir/lib.
+PP=$T/prefix
+expect "make install PREFIX=$PP" $MAKE -s install PREFIX="$PP" BUILD="$BUILD"
+pc() { env -u PKG_CONFIG_SYSROOT_DIR PKG_CONFIG_PATH="$PP/lib/pkgconfig" pkg-config "$@" brdffit; }
+pp_libs=$(pc --libs)
+if [ "$(echo $pp_libs)" = "-L$PP/lib -Wl,-rpath,$PP/lib -lbrdffit" ]; then pass; else
+    fail "pkg-config --libs brdffit for PREFIX=$PP is '$pp_libs'"
+fi
+expect "README example through pkg-config, PREFIX=$PP: builds" \
+    $CC -std=c11 -Wall -Werror -o "$T/ex-prefix" "$T/example.c" $(pc --cflags --libs)
+if readelf -d "$T/ex-prefix" 2>/dev/null | grep -E -q "(RUNPATH|RPATH).*\[$PP/lib\]"; then pass; else
+    fail "README example, PREFIX=$PP: no run path $PP/lib: $(readelf -d "$T/ex-prefix" | grep -E 'RUNPATH|RPATH')"
+fi
+if env -u LD_LIBRARY_PATH ldd "$T/ex-prefix" 2>&1 | grep -q "libbrdffit.so.1 => $PP/lib/libbrdffit.so.1"; then pass; else
+    fail "README example, PREFIX=$PP: does not load $PP/lib/libbrdffit.so.1:"
+    env -u LD_LIBRARY_PATH ldd "$T/ex-prefix" 2>&1 | sed 's/^/    /' >&2
+fi
+if env -u LD_LIBRARY_PATH "$T/ex-prefix" "$T/ct.binary" >"$T/out" 2>&1 && fits_back "$T/out"; then pass; else
+    fail "README example, PREFIX=$PP, no LD_LIBRARY_PATH: did not run and fit the table back:"
+    sed 's/^/    /' "$T/out" >&2
+fi
+# the control: linked without the run path it does not find the library
+# (unless a libbrdffit.so.1 is installed where the loader looks anyway)
+$CC -std=c11 -o "$T/ex-norpath" "$T/example.c" $(pc --cflags) -L"$PP/lib" -lbrdffit >"$T/out" 2>&1
+if env -u LD_LIBRARY_PATH "$T/ex-norpath" "$T/ct.binary" >"$T/out" 2>&1; then
+    echo "packaging: SKIP the control without the run path: it ran, a libbrdffit.so.1 is" \
+         "installed where the loader finds it ($(env -u LD_LIBRARY_PATH ldd "$T/ex-norpath" | grep libbrdffit))"
+elif grep -q 'libbrdffit.so.1: cannot open shared object file' "$T/out"; then pass; else
+    fail "README example without the run path failed otherwise:"
+    sed 's/^/    /' "$T/out" >&2
+fi
+expect "make uninstall PREFIX=$PP" $MAKE -s uninstall PREFIX="$PP" BUILD="$BUILD"
+left=$(find "$PP" ! -type d 2>/dev/null)
+if [ -z "$left" ]; then pass; else fail "make uninstall PREFIX=$PP left: $left"; fi
 
 # ------------------------------------------------------------------ without ../shared
 

@@ -79,8 +79,8 @@ static const char *tmpdir(char *buf, size_t len)
 }
 
 /* A test's temporary directory removed at its end (a failed test stops
- * before: its directory stays, to be looked at).  Each test's reports took
- * 4-41 MB; left behind, `make test` grew TMPDIR by ~140 MB a run. */
+ * before: its directory stays, to be looked at).  Each test's reports take
+ * 4-41 MB; left behind, they would grow TMPDIR by ~140 MB a `make test`. */
 static void tmpdir_remove(const char *dir)
 {
     ck_assert_msg(tu_remove_tree(dir) == 0, "could not remove %s", dir);

@@ -45,21 +45,13 @@ static const char *table_file(void)
     return table_path;
 }
 
-static int count_lines(const char *s)
-{
-    int n = 0;
-    for (; *s; s++)
-        n += *s == '\n';
-    return n;
-}
-
 #define expect_exit(r, want, what)                                                          \
     ck_assert_msg((r).status == (want), "%s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
                   (what), (r).status, (want), (r).out, (r).err)
 
 /* No OpenCL platform (the ICD loader pointed at an empty directory) under
  * --backend opencl: each of three files gets its own failure record and
- * message -- the files after the first used to be skipped silently. */
+ * message, none of them skipped silently. */
 START_TEST(no_device_every_file_recorded)
 {
     char icd[] = "/tmp/brdffit-noicd-XXXXXX";
@@ -71,7 +63,7 @@ START_TEST(no_device_every_file_recorded)
              "/nonexistent-brdffit-dir/gone.binary", table);
     tu_run_out r = tu_run_cli(env, args);
     expect_exit(r, 1, args);
-    ck_assert_msg(count_lines(r.out) == 3, "%d records, expected 3:\n%s", count_lines(r.out), r.out);
+    ck_assert_msg(tu_count_lines(r.out) == 3, "%d records, expected 3:\n%s", tu_count_lines(r.out), r.out);
     char *second = strchr(r.out, '\n') + 1, *third = strchr(second, '\n') + 1;
     ck_assert_msg(strstr(r.out, "\"status\":\"no OpenCL device\"") < second, "%s", r.out);
     ck_assert_msg(strstr(second, "\"status\":\"cannot open file\"") < third, "%s", r.out);
@@ -89,7 +81,7 @@ START_TEST(no_device_every_file_recorded)
 END_TEST
 
 /* --device that matches nothing: an error under --backend opencl; a warning
- * on stderr under auto, and the fit runs on the host (it used to be silent). */
+ * on stderr under auto (not silent), and the fit runs on the host. */
 START_TEST(device_matching_nothing)
 {
     const char *table = table_file();
@@ -125,8 +117,8 @@ START_TEST(device_matching_nothing)
 END_TEST
 
 /* An existing but unwritable POCL_CACHE_DIR (/proc: no file can be made
- * there, even by root): named with why -- every fit used to fail with kernel
- * build -11 and no hint; under auto the host path, said so. */
+ * there, even by root): named with why, not a bare kernel build error -11 on
+ * every fit; under auto the host path, said so. */
 START_TEST(unwritable_cache_named)
 {
     const char *table = table_file();
@@ -156,7 +148,7 @@ START_TEST(unwritable_cache_named)
 END_TEST
 
 /* --cutoff 1e-300 leaves only the normal: every fit refused with a clear
- * status (it used to return ok with s up to 3.6e35). */
+ * status (not ok with s up to 3.6e35). */
 START_TEST(tiny_cutoff_refused)
 {
     const char *table = table_file();
@@ -164,7 +156,7 @@ START_TEST(tiny_cutoff_refused)
     snprintf(args, sizeof args, "fit --json --cutoff 1e-300 --model ward,he '%s'", table);
     tu_run_out r = tu_run_cli("", args);
     expect_exit(r, 1, args);
-    ck_assert_int_eq(count_lines(r.out), 2);
+    ck_assert_int_eq(tu_count_lines(r.out), 2);
     char want[64];
     snprintf(want, sizeof want, "\"status\":\"%s\"", brdffit_strerror(BRDFFIT_E_TOO_FEW_SAMPLES));
     const char *first = strstr(r.out, want);
@@ -233,7 +225,7 @@ START_TEST(control_characters_escaped)
     expect_exit(r, 1, args);
     ck_assert_msg(!strchr(r.err, '\033'), "a raw ESC reached stderr:\n%s", r.err);
     ck_assert_msg(strstr(r.err, "evil\\x1b[31m\\x0aFAKE.binary: cannot open"), "%s", r.err);
-    ck_assert_msg(count_lines(r.err) == 2, "%d stderr lines:\n%s", count_lines(r.err), r.err);
+    ck_assert_msg(tu_count_lines(r.err) == 2, "%d stderr lines:\n%s", tu_count_lines(r.err), r.err);
     ck_assert_msg(strstr(r.out, "evil\\u001b[31m\\nFAKE.binary"), "%s", r.out);
     tu_run_free(&r);
     /* a usage error quoting an argument */

@@ -43,8 +43,8 @@ static brdffit_context *host_context(void)
 /* ------------------------------------------------------------------ huge values */
 
 /* One huge but finite value (bin 45,10,20, channel G): refused at read time
- * with the bin, the channel, the byte and the value named -- it used to make
- * every model fail with "non-finite sum". */
+ * with the bin, the channel, the byte and the value named, not every model
+ * failing later with "non-finite sum". */
 START_TEST(huge_value_named_at_read)
 {
     brdffit_table *t = ward_table();
@@ -106,8 +106,7 @@ static brdffit_status fit_on(brdffit_samples *s, brdffit_model m, brdffit_fit_re
     return st;
 }
 
-/* One valid sample: every model refuses it (it used to return ok with s up
- * to 3.6e35). */
+/* One valid sample: every model refuses it (not ok with s up to 3.6e35). */
 START_TEST(one_sample_refused)
 {
     brdffit_error err;

@@ -388,13 +388,13 @@ END_TEST
  * starts should not give a worse fit (though only the kept starts within
  * SUBSET_MARGIN of the lowest subset Error go on to all samples, so this is
  * measured, not guaranteed); on these two tables they do not.  42 starts
- * reach the sixth sigma0 round, 30 (the upper bound), where two faults were
- * found.  On ipswich-pine-221 the start tau = 4, sigma0 = 30 once led LM to a
- * point whose r^T r the pass's moments put at 0 by cancellation (the
- * reference's s was ~1e5 times the data's), and that point won: an Error 5.8
- * times the 14 starts'.  On green-fabric lmder once carried a coordinate to
- * u ~ 1e8, where a difference step relative to |u| overflowed He's carried
- * neighbour: the fit failed. */
+ * reach the sixth sigma0 round, 30 (the upper bound), where two faults can
+ * arise.  On ipswich-pine-221 the start tau = 4, sigma0 = 30 can lead LM to
+ * a point whose r^T r the pass's moments put at 0 by cancellation (the
+ * reference's s ~1e5 times the data's), and that point would win: an Error
+ * 5.8 times the 14 starts'.  On green-fabric lmder can carry a coordinate to
+ * u ~ 1e8, where a difference step relative to |u| would overflow He's
+ * carried neighbour and fail the fit. */
 START_TEST(he_more_starts_no_worse)
 {
     const char *material = _i == 0 ? "ipswich-pine-221" : "green-fabric";
@@ -429,16 +429,16 @@ static double stored_error(const char *material, const char *model)
     return e;
 }
 
-/* Two He fits the stored run had lower until the start grid's third sigma0
- * round (pickled-oak-260: its minimum at tau ~ 1, sigma0 ~ 0.012, 8% below
- * the stored run) and the polish's tighter tolerances (blue-metallic-paint:
- * the stored run's minimum, 1.3e-10 below it here; with the caller's
- * tolerances 2.6e-8 above) reach it or go below.  blue-metallic-paint gets
- * 1e-8 of room: nearby minima along He's valley differ by ~1e-9, and another
- * CPU's vector code may settle in a neighbour.  black-soft-plastic's tau
+/* Two He fits that need the start grid's third sigma0 round (pickled-oak-260:
+ * its minimum at tau ~ 1, sigma0 ~ 0.012, 8% below the stored run) and the
+ * polish's tighter tolerances (blue-metallic-paint: the stored run's minimum,
+ * 1.3e-10 below it here; with the caller's tolerances 2.6e-8 above) to come
+ * to the stored run reach it or go below.  blue-metallic-paint gets 1e-8 of
+ * room: nearby minima along He's valley differ by ~1e-9, and another CPU's
+ * vector code may settle in a neighbour.  black-soft-plastic's tau
  * ends on its lower bound: there the fit holds tau on the bound for a last
- * run (with the bound restart on the subset alone and no such run, it ended
- * 6.1e-6 above the stored run), so tau is the bound exactly. */
+ * run (with the bound restart on the subset alone and no such run, it would
+ * end 6.1e-6 above the stored run), so tau is the bound exactly. */
 static const char *const stored_cases[] = { "pickled-oak-260", "blue-metallic-paint",
                                             "black-soft-plastic" };
 

@@ -1048,7 +1048,7 @@ END_TEST
  * gets them (in double).  Angles 0.5-89.9 deg and (tau, sigma0) from smooth
  * to rough: within 2e-15 relative (measured 5.4e-16), xk within 5e-14 (x ~ r
  * where r is small, u near 6, and erfc there moves by 2 u^2 times u's
- * rounding: measured 2.1e-14, 1.4e-14 before the divisions were shared),
+ * rounding: measured 2.1e-14),
  * the partial within 1e-13. */
 static long double shadow_ld(long double u)
 {

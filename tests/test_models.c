@@ -387,8 +387,19 @@ START_TEST(model_table)
     brdffit_model m;
     ck_assert_int_eq(brdffit_model_from_name("cook_torrance", &m, NULL), BRDFFIT_OK);
     ck_assert_int_eq(m, BRDFFIT_COOK_TORRANCE);
+    /* any case */
+    ck_assert_int_eq(brdffit_model_from_name("Cook-Torrance", &m, NULL), BRDFFIT_OK);
+    ck_assert_int_eq(m, BRDFFIT_COOK_TORRANCE);
+    ck_assert_int_eq(brdffit_model_from_name("GGX", &m, NULL), BRDFFIT_OK);
+    ck_assert_int_eq(m, BRDFFIT_GGX);
+    ck_assert_int_eq(brdffit_model_from_name("ASHIKHMIN_shirley", &m, NULL), BRDFFIT_OK);
+    ck_assert_int_eq(m, BRDFFIT_ASHIKHMIN_SHIRLEY);
+    for (int k = 0; k < brdffit_model_count(); k++) /* the registry's names are lower case */
+        for (const char *c = brdffit_model_get((brdffit_model)k)->name; *c; c++)
+            ck_assert_msg(*c == '-' || (*c >= 'a' && *c <= 'z'), "%s", brdffit_model_get((brdffit_model)k)->name);
     ck_assert_int_eq(brdffit_model_from_name("phong", &m, NULL), BRDFFIT_E_UNKNOWN_MODEL);
     ck_assert_int_eq(brdffit_model_from_name("ward-duerX", &m, NULL), BRDFFIT_E_UNKNOWN_MODEL);
+    ck_assert_int_eq(brdffit_model_from_name("Ward-Duer-", &m, NULL), BRDFFIT_E_UNKNOWN_MODEL);
     ck_assert_int_eq(brdffit_model_from_name(NULL, &m, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_ptr_null(brdffit_model_get((brdffit_model)brdffit_model_count()));
     ck_assert_ptr_null(brdffit_model_get((brdffit_model)-1));

@@ -94,7 +94,7 @@ START_TEST(he_rounds_found)
     ck_assert_msg(tu_context(BRDFFIT_BACKEND_AUTO, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     bf_pass_driver dr;
     ck_assert_msg(bf_driver_open(&dr, ctx, bins, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
-    static const double sigma0[3] = { 0.5, 2.0, 0.125 }; /* README: How a fit works, Starts */
+    static const double sigma0[3] = { 0.5, 2.0, 0.125 }; /* docs/fitting.md, Starts */
     const bf_linear zero = { { 0, 0, 0 }, { 0, 0, 0 } };
     for (int r = 0; r < 3; r++) {
         double cost[7];

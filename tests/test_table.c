@@ -732,6 +732,27 @@ START_TEST(test_read_dims)
 }
 END_TEST
 
+/* A file that is not a table at all is said to be one, its first bytes shown. */
+START_TEST(test_read_not_merl)
+{
+    char path[512];
+    ck_assert_ptr_nonnull(tu_tmpfile(path, sizeof path));
+    const char list[] = "/data/merl/\"a\"\tb.binary\n/data/merl/c.binary\n";
+    ck_assert_int_eq(tu_write_bytes(path, list, sizeof list - 1), 0);
+    expect_read_fail(path, BRDFFIT_E_FILE_DIMS,
+                     ": not a MERL table: it begins with \"/data/merl/\\\"\", where");
+    const unsigned char png[16] = { 0x89, 'P', 'N', 'G', 13, 10, 26, 10, 0, 0, 0, 13, 'I', 'H', 'D', 'R' };
+    ck_assert_int_eq(tu_write_bytes(path, png, sizeof png), 0);
+    expect_read_fail(path, BRDFFIT_E_FILE_DIMS,
+                     ": not a MERL table: it begins with bytes 89 50 4e 47 0d 0a 1a 0a 00 00 00 0d, "
+                     "where a MERL .binary begins with the int32 dimensions 90 90 180");
+    const char crlf[] = "a.binary\r\n\tb.binary\r\n";
+    ck_assert_int_eq(tu_write_bytes(path, crlf, sizeof crlf - 1), 0);
+    expect_read_fail(path, BRDFFIT_E_FILE_DIMS, "begins with \"a.binary\\r\\n\\tb\"");
+    unlink(path);
+}
+END_TEST
+
 START_TEST(test_read_nonfinite)
 {
     char path[512];
@@ -1028,6 +1049,7 @@ Suite *table_suite(void)
     tcase_add_test(tc, test_read_missing_dir_empty);
     tcase_add_test(tc, test_read_truncated);
     tcase_add_test(tc, test_read_dims);
+    tcase_add_test(tc, test_read_not_merl);
     tcase_add_test(tc, test_read_nonfinite);
     tcase_add_test(tc, test_null_arguments);
     suite_add_tcase(s, tc);

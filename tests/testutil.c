@@ -5,6 +5,7 @@
 #include "testutil.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -333,6 +334,40 @@ int tu_in_child(void (*fn)(void *arg, void *out, size_t len), void *arg, void *o
     return got == len ? 0 : 121;
 }
 
+int tu_capture_begin(tu_capture *c)
+{
+    c->saved = -1;
+    if (!tu_tmpfile(c->path, sizeof c->path))
+        return -1;
+    fflush(stderr);
+    int fd = open(c->path, O_WRONLY | O_TRUNC);
+    c->saved = fd < 0 ? -1 : dup(2);
+    if (fd < 0 || c->saved < 0 || dup2(fd, 2) < 0) {
+        if (fd >= 0)
+            close(fd);
+        if (c->saved >= 0)
+            close(c->saved);
+        c->saved = -1;
+        unlink(c->path);
+        return -1;
+    }
+    close(fd);
+    return 0;
+}
+
+char *tu_capture_end(tu_capture *c)
+{
+    if (c->saved < 0)
+        return strdup("");
+    fflush(stderr);
+    dup2(c->saved, 2);
+    close(c->saved);
+    c->saved = -1;
+    char *text = tu_slurp(c->path);
+    unlink(c->path);
+    return text ? text : strdup("");
+}
+
 char *tu_slurp(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -401,6 +436,14 @@ tu_run_out tu_run_cli(const char *env, const char *args)
 tu_run_out tu_run_cli_faults(const char *env, const char *args)
 {
     return run_program(tu_cli_faults(), env, args);
+}
+
+int tu_count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
 }
 
 void tu_run_free(tu_run_out *r)

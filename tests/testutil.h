@@ -88,6 +88,25 @@ tu_run_out tu_run_cli_faults(const char *env, const char *args);
 const char *tu_cli(void);
 const char *tu_cli_faults(void);
 void tu_run_free(tu_run_out *r);
+/* Fails the test, showing both outputs, unless the run exited with want. */
+#define TU_EXPECT_STATUS(r, want, args)                                                        \
+    ck_assert_msg((r).status == (want), "brdffit %s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
+                  (args), (r).status, (want), (r).out, (r).err)
+/* The number of '\n' in s. */
+int tu_count_lines(const char *s);
+
+/* What the code between tu_capture_begin and tu_capture_end writes to file
+ * descriptor 2 (a compiler inside PoCL writes its diagnostics there): kept
+ * out of the test run's output, for the test to look at. */
+typedef struct tu_capture {
+    int saved;       /* the descriptor 2 was, -1 when nothing is captured */
+    char path[512];  /* where it goes meanwhile                           */
+} tu_capture;
+/* Start: fd 2 into a temporary file.  0, or -1 (nothing captured). */
+int tu_capture_begin(tu_capture *c);
+/* End: fd 2 back; the captured text, NUL-terminated (free it; "" when
+ * nothing was captured). */
+char *tu_capture_end(tu_capture *c);
 
 /* The whole of a file, NUL-terminated (free it), or NULL when it cannot be read. */
 char *tu_slurp(const char *path);

@@ -7,9 +7,11 @@ Rounds alternate C and Python (load bursts on a shared machine hit both); each
 side's figure is the fastest call over all rounds.  The Python call is the
 plain brdffit.eval(model, params, wi, wo) (it allocates its (n, 3) result each
 time); the C call writes into a buffer allocated once.  Target: Python within
-1.5x of C.
+1.5x of C.  With --record SCRIPT (bench/record) each model's figures are
+appended to bench/results.tsv as eval/MODEL/N-pairs.
 
 Usage: eval_numpy.py BENCH_EVAL_C [--pairs N] [--rounds R] [--reps K] [--models a,b]
+                     [--record SCRIPT]
 """
 
 import argparse
@@ -45,6 +47,14 @@ def hemisphere(rng, n):
     return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
 
 
+def record(script, benchmark, figures):
+    """Each (metric, value) of figures appended through script (argv, no shell)."""
+    for metric, value in figures:
+        done = subprocess.run([script, benchmark, metric, f"{value:.6g}"], check=False)
+        if done.returncode != 0:
+            print(f"bench: {benchmark} {metric}: {script} exited {done.returncode}", file=sys.stderr)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("bench_eval_c")
@@ -52,6 +62,7 @@ def main():
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--models", default=None)
+    ap.add_argument("--record", default=None)
     args = ap.parse_args()
 
     lib = brdffit.load_library()
@@ -88,7 +99,10 @@ def main():
                     py_best = min(py_best, (time.perf_counter() - t0) * 1e3)
             ratio = py_best / c_best
             worst = max(worst, ratio)
-            print(f"{name:<18} {c_best:9.2f} {py_best:10.2f} {ratio:6.3f}x")
+            print(f"{name:<18} {c_best:9.2f} {py_best:10.2f} {ratio:6.3f}x", flush=True)
+            if args.record:
+                record(args.record, f"eval/{name}/{args.pairs}-pairs",
+                       [("C ms", c_best), ("Python ms", py_best), ("Python/C ratio", ratio)])
     verdict = "met" if worst <= 1.5 else "NOT met"
     print(f"worst ratio {worst:.3f}x (target <= 1.5x: {verdict})")
     return 0

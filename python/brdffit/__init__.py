@@ -65,6 +65,12 @@ def library_version():
     return library().version
 
 
+def version():
+    """The loaded library's version string, as brdffit_version() returns it
+    ("1.0.0"); the same as library_version()."""
+    return library_version()
+
+
 def release_memory():
     """Hand the large arrays the library keeps for reuse back to the system
     (brdffit_release_memory): the bytes released.  The library keeps a freed
@@ -85,5 +91,5 @@ __all__ = [
     "TooFewSamplesError", "UnknownModelError", "ValueRangeError", "__version__",
     "default_lights", "error_of", "eval", "fit", "image_error", "incidence_curves",
     "library_version", "load_library", "metric_name", "model", "models", "release_memory", "render",
-    "scale_factors",
+    "scale_factors", "version",
 ]

@@ -4,8 +4,8 @@
 Where the library comes from, first match wins:
   1. the path given to brdffit.load_library(path);
   2. $BRDFFIT_LIBRARY;
-  3. next to the package: libbrdffit.so.1 in the package's own folder (a copy
-     or link that `make install` puts there);
+  3. next to the package: libbrdffit.so.1 in the package's own folder (the
+     copy `pip install ./python` puts there, or the link `make install` does);
   4. the system: the dynamic loader's search for libbrdffit.so.1
      (LD_LIBRARY_PATH, ld.so.cache), then ctypes.util.find_library.
 A path given in 1 or 2 that does not load is an error; it never falls

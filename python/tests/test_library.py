@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Finding and checking the library: the four places, version and layout
 checks that refuse a mismatched library, the mirrors equal to the header,
-pip install and make install."""
+make install (pip install: test_pip.py)."""
 
 import ctypes
 import os
@@ -275,27 +275,6 @@ def test_every_function_is_declared_in_the_header():
 def _clean_env():
     return {k: v for k, v in os.environ.items()
             if k not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "BRDFFIT_LIBRARY", "PYTHONPATH")}
-
-
-def test_pip_install(tmp_path):
-    src = tmp_path / "src"
-    shutil.copytree(PYDIR, src, ignore=shutil.ignore_patterns("__pycache__", "build", "*.egg-info"))
-    target = tmp_path / "target"
-    r = subprocess.run([sys.executable, "-m", "pip", "install", "--no-build-isolation", "--no-deps",
-                        "--no-index", "--disable-pip-version-check", "--target", str(target),
-                        str(src)], capture_output=True, text=True, env=_clean_env())
-    assert r.returncode == 0, r.stdout + r.stderr
-    assert (target / "brdffit" / "__init__.py").exists()
-    assert not (target / "tests").exists()
-    code = ("import brdffit, numpy as np; print(brdffit.__version__); "
-            "print(brdffit.eval('ward', [0.1]*6 + [0.2], [0, 0, 1.0], [0, 0, 1.0])[0])")
-    r = run_python(code, {"BRDFFIT_LIBRARY": LIBRARY}, str(target), str(tmp_path))
-    assert r.returncode == 0, r.stderr
-    version, value = r.stdout.split()
-    import brdffit
-
-    assert version == brdffit.__version__
-    assert float(value) > 0
 
 
 def test_make_install_puts_the_package_beside_the_library(tmp_path):

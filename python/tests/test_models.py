@@ -39,6 +39,8 @@ def test_models_are_the_registrys(brdffit, cli):
 def test_model_lookup(brdffit):
     ct = brdffit.model("cook-torrance")
     assert brdffit.model("cook_torrance") is ct
+    assert brdffit.model("Cook-Torrance") is ct and brdffit.model("COOK_TORRANCE") is ct
+    assert brdffit.model("GGX") is brdffit.model("ggx")
     assert brdffit.model(ct.id) is ct
     assert brdffit.model(np.int64(ct.id)) is ct
     assert brdffit.model(ct) is ct

@@ -75,7 +75,7 @@ def exrdump(tmp_path_factory):
 
 
 def sphere(n):
-    """Per pixel (README's scene): on-sphere mask and the normal, camera frame."""
+    """Per pixel (the render scene of docs/conventions.md): on-sphere mask and the normal, camera frame."""
     c = (np.arange(n) + 0.5) * 2 / n
     x = (c - 1)[None, :].repeat(n, 0)
     y = (1 - c)[:, None].repeat(n, 1)
@@ -108,7 +108,7 @@ def test_lambertian_under_one_light_is_the_cosine_law(brdffit):
 
 def test_render_equals_eval_at_each_pixel(brdffit):
     """The model's render under the default lights equals sum over the lights
-    of brdffit.eval(wi, wo) E cos in the README's shading frame."""
+    of brdffit.eval(wi, wo) E cos in the shading frame of docs/conventions.md."""
     n = 64
     fit_like = brdffit.FitResult(
         model=brdffit.model("cook-torrance"), params=brdffit.Params.from_vector(CT), error=0.0,

@@ -41,6 +41,13 @@ int cli_is_help(const char *a)
     return strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0;
 }
 
+static const char *current_command; /* NULL: the program's own help */
+
+void cli_set_command(const char *name)
+{
+    current_command = name;
+}
+
 int cli_usage_error(const char *fmt, ...)
 {
     char msg[3 * BRDFFIT_MESSAGE_MAX]; /* arguments are quoted in it: printed plain */
@@ -49,7 +56,10 @@ int cli_usage_error(const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     cli_error("%s", msg);
-    fputs("Try 'brdffit --help' for more information.\n", stderr);
+    if (current_command)
+        fprintf(stderr, "Try 'brdffit %s --help' for more information.\n", current_command);
+    else
+        fputs("Try 'brdffit --help' for more information.\n", stderr);
     return CLI_USAGE;
 }
 

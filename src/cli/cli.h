@@ -2,7 +2,9 @@
 /* cli.h -- what the source files of the brdffit program share.
  *
  *   brdffit.c     main: the table of subcommands, --help, --version
- *   usage.c       the --help text, from the table of subcommands
+ *   usage.c       the help text, from the table of subcommands and their
+ *                 blocks of options
+ *   man.c         the same as a manual page (`brdffit help --man`)
  *   cmd_fit.c     `fit` and `demo`: tables, sample sets, one context, the fits
  *                 (the next file read meanwhile by batch.h's prefetch.c)
  *   cmd_models.c  `models`: the models and their lobe parameters
@@ -10,6 +12,8 @@
  *   args.c        strict number parsing, usage errors, the list of model names
  *   options.c     the options of `fit` and `demo`, and their help text
  *   material.c    what a fit report is about: a material's name from its path
+ *   kernel_note.c on a terminal, a line while a model's kernels are compiled
+ *   hints.c       what an input of the wrong kind was probably meant to be
  *   report.c      the paper-style table and the JSON Lines records
  *   json.c        JSON text: escaped strings, round-tripping numbers
  *   text.c        text for the terminal: control characters made harmless
@@ -37,22 +41,66 @@ enum { CLI_OK = 0, CLI_FAILED = 1, CLI_USAGE = 2 };
 #define CLI_PRINTF(a, b)
 #endif
 
+/* ---- usage.c, man.c: the help text ---- */
+
+/* One option (or argument) in the help: term "--cutoff DEG", text its
+ * description, lines separated by '\n' (the text help keeps them, the manual
+ * page fills them). */
+typedef struct cli_help_item {
+    const char *term;
+    const char *text;
+} cli_help_item;
+
+/* A block of options: "Options of batch", an optional note on what else
+ * applies (lines separated by '\n'), its items. */
+typedef struct cli_help_block {
+    const char *title;
+    const char *note;             /* NULL: none */
+    const cli_help_item *items;
+    int nitems;
+} cli_help_block;
+
+/* A block's initializer from a title, a note and an array of items. */
+#define CLI_HELP_BLOCK(title, note, items) \
+    { title, note, items, (int)(sizeof items / sizeof items[0]) }
+
+/* Each block is made by a function (a few hold text made at run time). */
+typedef const cli_help_block *(*cli_help_fn)(void);
+#define CLI_MAX_BLOCKS 3
+
 /* ---- brdffit.c ---- */
 
 /* A subcommand: `brdffit NAME ARGS...` calls run(argc, argv) with the
  * arguments after NAME and exits with what it returns (CLI_OK, CLI_FAILED,
- * CLI_USAGE), or prints the usage and exits 0 when it returns CLI_HELP. */
+ * CLI_USAGE), or prints its usage and exits 0 when it returns CLI_HELP. */
 typedef struct cli_command {
     const char *name;
     int (*run)(int argc, char **argv);
-    const char *synopsis; /* the arguments, for --help: "FILE.binary... [OPTIONS]" */
-    const char *summary;  /* what it does, for --help; lines separated by '\n'    */
+    const char *synopsis; /* the arguments: "FILE.binary... [OPTIONS]"            */
+    const char *brief;    /* what it does, one line, for the list of commands      */
+    const char *summary;  /* what it does, for its help; lines separated by '\n'   */
+    cli_help_fn blocks[CLI_MAX_BLOCKS]; /* its options, in order (NULL after the last) */
 } cli_command;
 
 /* ---- usage.c ---- */
 
-/* The --help text, listing the n subcommands of commands. */
+/* The short help: what the program does, the n commands of commands one a
+ * line, where to find more. */
 void cli_usage(FILE *f, const cli_command *commands, int n);
+/* The help of one command: its usage line, what it does, its options. */
+void cli_command_usage(FILE *f, const cli_command *c);
+/* One block of options as text. */
+void cli_block_text(FILE *f, const cli_help_block *b);
+/* The text both the help and the manual page show. */
+const char *cli_description(void);  /* what the program does, '\n'-separated lines */
+extern const char cli_exit_status[];  /* the exit statuses                         */
+extern const cli_help_item cli_environment[]; /* the environment variables read  */
+extern const int cli_nenvironment;
+
+/* ---- man.c ---- */
+
+/* The manual page brdffit(1) (man(7) macros) of the n commands. */
+void cli_man(FILE *f, const cli_command *commands, int n);
 
 /* ---- cmd_*.c: the subcommands ---- */
 
@@ -65,10 +113,14 @@ int cmd_report(int argc, char **argv);
 int cmd_score(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
-/* The "Options of render and plot" block of --help (cmd_render.c). */
-void cli_draw_help(FILE *f);
-/* The "Options of batch" block of --help (cmd_batch.c). */
-void cli_batch_help(FILE *f);
+/* Their blocks of options (each beside the command's parser). */
+const cli_help_block *cli_batch_help(void);  /* cmd_batch.c                      */
+const cli_help_block *cli_draw_help(void);   /* cmd_render.c: render and plot    */
+const cli_help_block *cli_render_help(void); /* cmd_render.c                     */
+const cli_help_block *cli_plot_help(void);   /* cmd_plot.c                       */
+const cli_help_block *cli_eval_help(void);   /* cmd_eval.c                       */
+const cli_help_block *cli_score_help(void);  /* cmd_score.c                      */
+const cli_help_block *cli_report_help(void); /* cmd_report.c                     */
 
 /* ---- demo_material.c: the embedded synthetic material ---- */
 
@@ -86,8 +138,11 @@ int cli_parse_double(const char *s, double *out);
 int cli_parse_int(const char *s, int lo, int hi, int *out);
 /* 1 when a is --help or -h. */
 int cli_is_help(const char *a);
-/* "brdffit: <message>" and a pointer to --help on stderr; returns CLI_USAGE. */
+/* "brdffit: <message>" and a pointer to the command's --help on stderr;
+ * returns CLI_USAGE. */
 int cli_usage_error(const char *fmt, ...) CLI_PRINTF(1, 2);
+/* The command whose help cli_usage_error points to (NULL: the program's). */
+void cli_set_command(const char *name);
 /* The valid model names, comma-separated, into buf. */
 const char *cli_model_names(char *buf, size_t len);
 /* The models' default numbers of starts, "8; he 7" (the common one first), into buf. */
@@ -114,8 +169,31 @@ typedef struct cli_options {
  * was asked.  Free with cli_options_free. */
 int cli_parse_options(int argc, char **argv, cli_options *o);
 void cli_options_free(cli_options *o);
-/* The "Options of fit and demo" block of --help. */
-void cli_options_help(FILE *f);
+/* The "Options of fit and demo" block of the help. */
+const cli_help_block *cli_options_help(void);
+
+/* ---- kernel_note.c ---- */
+
+/* When f is a terminal, the context uses OpenCL and the model's kernels are
+ * not built in it yet: "brdffit: compiling the OpenCL kernels of MODEL, once
+ * per machine (cached in DIR)..." on f, without a newline; returns 1 then,
+ * else 0 (nothing printed). */
+int kernel_note_begin(FILE *f, const brdffit_context *ctx, brdffit_model model);
+/* After the call that built them (a fit, an Error): the time ends the line
+ * when the build compiled (1 s or more), else the line is erased (PoCL's
+ * cache had them, or the build failed).  Nothing when shown is 0. */
+void kernel_note_end(FILE *f, int shown, const brdffit_context *ctx, brdffit_model model);
+
+/* ---- hints.c ---- */
+
+/* 1 when path is a directory. */
+int cli_is_directory(const char *path);
+/* 1 when path is a regular file whose first bytes are text (no control
+ * characters but tabs and line ends): a list, not a MERL table. */
+int cli_is_text_file(const char *path);
+/* After a table could not be read: what to run instead when path is a
+ * directory or a text file (a note on stderr), else nothing. */
+void cli_hint_unreadable_table(const char *path);
 
 /* ---- material.c ---- */
 

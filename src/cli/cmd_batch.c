@@ -102,20 +102,26 @@ static int parse_batch(int argc, char **argv, batch_options *b)
     return rc;
 }
 
-void cli_batch_help(FILE *f)
+const cli_help_block *cli_batch_help(void)
 {
-    fputs("Options of batch (and the options of fit but --json):\n"
-          "  --out DIR                     the report: DIR/index.html, DIR/<material>/, fits.tsv,\n"
-          "                                journal.jsonl (re-run the same command to resume)\n"
-          "  --published FITS.tsv          also the Error of published parameters (the format\n"
-          "                                of ngan2005-fits.tsv) on each table, and the ratio\n"
-          "  --shard K/N                   only every N-th material of the sorted list, from the\n"
-          "                                K-th (merge the shards with `brdffit report`)\n"
-          "  --no-render, --no-plot        leave out the renders / the incidence-plane plots\n"
-          "  --demo                        add the embedded synthetic material\n"
-          "  --quiet                       no progress on stderr (a live line on a terminal,\n"
-          "                                else one line per material)\n",
-          f);
+    static const cli_help_item items[] = {
+        { "--out DIR", "the report: DIR/index.html, DIR/<material>/, fits.tsv,\n"
+                       "journal.jsonl (re-run the same command to resume)" },
+        { "--published FITS.tsv", "also the Error of published parameters (the format\n"
+                                  "of ngan2005-fits.tsv) on each table, and the ratio" },
+        { "--shard K/N", "only every N-th material of the sorted list, from the\n"
+                         "K-th (merge the shards with `brdffit report`)" },
+        { "--no-render, --no-plot", "leave out the renders / the incidence-plane plots" },
+        { "--demo", "add the embedded synthetic material" },
+        { "--quiet", "no progress on stderr (a live line on a terminal,\n"
+                     "else one line per material)" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK(
+        "Options of batch",
+        "and the options of fit but --json; INPUT is a MERL table,\n"
+        "a directory of *.binary, or @LIST: a text file naming one table a line",
+        items);
+    return &block;
 }
 
 /* ------------------------------------------------------------------ materials */
@@ -223,6 +229,9 @@ static int collect(const batch_options *b, material_list *L)
             rc = add_list_file(L, in + 1);
         else if (stat(in, &st) == 0 && S_ISDIR(st.st_mode))
             rc = add_directory(L, in);
+        else if (cli_is_text_file(in))
+            return cli_usage_error("%s is a text file, not a MERL table: did you mean @%s (a list "
+                                   "of tables, one a line)?", in, in);
         else
             rc = add_material(L, in, 0); /* a missing file becomes a failure row */
         if (rc != 0)
@@ -537,7 +546,9 @@ static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples
     brdffit_fit_result_init(&res);
     memset(&err, 0, sizeof err);
     double t0 = now();
+    int note = R->P.quiet ? 0 : kernel_note_begin(stderr, R->ctx, model);
     brdffit_status st = brdffit_fit(R->ctx, s, model, &R->b->common.fit, &res, &err);
+    kernel_note_end(stderr, note, R->ctx, model);
     R->seconds_fitting += now() - t0;
     R->P.fit_seconds += now() - t0;
     R->P.fitted_now++;
@@ -586,8 +597,11 @@ static void published_one(batch_run *R, const batch_material *m, const brdffit_s
     memset(&err, 0, sizeof err);
     double e = NAN, t0 = now();
     brdffit_status st = brdffit_params_check(model, &pr->params, &err);
-    if (st == BRDFFIT_OK)
+    if (st == BRDFFIT_OK) {
+        int note = R->P.quiet ? 0 : kernel_note_begin(stderr, R->ctx, model);
         st = brdffit_error_of(R->ctx, s, model, &pr->params, &e, &err);
+        kernel_note_end(stderr, note, R->ctx, model);
+    }
     R->seconds_fitting += now() - t0;
     r.ok = st == BRDFFIT_OK;
     r.error = e;

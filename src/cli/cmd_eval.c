@@ -5,6 +5,19 @@
 
 #include <string.h>
 
+const cli_help_block *cli_eval_help(void)
+{
+    static const cli_help_item items[] = {
+        { "MODEL", "a model's name (brdffit models), in any case" },
+        { "d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]",
+          "the Lambertian albedo d, the lobe's\nscale s and parameters p, in the paper's units" },
+        { "--wi X Y Z, --wo X Y Z", "the directions of incidence and view, in the\n"
+                                    "surface's frame" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK("Arguments of eval", NULL, items);
+    return &block;
+}
+
 /* What the arguments of eval say. */
 typedef struct eval_args {
     const char *model_name;

@@ -100,7 +100,9 @@ static best_fit fit_models(runner *R, const cli_material *m, const brdffit_sampl
         brdffit_error err;
         brdffit_fit_result_init(&r);
         memset(&err, 0, sizeof err);
+        int note = kernel_note_begin(stderr, R->ctx, model);
         brdffit_status st = brdffit_fit(R->ctx, s, model, &o->fit, &r, &err);
+        kernel_note_end(stderr, note, R->ctx, model);
         if (st != BRDFFIT_OK) {
             err.status = st;
             R->failures++;
@@ -153,6 +155,7 @@ static brdffit_samples *file_samples(runner *R, const cli_material *m)
     if (st != BRDFFIT_OK) {
         err.status = st;
         material_failed(R, m, &err);
+        cli_hint_unreadable_table(m->file);
         return NULL;
     }
     brdffit_samples *samples = NULL;
@@ -256,7 +259,9 @@ static int run_demo(const cli_options *o)
     if (!o->json) {
         report_header(stdout, &m, samples, R.ctx, &o->fit);
         double e0 = NAN;
+        int note = kernel_note_begin(stderr, R.ctx, demo_model);
         st = brdffit_error_of(R.ctx, samples, demo_model, truth, &e0, &err);
+        kernel_note_end(stderr, note, R.ctx, demo_model);
         if (st != BRDFFIT_OK) {
             R.failures++;
             cli_error("the Error of the generating parameters: %s", err.message);

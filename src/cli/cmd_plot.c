@@ -5,6 +5,17 @@
 
 #include <string.h>
 
+const cli_help_block *cli_plot_help(void)
+{
+    static const cli_help_item items[] = {
+        { "--theta-i DEG[,DEG...]",
+          "incidence angles in [0, 90), at most 16 (default\n20,40,60,75)" },
+        { "--points N", "theta_o samples from -90 to 90, 2..100000 (default 180)" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK("Options of plot", NULL, items);
+    return &block;
+}
+
 static int set_theta_i(draw_job *j, const char *v)
 {
     brdffit_curve_options *c = &j->s.curve_opt;

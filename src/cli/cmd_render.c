@@ -8,31 +8,38 @@
 #include <stdlib.h>
 #include <string.h>
 
-void cli_draw_help(FILE *f)
+const cli_help_block *cli_draw_help(void)
 {
-    fprintf(f,
-            "Options of render and plot (and the options of fit: --model, --scale, --cutoff,\n"
-            "--starts, --backend, --device):\n"
-            "  --out DIR                     where the files go (made when missing)\n"
-            "  --fits FILE                   the fits to draw: `brdffit fit --json` output (JSON\n"
-            "                                Lines) or an ngan2005-fits.tsv-style TSV; default:\n"
-            "                                fit the models now\n"
-            "  --interp trilinear|nearest    table lookup (default trilinear)\n"
-            "render:\n"
-            "  --size N                      N x N pixels, 1..4096 (default 256)\n"
-            "  --light X,Y,Z[:R,G,B]         a directional light toward X,Y,Z (camera frame: x right,\n"
-            "                                y up, z toward the viewer), irradiance R,G,B (default\n"
-            "                                1,1,1); repeatable, at most 16; default: a key light\n"
-            "                                -1,1,1.5 and a rim light 1,0.25,-0.6:0.5,0.5,0.5\n"
-            "  --env FILE.exr                a latitude-longitude environment (RGB radiance, half\n"
-            "                                or float); without --light it is the only light\n"
-            "  --env-samples N               quadrature directions per pixel, 1..65536 (default 256)\n"
-            "  --exposure E                  PNG exposure (default: 1 / the 99th percentile of the\n"
-            "                                reference's max(R, G, B))\n"
-            "plot:\n"
-            "  --theta-i DEG[,DEG...]        incidence angles in [0, 90), at most 16 (default\n"
-            "                                20,40,60,75)\n"
-            "  --points N                    theta_o samples from -90 to 90, 2..100000 (default 180)\n");
+    static const cli_help_item items[] = {
+        { "--out DIR", "where the files go (made when missing)" },
+        { "--fits FILE", "the fits to draw: `brdffit fit --json` output (JSON\n"
+                         "Lines) or an ngan2005-fits.tsv-style TSV; default:\n"
+                         "fit the models now" },
+        { "--interp trilinear|nearest", "table lookup (default trilinear)" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK(
+        "Options of render and plot",
+        "and the options of fit: --model, --scale, --cutoff,\n--starts, --backend, --device",
+        items);
+    return &block;
+}
+
+const cli_help_block *cli_render_help(void)
+{
+    static const cli_help_item items[] = {
+        { "--size N", "N x N pixels, 1..4096 (default 256)" },
+        { "--light X,Y,Z[:R,G,B]", "a directional light toward X,Y,Z (camera frame: x right,\n"
+                                   "y up, z toward the viewer), irradiance R,G,B (default\n"
+                                   "1,1,1); repeatable, at most 16; default: a key light\n"
+                                   "-1,1,1.5 and a rim light 1,0.25,-0.6:0.5,0.5,0.5" },
+        { "--env FILE.exr", "a latitude-longitude environment (RGB radiance, half\n"
+                            "or float); without --light it is the only light" },
+        { "--env-samples N", "quadrature directions per pixel, 1..65536 (default 256)" },
+        { "--exposure E", "PNG exposure (default: 1 / the 99th percentile of the\n"
+                          "reference's max(R, G, B))" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK("Options of render", NULL, items);
+    return &block;
 }
 
 /* --light X,Y,Z[:R,G,B] */

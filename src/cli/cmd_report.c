@@ -11,6 +11,16 @@
 #include <string.h>
 #include <time.h>
 
+const cli_help_block *cli_report_help(void)
+{
+    static const cli_help_item items[] = {
+        { "DIR...", "the --out directories of `brdffit batch` runs (shards)" },
+        { "--out DIR", "where the merged report goes" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK("Arguments of report", NULL, items);
+    return &block;
+}
+
 static int by_str(const void *a, const void *b)
 {
     return strcmp(*(const char *const *)a, *(const char *const *)b);

@@ -11,6 +11,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+const cli_help_block *cli_score_help(void)
+{
+    static const cli_help_item items[] = {
+        { "--model M", "the model of --params; with --fits, only these models" },
+        { "--params d_r,d_g,d_b,s_r,s_g,s_b,p0[,p1,p2]", "the parameters to score, in the\n"
+                                                         "paper's units" },
+        { "--fits FILE", "score the rows of this material (named by TABLE's file)\n"
+                         "in an ngan2005-fits.tsv-style TSV" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK(
+        "Options of score", "and the options of fit: --scale, --cutoff, --backend, --device",
+        items);
+    return &block;
+}
+
 /* "0.1,0.2,..." into p for the model: 6 + nparams numbers. */
 static int parse_params(const char *v, brdffit_model model, brdffit_params *p)
 {
@@ -53,8 +68,11 @@ static void score_one(score_job *J, brdffit_model model, const brdffit_params *p
     memset(&err, 0, sizeof err);
     double e = NAN;
     brdffit_status st = brdffit_params_check(model, p, &err);
-    if (st == BRDFFIT_OK)
+    if (st == BRDFFIT_OK) {
+        int note = kernel_note_begin(stderr, J->ctx, model);
         st = brdffit_error_of(J->ctx, J->s, model, p, &e, &err);
+        kernel_note_end(stderr, note, J->ctx, model);
+    }
     if (st != BRDFFIT_OK) {
         J->failures++;
         printf("%-18s -  (%s)\n", mi->name, brdffit_strerror(st));

@@ -176,6 +176,7 @@ int draw_run(draw_job *j, const char *command)
     brdffit_table *t = NULL;
     if (brdffit_table_read(j->o.files[0], &t, &err) != BRDFFIT_OK) {
         cli_error("%s", err.message);
+        cli_hint_unreadable_table(j->o.files[0]);
         return CLI_FAILED;
     }
     char name[256];

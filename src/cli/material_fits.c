@@ -184,7 +184,10 @@ int mf_fit(const brdffit_table *table, const char *material, const brdffit_model
     for (int k = 0; k < nmodels && *nfits < RF_MAX_FITS; k++) {
         brdffit_fit_result r;
         brdffit_fit_result_init(&r);
-        if (brdffit_fit(ctx, s, models[k], fit, &r, &err) != BRDFFIT_OK) {
+        int note = kernel_note_begin(stderr, ctx, models[k]);
+        brdffit_status st = brdffit_fit(ctx, s, models[k], fit, &r, &err);
+        kernel_note_end(stderr, note, ctx, models[k]);
+        if (st != BRDFFIT_OK) {
             cli_error("%s: %s fit failed: %s", material, brdffit_model_get(models[k])->name,
                       err.message);
             failed = 1;

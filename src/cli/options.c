@@ -1,34 +1,45 @@
 /* SPDX-License-Identifier: MIT */
 /* options.c -- the options of `fit` and `demo`: parsing them into a
  * cli_options, and their block of the --help text. */
+#define _POSIX_C_SOURCE 200809L
 #include "cli.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
-void cli_options_help(FILE *f)
+const cli_help_block *cli_options_help(void)
 {
+    /* the models and their starts come from the registry */
+    static char model_text[640], starts_text[320];
+    static cli_help_item items[] = {
+        { "--model NAME[,NAME...]|all", model_text },
+        { "--scale standard|flat", "channel scale of the stored values (default standard,\n"
+                                   "(1, 1.15, 1.66)/1500; flat = 1/1500, as Ngan et al.)" },
+        { "--cutoff DEG", "fit directions with theta_i, theta_o <= DEG, in (0, 90]\n(default 80)" },
+        { "--starts N", starts_text },
+        { "--backend auto|opencl|host", "where the data passes run (default auto: OpenCL when a\n"
+                                        "device is found, else C on the host)" },
+        { "--device SPEC", "OpenCL device, PLATFORM:DEVICE by index or name\n"
+                           "substring (default $BRDFFIT_DEVICE, else PoCL's CPU)" },
+        { "--json", "one JSON object per fit per line (JSON Lines)" },
+        { "--no-read-ahead", "read each table only when its fits begin (default:\n"
+                             "the next one is read in a thread meanwhile, which\n"
+                             "saves wall time but shares the cores with the fits,\n"
+                             "so that the fits beside it take longer)" },
+    };
+    static const cli_help_block block = CLI_HELP_BLOCK("Options of fit and demo", NULL, items);
     char names[512], starts[256];
-    fprintf(f,
-            "Options of fit and demo:\n"
-            "  --model NAME[,NAME...]|all    models to fit (repeatable; default all):\n"
-            "                                %s\n"
-            "  --scale standard|flat         channel scale of the stored values (default standard,\n"
-            "                                (1, 1.15, 1.66)/1500; flat = 1/1500, as Ngan et al.)\n"
-            "  --cutoff DEG                  fit directions with theta_i, theta_o <= DEG, in (0, 90]\n"
-            "                                (default 80)\n"
-            "  --starts N                    starting points screened per model, 1..1000\n"
-            "                                (default: the model's own, %s)\n"
-            "  --backend auto|opencl|host    where the data passes run (default auto: OpenCL when a\n"
-            "                                device is found, else C on the host)\n"
-            "  --device SPEC                 OpenCL device, PLATFORM:DEVICE by index or name\n"
-            "                                substring (default $BRDFFIT_DEVICE, else PoCL's CPU)\n"
-            "  --json                        one JSON object per fit per line (JSON Lines)\n"
-            "  --no-read-ahead               read each table only when its fits begin (default:\n"
-            "                                the next one is read in a thread meanwhile, which\n"
-            "                                saves wall time but shares the cores with the fits,\n"
-            "                                so that the fits beside it take longer)\n",
-            cli_model_names(names, sizeof names), cli_default_starts(starts, sizeof starts));
+    cli_model_names(names, sizeof names);
+    char *wrap = strchr(names + strlen(names) / 2, ' '); /* two lines, at a ", " */
+    if (wrap)
+        *wrap = '\n';
+    snprintf(model_text, sizeof model_text,
+             "models to fit (repeatable; default all; any case):\n%s", names);
+    snprintf(starts_text, sizeof starts_text,
+             "starting points screened per model, 1..1000\n(default: the model's own, %s)",
+             cli_default_starts(starts, sizeof starts));
+    return &block;
 }
 
 /* ------------------------------------------------------------------ one option each */
@@ -45,7 +56,7 @@ static int add_model_named(cli_options *o, const char *one)
 {
     char names[512];
     brdffit_model m;
-    if (strcmp(one, "all") == 0) {
+    if (strcasecmp(one, "all") == 0) { /* model names are matched in any case */
         for (int k = 0; k < brdffit_model_count(); k++)
             add_model(o, (brdffit_model)k);
     } else if (brdffit_model_from_name(one, &m, NULL) == BRDFFIT_OK) {

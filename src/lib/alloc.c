@@ -5,11 +5,10 @@
  * Why the pool: the kernel zeroes every fresh page it maps.  `brdffit fit`
  * over a database makes each table's arrays anew (the table's values, its
  * sample set's fields, weights and bins, the mirror set's and the subsets'),
- * ~200 MB a MERL table, and zeroing them took ~70 ms of system time a table
- * (100 tables, every model: 5.8-6.9 s of system time in a 37 s run), in the
- * thread that reads the next table beside the fits, which it slowed.  With
- * the freed arrays reused: 1.9-2.1 s, the run 6% shorter, every fit the same
- * to the bit (README, Performance). */
+ * ~200 MB a MERL table, and zeroing them takes ~70 ms of system time a
+ * table, in the thread that reads the next table beside the fits, which it
+ * slows.  Reusing the freed arrays takes most of that away and changes no
+ * fit (docs/performance.md). */
 #define _DEFAULT_SOURCE /* madvise's MADV_HUGEPAGE */
 #include "internal.h"
 

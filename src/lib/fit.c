@@ -473,14 +473,8 @@ static brdffit_status screen_start(lmstate *S, const double p[3], start *sp)
  * coordinates (d, s at the screening's as the reference): its cost and best
  * d, s there, and the pass kept in it for the first evaluation of the LM run
  * that starts from it (seed_serves), which would take that same pass: one
- * value pass less per kept start (a value pass had taken its cost here, at
- * d = s = 0).  Measured over the 100 MERL tables, four rounds alternated:
- * each fit 0.92-0.99x its time before (median over the tables per model;
- * Ward's 1.05, the first model on each table, beside the next one's set-up);
- * the closed-form fits moved by at most 7.5e-11 relative, He's 90 fits by
- * the rounding of the sums at the start (white-fabric2 to another point of
- * its flat valley, 1.1e-5 above the run before and below the stored run);
- * none above the stored run (bench/baseline-errors.tsv). */
+ * value pass less per kept start.  No fit ends above the stored run
+ * (bench/baseline-errors.tsv); the time saved: docs/performance.md. */
 static brdffit_status seed_start(lmstate *S, start *sp)
 {
     S->ref = sp->lin;
@@ -763,10 +757,8 @@ typedef struct lmrun {
  * where the next run on the same minimum starts (lm_once): the run on all
  * samples from the subset's end (scaled by the ratio of their sums of a2,
  * as the subset's sums are a sample of the full ones), the polish, and a
- * restart after max_evals.  Starting it at 0 each time, LM spent its first
- * iterations there relearning it.  Measured over the 100 MERL tables, He:
- * time in fits 68 -> 62 s, the median fit 0.52 -> 0.49 s; no fit of any
- * model higher than the stored run by 1e-9.  A run from another point
+ * restart after max_evals: started at 0, LM would spend its first
+ * iterations relearning it (docs/performance.md).  A run from another point
  * (bound_restart) or with pinned coordinates (pinned_run) starts afresh. */
 static void sc_forget(lmrun *run)
 {
@@ -839,18 +831,17 @@ static brdffit_status lm_converge(lmstate *S, const brdffit_fit_options *o, lmru
 }
 
 /* After refining on the subset, a start whose subset r^T r is more than
- * this above the lowest is not refined on all samples (measured over the
- * 100 MERL tables, He: no fit changed by more than 5e-10 relative, the
- * median fit 1.10 s against 1.25 s). */
+ * this above the lowest is not refined on all samples: over the 100 MERL
+ * tables no He fit differs by more than 5e-10 relative from refining them
+ * all, and the fits are shorter (docs/fitting.md). */
 #define SUBSET_MARGIN 0.02
 
 /* On the subset, plain Gauss-Newton LM for the first evaluations of a run,
- * then with the secant correction.  From the first (He), blue-metallic-paint
- * slid into another minimum, 0.37% worse; without it, LM crawled along the
- * flat valleys of tau and sigma0 (silver-metallic-paint2: 486 subset passes,
- * two of its starts stopping 1e-2 apart in the valley).  From the 8th, over
- * the 100 MERL tables: He's subset passes 7409 -> 5326, time in fits 135 -> 121 s,
- * no fit higher than the stored run (from the 4th: about the same). */
+ * then with the secant correction.  With it from the first (He),
+ * blue-metallic-paint slides into another minimum, 0.37% worse; without it,
+ * LM crawls along the flat valleys of tau and sigma0 (silver-metallic-paint2:
+ * two of its starts stop 1e-2 apart in the valley).  From the 8th He takes
+ * the fewest subset passes with no fit above the stored run (docs/fitting.md). */
 #define SUBSET_SECANT_FROM 8
 
 /* Forget the evaluated points (assembled for other samples or pins). */
@@ -938,12 +929,10 @@ static int same_end(const fitmap *fm, double ra, const double *xa, double rb, co
 /* A subset run that comes to the point where an earlier one ended (a point
  * it evaluates is at that run's end as same_end has it) stops there: it
  * would go on to end at that minimum and then not be refined on all
- * samples (refine_kept), its further passes spent for nothing.  Measured
- * over the 100 MERL tables, He: 104 of the 300 kept starts' subset runs
- * came to an earlier one's end, subset passes 5216 -> 4953 (blue-acrylic's
- * third start came to the first's end after 38 passes and went on for 6
- * more, its second after 10 and went on for 7), every fit the same to the
- * bit.  The index of the run of S->ends it came to, or -1. */
+ * samples (refine_kept), its further passes spent for nothing.  Over the
+ * 100 MERL tables about a third of He's kept starts' subset runs come to an
+ * earlier one's end, and stopping them changes no fit (docs/fitting.md).
+ * The index of the run of S->ends it came to, or -1. */
 static int join_end(const lmstate *S, const point *pt)
 {
     for (int q = 0; q < S->nends; q++) {
@@ -1113,11 +1102,9 @@ static void join_after(lmstate *S, const lmrun *run, bf_run_end *e)
 /* A run on the bin subset goes on to the stride subset when it ended
  * within BINS_MARGIN of the lowest bin end (and neither at an earlier run's
  * end nor the higher of two ends in one valley: bf_refine_select).
- * Measured over the 100 MERL tables, He (with the kept starts' seeded
- * passes still taken): 0.05, 0.1 and 0.2 moved the same 12 fits by more
- * than 1e-12 against refining each kept start on the stride subset from its
- * start, none above the stored run; passes 9879, 9981, 10109 (bin passes
- * counted as any).  0.1 is five times SUBSET_MARGIN: the bin subset's r^T r
+ * Over the 100 MERL tables, 0.05, 0.1 and 0.2 give the same He fits and
+ * passes within ~2%, none above the stored run (docs/fitting.md).
+ * 0.1 is five times SUBSET_MARGIN: the bin subset's r^T r
  * ranks ends as the stride subset's does only roughly (silicon-nitrade:
  * 1.36x on the bins, 1.013x on the stride subset, not the lowest on all
  * samples). */
@@ -1215,28 +1202,24 @@ static brdffit_status refine_kept(lmstate *S, const brdffit_fit_options *o, cons
 /* A model whose registry entry says BF_SECANT_ON_ALL (He) then polishes the
  * best run: one more LM run on all samples from where it stopped, with a
  * fresh trust region and ftol, xtol times POLISH_TOL, kept when lower.  It
- * cannot end higher (LM only takes steps that lower the cost).  Measured over
- * the 100 MERL tables: without a polish 7 He fits ended higher by 1e-9 to
- * 1.8e-8 relative (silver-metallic-paint); with the caller's tolerances
- * blue-metallic-paint and neoprene-rubber stayed 2.6e-8 and 1.0e-9 above
- * where POLISH_TOL = 0.01 takes them.
+ * cannot end higher (LM only takes steps that lower the cost).  Without a
+ * polish some He fits end higher by 1e-9 to 1.8e-8 relative
+ * (silver-metallic-paint); with the caller's tolerances some stay up to
+ * 2.6e-8 above where POLISH_TOL = 0.01 takes them (blue-metallic-paint;
+ * docs/fitting.md).
  * The lobe coordinates the best run ended on their bounds are held there
  * (S->pinned, as pinned_run holds them): free, their column of J vanishes at
- * the fold, and LM's first steps ran out along them (tau to u = -9e5 on
- * gold-metallic-paint) and took 8-10 rejected passes to come back to where
- * the run had ended.  Measured over the 100 MERL tables, He: the 9 fits with
- * a lobe parameter on its bound polished in 1-2 passes instead of 9-12
- * (polish passes 376 -> 307), 6 of them ending lower (by at most 3.7e-10),
- * the other 94 fits the same to the bit.
+ * the fold, and LM's first steps would run out along them (tau to u = -9e5
+ * on gold-metallic-paint), taking 8-10 rejected passes to come back to where
+ * the run ended; held, such a polish takes 1-2 passes.
  * A best run whose last point is still evaluated (S->cache) and whose Newton
  * decrement there, |z|^2 / r^T r (z = R^-T g of the corrected H: what a
  * full step of LM's own model would lower r^T r by, relative), is below
  * POLISH_SKIP is not polished: the polish's first step would have predicted
- * less than its ftol.  Measured over the 100 MERL tables, He: the polish then
- * lowered r^T r by about the decrement (at most 1.0e-11 relative where the
- * decrement was below 1e-11), and the 52 fits it skips save 1-3 passes on
- * all samples (69 in all); the lowest decrement of a polish that gained 1e-9
- * was 7.4e-11 (pearl-paint, along a flat valley where LM's model is poor). */
+ * less than its ftol.  A polish lowers r^T r by about the decrement, and a
+ * skipped one saves 1-3 passes on all samples; over the 100 MERL tables the
+ * lowest decrement of a polish that gains 1e-9 is 7.4e-11 (pearl-paint,
+ * along a flat valley where LM's model is poor; docs/fitting.md). */
 #define POLISH_TOL 0.01
 #define POLISH_SKIP 1e-11
 

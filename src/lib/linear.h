@@ -34,7 +34,7 @@ double bf_linear_best(const double *mom, int nk, int np, const bf_linear *ref, b
  * digits to cancellation: it is the residual energy at the reference minus
  * what the offsets to the best d, s explain, and that energy exceeds
  * BF_LINEAR_REF_FAR times rr (a reference s ~ 1e5 times the best, after a
- * start whose lobe was nearly zero, once left a spurious rr = 0).  Then take
+ * start whose lobe is nearly zero, can leave a spurious rr = 0).  Then take
  * the pass again at the best d, s. */
 #define BF_LINEAR_REF_FAR 1e4
 int bf_linear_ref_far(const double *mom, int nk, int np, double rr);

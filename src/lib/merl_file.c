@@ -89,6 +89,50 @@ static long long read_full(int fd, void *buf, size_t len)
     return (long long)got;
 }
 
+/* 1 when three int32 could be a table's dimensions, if not MERL's (a damaged
+ * or other-resolution table); text, images and other files begin with bytes
+ * that read as far larger numbers. */
+static int header_like(const int32_t dims[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (dims[k] < -65536 || dims[k] > 65536)
+            return 0;
+    return 1;
+}
+
+static int is_text_byte(unsigned char c)
+{
+    return (c >= 0x20 && c < 0x7f) || c == '\t' || c == '\n' || c == '\r';
+}
+
+/* The letter of C's escape of c: t, n, r, or c itself (a quote, a backslash). */
+static char c_escape(unsigned char c)
+{
+    return c == '\t' ? 't' : c == '\n' ? 'n' : c == '\r' ? 'r' : (char)c;
+}
+
+/* The first n (<= 12) bytes of a file for a message, into out (64 bytes):
+ * "\"text\"" when they are text (printable ASCII, tabs, line ends; escaped
+ * as in C), else "bytes 89 50 4e ..." in hex. */
+static const char *show_bytes(const unsigned char *b, size_t n, char *out, size_t len)
+{
+    int text = 1;
+    for (size_t i = 0; i < n; i++)
+        text &= is_text_byte(b[i]);
+    size_t used = (size_t)snprintf(out, len, text ? "\"" : "bytes");
+    for (size_t i = 0; i < n && used < len; i++) {
+        if (!text)
+            used += (size_t)snprintf(out + used, len - used, " %02x", b[i]);
+        else if (strchr("\t\n\r\"\\", b[i]))
+            used += (size_t)snprintf(out + used, len - used, "\\%c", c_escape(b[i]));
+        else
+            used += (size_t)snprintf(out + used, len - used, "%c", b[i]);
+    }
+    if (text && used < len)
+        snprintf(out + used, len - used, "\"");
+    return out;
+}
+
 /* The file's size and header: a regular file of exactly FILE_BYTES whose
  * header names the MERL dimensions (the fd is left after the header). */
 static brdffit_status read_header(int fd, const char *path, brdffit_error *err)
@@ -118,6 +162,14 @@ static brdffit_status read_header(int fd, const char *path, brdffit_error *err)
         return bf_fail(err, BRDFFIT_E_FILE_TRUNCATED, "%s: truncated at byte %lld of %zu expected",
                        path, r, FILE_BYTES);
     int32_t dims[3] = { get_le32(hdr), get_le32(hdr + 4), get_le32(hdr + 8) };
+    if (!header_like(dims)) {
+        char shown[64];
+        return bf_fail(err, BRDFFIT_E_FILE_DIMS,
+                       "%s: not a MERL table: it begins with %s, where a MERL .binary begins with "
+                       "the int32 dimensions %d %d %d",
+                       path, show_bytes(hdr, sizeof hdr, shown, sizeof shown), BF_NTH, BF_NTD,
+                       BF_NPD);
+    }
     if (dims[0] != BF_NTH || dims[1] != BF_NTD || dims[2] != BF_NPD)
         return bf_fail(err, BRDFFIT_E_FILE_DIMS, "%s: dims %ldx%ldx%ld, expected %dx%dx%d", path,
                        (long)dims[0], (long)dims[1], (long)dims[2], BF_NTH, BF_NTD, BF_NPD);

@@ -62,10 +62,8 @@ typedef struct bf_pass_driver {
  * theta_h make most of the bin rows, so in run order one thread took most of
  * the rows while the other waited.  order is the integer nearest
  * items (sqrt(5) - 1) / 2 that is prime to items (1 for items <= 2), so any
- * contiguous chunk of work-items takes runs spread over the whole table.
- * Measured (alternated builds, 2 threads): a stride-subset He pass at
- * brass's fit 0.86-0.91 -> 0.67-0.78 ms; the closed-form passes and He's
- * rough ones the same or 1-3% faster. */
+ * contiguous chunk of work-items takes runs spread over the whole table
+ * (He's stride-subset passes the most shortened: docs/performance.md). */
 cl_uint bf_pass_order(size_t items);
 
 /* Bind samples to ctx for passes of model (on OpenCL: the model's kernels,

@@ -11,19 +11,10 @@
  * coordinate within BF_VALLEY_PLACE of its range) are one minimum seen
  * through the subset: only the lower end is refined (in the three MERL fits
  * with such a pair, its run on all samples ended as low as the other's, to
- * 5e-10, or lower).
- *
- * Until the twenty-second session a run was left out only when it ended at
- * the point of one refined before it (1e-4 of the range, 1e-6 of r^T r),
- * and the first of the two in the kept order was refined.  Over the 100
- * MERL tables three fits refined two ends of one valley: hematite's two
- * runs on all samples (15 and 17 passes) came to one minimum, 5e-10 apart;
- * nickel's (4 and 10 passes, along its flat valley) ended
- * 1.6e-5 apart, the lower from the lower subset end; black-obsidian's (3
- * passes more) 1.7e-6 apart, the lower likewise.  Refining the lower end
- * alone: hematite 99 -> 83 passes and 3e-11 lower (its polish from the other
- * end), nickel 82 -> 78 and black-obsidian 62 -> 57 the same to the bit, and
- * the other 97 fits the same to the bit. */
+ * 5e-10, or lower).  Refining both ends of such a valley spends passes on
+ * one minimum (hematite, nickel, black-obsidian over the 100 MERL tables;
+ * docs/fitting.md), and where the two ends differ on all samples the lower
+ * comes from the lower subset end. */
 #include "refine_select.h"
 
 #include <math.h>

@@ -8,6 +8,7 @@
 
 #include "bf_lobe.h"
 
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -94,44 +95,21 @@ static const bf_model_def registry[] = {
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
         .screen_stride = 8,
     },
-    /* tau over 4, 8, ..., 28 as Ngan et al. at sigma0 = 0.5, then again at
-     * sigma0 = 2 and at 0.125 (further rounds of 7: 8, 1/32, 30, ...; the
-     * third round finds the minima at small tau and sigma0 of
-     * pickled-oak-260, silver-metallic-paint, gold-metallic-paint and
-     * grease-covered-steel, 8-32% lower: README, Fidelity); screened on
-     * every 12th sample (the rough starts sum the series at every sample)
-     * and refined there by plain Gauss-Newton LM (the secant correction
-     * from the first step moved blue-metallic-paint into a minimum 0.37%
-     * worse), then on all samples with the correction (README, Fidelity:
-     * the 100 MERL tables measured).  The stride, over the 100 tables:
-     * 8 -> 12 took He's time in fits from 77 s to 69 s with no fit higher
-     * than the stored run; 4 took 92 s; 16 and 24 (69, 64 s) each left one
-     * fit in another minimum (red-fabric 1.1e-6, white-diffuse-bball 9.6e-5
-     * above it).  A subset pass costs more than its share of samples: He's
-     * memos work per (theta_h, theta_d) bin, and a subset has few samples
-     * of each bin.  So its 21 starts are screened on a ninth of the bins
-     * and every 12th phi_d (every 3rd theta_h and theta_d index: a 108th of
-     * the samples), and the kept ones taken again on the stride subset,
-     * which orders them as a screening there would (every 2nd theta_h and
-     * theta_d index, measured first: every fit the same to the bit, He's
-     * time in fits 92.3 -> 86.9 s with every 6th phi_d and 83.8 -> 76.2 s
-     * with every 12th; every 3rd, over the 100 tables: the screening's
-     * passes 1.84 -> 1.09 s, one fit 4.6e-14 higher (specular-red-phenolic),
-     * the others the same to the bit; every 4th: 0.76 s, three fits moved by
-     * less than 6e-15, a 192nd of the samples, close to SCREEN_MIN_SAMPLES;
-     * every 30th sample: 2 fits moved by less than 1e-9).  Each kept start
-     * is then refined by LM on the bin subset first, where a pass costs a
-     * third (smooth points) to a ninth of the stride subset's, and only the
-     * ends within BINS_MARGIN of the lowest there, not at an earlier run's
-     * end, go on to the stride subset, from that end (fit.c, bins_runs).  An
-     * end with sigma0 >= 0.3 um goes on from its start instead: He's value
-     * there is at its rough limit (g >= 19) wherever theta_i and theta_o
-     * are below ~40 degrees at 645 nm and ~60 degrees at 444 nm, and that
-     * depends on tau / sigma0 alone, so where along that line the bin
-     * subset's run ends is no guide to where the stride subset's would (from
-     * the bin end, polyurethane-foam's fit ended 7.9e-6 above the stored
-     * run; with the line at 0.5 um, blue-metallic-paint2's 3.7e-5 above the
-     * run before; at 0.2 um, nickel's 8.2e-6 above the stored run). */
+    /* He's starts: tau over 4, 8, ..., 28 as Ngan et al. at sigma0 = 0.5,
+     * then the same round at sigma0 = 2 and at 0.125 um (further rounds of 7
+     * multiply or divide sigma0 by 4 again): the second round reaches rough
+     * surfaces, the third the minima at small tau and sigma0 that some
+     * materials have (docs/fidelity.md).  A subset pass of He costs more than
+     * its share of samples, since its memos work per (theta_h, theta_d) bin;
+     * so the starts are screened on the bin subset (every 3rd theta_h and
+     * theta_d index, every 12th phi_d: a 108th of the samples), each kept
+     * start refined by LM there first, and only the ends within BINS_MARGIN
+     * of the lowest go on to the stride-12 subset, then to all samples
+     * (fit.c, bins_runs).  An end with sigma0 >= 0.3 um goes on from its
+     * start instead: He is at its rough limit there over most directions,
+     * so where the bin subset's run ends along that line is no guide to the
+     * stride subset's.  Why each number: docs/fitting.md, Starts and
+     * Refinement. */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
                   .default_starts = 21 },
@@ -194,7 +172,7 @@ brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brd
                        !name ? "name" : "out");
     for (int m = 0; m < NMODELS; m++) {
         const char *a = registry[m].info.name, *b = name;
-        while (*a && (*a == *b || (*a == '-' && *b == '_')))
+        while (*a && (tolower((unsigned char)*b) == *a || (*a == '-' && *b == '_')))
             a++, b++;
         if (*a == '\0' && *b == '\0') {
             *out = (brdffit_model)m;

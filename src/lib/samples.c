@@ -425,10 +425,9 @@ brdffit_status bf_samples_bins(const brdffit_samples *src, const int step[3],
         return BRDFFIT_E_NO_MEMORY;
     /* A set in table order walks each (theta_h, theta_d) bin's samples in a
      * row (bins increasing): theta_h's and theta_d's test once per run, and
-     * a run not kept is passed over by a bisection for its end (with three
-     * divisions a sample, the subset of a full table took 7-8.6 ms; testing
-     * every sample, 0.68 ms at every 3rd theta_h and theta_d and 12th phi_d,
-     * best of 50 on brass, ~2.3 ms inside a fit; so, 0.27 ms) */
+     * a run not kept is passed over by a bisection for its end (a fraction
+     * of a millisecond for a full table, where three divisions a sample
+     * take several: docs/performance.md) */
     char keep_k[BF_NPD];
     for (int k = 0; k < BF_NPD; k++)
         keep_k[k] = k % step[2] == 0;

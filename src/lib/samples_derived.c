@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* samples_derived.c -- what fits derive from a sample set and share: kept
- * with the set, made once by the first fit that asks (every model's fit of
- * a table used to make its own screening subset, ~8 ms each, reading the
- * whole set; He's fit its bin table too). */
+ * with the set, made once by the first fit that asks (a screening subset
+ * takes ~8 ms, reading the whole set, and every model's fit of a table
+ * needs one; He's fit its bin table too). */
 #include "internal.h"
 #include "samples.h"
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* dropin.c -- README's promise to renderers: the installed evaluator headers
+/* dropin.c -- the promise docs/library.md makes to renderers: the installed evaluator headers
  * (<brdffit/bf_lobe.h>) compile on their own, in C and in C++, and bf_lobe
  * gives the lobe brdffit_eval evaluates (f = d/pi + s K), for every model
  * (tests/packaging.sh). */

@@ -146,6 +146,22 @@ $(BUILD)/cli/%.o: src/cli/%.c | $(BUILD)/cli
 $(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
+# The tests' build of the program, never installed: fault injection compiled
+# in (-DBRDFFIT_FAULTS; BRDFFIT_FAULT=POINT:N kills it there, src/cli/fault.c).
+# The files that use the hooks are compiled again into cli-faults/, the others
+# are the program's.
+FAULT_SRC = $(shell grep -l 'cli_fault_' $(CLI_SRC))
+FAULT_OBJ = $(FAULT_SRC:src/cli/%.c=$(BUILD)/cli-faults/%.o)
+$(BUILD)/cli-faults: | $(DEPS_STAMP)
+	mkdir -p $@
+
+$(BUILD)/cli-faults/%.o: src/cli/%.c | $(BUILD)/cli-faults
+	$(CC) $(CPPFLAGS) -DBRDFFIT_FAULTS $(CLI_INC) $(CLI_CFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/brdffit-faults: $(filter-out $(FAULT_SRC:src/cli/%.c=$(BUILD)/cli/%.o),$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o)) \
+                         $(FAULT_OBJ) $(BUILD)/libbrdffit.a
+	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
+
 # The manual page: the program's help text as roff (src/cli/man.c).
 $(BUILD)/brdffit.1: $(BUILD)/brdffit
 	./$(BUILD)/brdffit help --man > $@.tmp && mv $@.tmp $@
@@ -196,9 +212,10 @@ demo: all
 # (exported symbols, the static library's internals, install/uninstall,
 # pkg-config, README's example built and run in C and C++, shared and
 # static).  All always run; any failing fails the goal.
-test: $(BUILD)/test_brdffit all
+test: $(BUILD)/test_brdffit all $(BUILD)/brdffit-faults
 	@mkdir -p $(BUILD)/pocl-cache
-	@rc=0; $(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit ./$(BUILD)/test_brdffit || rc=1; \
+	@rc=0; $(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit BRDFFIT_CLI_FAULTS=./$(BUILD)/brdffit-faults \
+	    ./$(BUILD)/test_brdffit || rc=1; \
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
 	    sh python/tests/run -q || rc=1; \
 	$(RUN_ENV) BUILD=$(BUILD) CC="$(CC)" sh tests/packaging.sh || rc=1; \
@@ -218,9 +235,10 @@ test: $(BUILD)/test_brdffit all
 # leak, not hidden.
 sanitize:
 	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
-	    build-san/test_brdffit build-san/brdffit
+	    build-san/test_brdffit build-san/brdffit build-san/brdffit-faults
 	@mkdir -p build-san/pocl-cache
 	POCL_CACHE_DIR="$(CURDIR)/build-san/pocl-cache" BRDFFIT_CLI=./build-san/brdffit \
+	BRDFFIT_CLI_FAULTS=./build-san/brdffit-faults \
 	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-4} \
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:use_sigaltstack=0:intercept_tls_get_addr=0 \
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
@@ -328,7 +346,7 @@ MAN1DIR    = $(PREFIX)/share/man/man1
 DROPIN_HEADERS = $(shell $(CC) -MM -MT x -x c kernels/bf_lobe.h | sed -e 's/^x://' -e 's/\\//g')
 # brdffit.pc's Libs carries -Wl,-rpath,${libdir} for every prefix but / and
 # /usr, so that a program linked through `pkg-config --libs brdffit` finds
-# libbrdffit.so.0 where it was installed, without LD_LIBRARY_PATH.  /usr/lib
+# libbrdffit.so.1 where it was installed, without LD_LIBRARY_PATH.  /usr/lib
 # is the dynamic loader's own; /usr/local/lib gets the run path too: Debian's
 # ld.so.conf names it, but the loader finds a library there only after
 # ldconfig has run, which `make install` does not do (the run path is harmless

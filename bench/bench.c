@@ -118,6 +118,7 @@ static int fit_fastest(brdffit_context *ctx, const brdffit_samples *s, brdffit_m
 {
     for (int rep = 0; rep < runs; rep++) {
         brdffit_fit_result r;
+        brdffit_fit_result_init(&r);
         brdffit_error err;
         if (brdffit_fit(ctx, s, m, NULL, &r, &err) != BRDFFIT_OK) {
             fprintf(stderr, "bench: %s\n", err.message);
@@ -360,6 +361,7 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const 
         rc = pass_row(ctx, s, (brdffit_model)m, &pp, 0, &bs, reps, creps, sum);
         if (rc == 0 && m == BRDFFIT_HE) { /* and at its fit, where most samples are flat */
             brdffit_fit_result r;
+            brdffit_fit_result_init(&r);
             if (brdffit_fit(ctx, set, BRDFFIT_HE, NULL, &r, &err) != BRDFFIT_OK) {
                 fprintf(stderr, "bench: %s\n", err.message);
                 rc = 1;
@@ -410,7 +412,7 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
             return 1;
         }
         brdffit_fit_result r;
-        memset(&r, 0, sizeof r);
+        brdffit_fit_result_init(&r);
         if (!fit_fastest(ctx, s, (brdffit_model)m, a->quick ? 1 : 3, &r, fit_seconds))
             return 1;
         printf("%-18s %10.3e %7d %7d %10.3f %10.3f %11.3f%%\n", brdffit_model_get((brdffit_model)m)->name,
@@ -426,6 +428,7 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
     if (fit_seconds[BRDFFIT_COOK_TORRANCE] > 0 && fit_seconds[BRDFFIT_HE] > 0) {
         int pairs = a->quick ? 1 : 3;
         brdffit_fit_result r;
+        brdffit_fit_result_init(&r);
         for (int rep = 0; rep < pairs; rep++)
             if (!fit_fastest(ctx, s, BRDFFIT_COOK_TORRANCE, 1, &r, fit_seconds) ||
                 !fit_fastest(ctx, s, BRDFFIT_HE, 1, &r, fit_seconds))

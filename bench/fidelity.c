@@ -270,6 +270,7 @@ static void one_fit(brdffit_context *ctx, const brdffit_samples *s, const char *
     const brdffit_model_info *mi = brdffit_model_get(m);
     brdffit_error err;
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     T->fits++;
     if (brdffit_fit(ctx, s, m, fo, &r, &err) != BRDFFIT_OK) {
         T->failed++;

@@ -93,6 +93,27 @@
  *   alone.  A NULL options pointer means all the defaults.  A struct the
  *   library fills (brdffit_samples_options) gets the members within its size.
  *   Mirrors (FFI) check their layout with brdffit_struct_size/_offset.
+ *
+ *   Sized results.  The structs the library fills in the caller's memory and
+ *   that may grow (brdffit_fit_result, brdffit_sample) start with `size_t
+ *   size` too, which the CALLER sets before the call to sizeof the struct as
+ *   it was compiled: brdffit_fit_result_init() / brdffit_sample_init(), which
+ *   are inline (compiled into the caller), or size = sizeof the struct.  The
+ *   library writes the members that lie wholly within `size` and nothing
+ *   after it.  It refuses, with BRDFFIT_E_OPTIONS_SIZE and a message naming
+ *   the struct and the sizes, before doing any work: size 0, one smaller
+ *   than the struct's first sized layout (brdffit_fit_result: up to `flags`;
+ *   brdffit_sample: up to `k`), one that ends inside a member, and one
+ *   larger than this library's struct.  brdffit_error (fixed: a status and
+ *   BRDFFIT_MESSAGE_MAX characters) and brdffit_params (a member of
+ *   brdffit_fit_result) never grow; brdffit_model_info and
+ *   brdffit_param_info are the library's own memory, read through pointers.
+ *
+ *   Versions.  MAJOR changes with every change a program built against the
+ *   previous header could misread (a member moved or inserted, a struct that
+ *   was not sized given a size): it is the soname's number,
+ *   libbrdffit.so.MAJOR.  MINOR changes with additions (functions, members
+ *   appended to sized structs, models, statuses), PATCH with fixes alone.
  */
 #ifndef BRDFFIT_H
 #define BRDFFIT_H
@@ -109,8 +130,8 @@ extern "C" {
 #pragma GCC visibility push(default)
 #endif
 
-#define BRDFFIT_VERSION_MAJOR 0
-#define BRDFFIT_VERSION_MINOR 1
+#define BRDFFIT_VERSION_MAJOR 1
+#define BRDFFIT_VERSION_MINOR 0
 #define BRDFFIT_VERSION_PATCH 0
 const char *brdffit_version(void);
 
@@ -155,7 +176,7 @@ typedef enum brdffit_status {
     BRDFFIT_E_CACHE_DIR = 19,    /* PoCL's kernel cache directory is unusable (which, why) */
     BRDFFIT_E_TOO_FEW_SAMPLES = 20, /* fewer distinct sample geometries than the model's unknowns */
     BRDFFIT_E_VALUE_RANGE = 21,  /* a finite stored value too large to fit (bin, value named) */
-    BRDFFIT_E_OPTIONS_SIZE = 22, /* an options struct's `size` the library cannot take (ABI CONVENTIONS) */
+    BRDFFIT_E_OPTIONS_SIZE = 22, /* a sized struct's `size` the library cannot take (ABI CONVENTIONS) */
     BRDFFIT_STATUS_COUNT = 23       /* one more than the last status */
 } brdffit_status;
 
@@ -356,11 +377,21 @@ void brdffit_sample_options_default(brdffit_sample_options *opt);
 typedef struct brdffit_samples brdffit_samples;
 
 typedef struct brdffit_sample {
+    size_t size;           /* sizeof(brdffit_sample), set by the caller:
+                              brdffit_sample_init (ABI CONVENTIONS)        */
     double wi[3], wo[3];   /* unit directions (wi toward the light)        */
     double rgb[3];         /* measured BRDF value (stored x scale)         */
     double weight;         /* the bin's solid-angle weight w               */
     int i, j, k;           /* the bin                                      */
 } brdffit_sample;
+
+/* Every member 0 and size = sizeof *sample as the caller is compiled. */
+static inline void brdffit_sample_init(brdffit_sample *sample)
+{
+    for (size_t b = 0; b < sizeof *sample; b++)
+        ((unsigned char *)sample)[b] = 0;
+    sample->size = sizeof *sample;
+}
 
 /* The valid samples of a table: all channels >= 0, both directions above the
  * horizon and within the cutoff.  opt may be NULL for the defaults. */
@@ -373,7 +404,8 @@ size_t brdffit_samples_count(const brdffit_samples *samples);
 size_t brdffit_samples_masked(const brdffit_samples *samples);
 /* Bins with valid values whose directions fall outside the cutoff. */
 size_t brdffit_samples_beyond_cutoff(const brdffit_samples *samples);
-/* Sample `index` (0 .. count-1; beyond: BRDFFIT_E_INVALID_ARGUMENT). */
+/* Sample `index` (0 .. count-1; beyond: BRDFFIT_E_INVALID_ARGUMENT) into
+ * out, whose size the caller set (brdffit_sample_init). */
 brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
                                    brdffit_sample *out, brdffit_error *err);
 /* The options the set was made with (samples NULL: the defaults), into out:
@@ -487,6 +519,8 @@ void brdffit_fit_options_default(brdffit_fit_options *opt);
  * failure; failures are the brdffit_status a call returns, with its
  * message in a brdffit_error. */
 typedef struct brdffit_fit_result {
+    size_t size;             /* sizeof(brdffit_fit_result), set by the caller:
+                                brdffit_fit_result_init (ABI CONVENTIONS)   */
     brdffit_model model;
     brdffit_params params;   /* in the paper's units                        */
     double error;            /* the "ngan-l2" Error of params               */
@@ -513,6 +547,14 @@ typedef struct brdffit_fit_result {
                                 kernels, 0 when the context had them
                                 (brdffit_context_prepare, an earlier fit)   */
 } brdffit_fit_result;
+
+/* Every member 0 and size = sizeof *result as the caller is compiled. */
+static inline void brdffit_fit_result_init(brdffit_fit_result *result)
+{
+    for (size_t b = 0; b < sizeof *result; b++)
+        ((unsigned char *)result)[b] = 0;
+    result->size = sizeof *result;
+}
 
 /* Bits of brdffit_fit_result.at_bound.  A lobe parameter is on its bound when
  * it lies within 1e-6 of its range (in the fit's coordinate) of lower or
@@ -543,7 +585,8 @@ typedef enum brdffit_fit_flag {
  * set with fewer distinct geometries than the model's unknowns per channel
  * (d, s and the lobe parameters; directions differing only by a turn about
  * the normal or by exchanging wi and wo count once) is refused with
- * BRDFFIT_E_TOO_FEW_SAMPLES. */
+ * BRDFFIT_E_TOO_FEW_SAMPLES.  result->size is set by the caller
+ * (brdffit_fit_result_init); result is written only when the fit succeeds. */
 brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
                            brdffit_model model, const brdffit_fit_options *opt,
                            brdffit_fit_result *result, brdffit_error *err);

@@ -3,7 +3,7 @@
 there): `pip install ./python` and `pip wheel ./python` build libbrdffit with
 the project's Makefile in the checkout around this folder (make
 build/libbrdffit.so: the project's own flags, an existing build reused) and
-put a copy of it in the package, brdffit/libbrdffit.so.0, where brdffit._lib
+put a copy of it in the package, brdffit/libbrdffit.so.1, where brdffit._lib
 looks after $BRDFFIT_LIBRARY.  The kernel sources are compiled into the
 library, so that one file is all the package needs besides the system's
 OpenCL and cminpack.
@@ -16,8 +16,8 @@ is skipped here: a pip build never calls apt, and it would look for the test
 tools of whatever python3 is on PATH.  When a build dependency is missing the
 compiler says which header; `make deps` in the checkout installs them.
 
-An editable install (pip install -e ./python) links brdffit/libbrdffit.so.0
-to the checkout's build/libbrdffit.so.0 instead, so a rebuild is seen.
+An editable install (pip install -e ./python) links brdffit/libbrdffit.so.1
+to the checkout's build/libbrdffit.so.1 instead, so a rebuild is seen.
 
 A source distribution would not hold the C sources (they are outside this
 folder), so building one is refused: build wheels from a checkout.
@@ -38,7 +38,7 @@ except ImportError:  # older setuptools: the wheel package's
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CHECKOUT = os.path.dirname(HERE)
-SONAME = "libbrdffit.so.0"
+SONAME = "libbrdffit.so.1"
 BUILD = "build"  # the Makefile's default build folder, relative to CHECKOUT
 
 

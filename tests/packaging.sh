@@ -4,7 +4,7 @@
 # built and installed libraries promise a caller.
 #
 #   symbols    libbrdffit.so exports only brdffit_* (nm -D --defined-only) and
-#              has soname libbrdffit.so.0; libbrdffit.a defines no global
+#              has soname libbrdffit.so.1; libbrdffit.a defines no global
 #              other than brdffit_*; a caller with its own bf_fail, bf_now, ...
 #              links against either and each side calls its own
 #   install    `make install DESTDIR=...` puts the header, the drop-in
@@ -54,8 +54,8 @@ SOFILE=$BUILD/libbrdffit.so.$VERSION
 
 not_brdffit() { grep -v -E '^brdffit_' || true; }
 
-expect "soname of $SOFILE is libbrdffit.so.0" \
-    sh -c "readelf -d '$SOFILE' | grep -q 'SONAME.*\[libbrdffit.so.0\]'"
+expect "soname of $SOFILE is libbrdffit.so.1" \
+    sh -c "readelf -d '$SOFILE' | grep -q 'SONAME.*\[libbrdffit.so.1\]'"
 nm -D --defined-only "$SOFILE" | awk '{ print $NF }' >"$T/dynsyms"
 if [ -s "$T/dynsyms" ] && [ -z "$(not_brdffit <"$T/dynsyms")" ]; then pass; else
     fail "libbrdffit.so exports names other than brdffit_*: $(not_brdffit <"$T/dynsyms" | tr '\n' ' ')"
@@ -82,9 +82,9 @@ for f in include/brdffit.h include/brdffit/bf_lobe.h include/brdffit/bf_common.h
          lib/libbrdffit.a "lib/libbrdffit.so.$VERSION" lib/pkgconfig/brdffit.pc bin/brdffit; do
     if [ -f "$D$P/$f" ]; then pass; else fail "make install did not install $P/$f"; fi
 done
-if [ "$(readlink "$D$P/lib/libbrdffit.so.0")" = "libbrdffit.so.$VERSION" ] &&
-   [ "$(readlink "$D$P/lib/libbrdffit.so")" = "libbrdffit.so.0" ]; then pass; else
-    fail "the links libbrdffit.so -> libbrdffit.so.0 -> libbrdffit.so.$VERSION are not installed"
+if [ "$(readlink "$D$P/lib/libbrdffit.so.1")" = "libbrdffit.so.$VERSION" ] &&
+   [ "$(readlink "$D$P/lib/libbrdffit.so")" = "libbrdffit.so.1" ]; then pass; else
+    fail "the links libbrdffit.so -> libbrdffit.so.1 -> libbrdffit.so.$VERSION are not installed"
 fi
 expect "the installed program runs" sh -c "'$D$P/bin/brdffit' --version | grep -q '$VERSION'"
 
@@ -132,8 +132,8 @@ for lang in c c++; do
         $comp -Wall -Werror -o "$T/ex-$lang-shared" "$T/example.c" $cflags $libs
     expect "README example, $lang, static: builds" \
         $comp -Wall -Werror -o "$T/ex-$lang-static" "$T/example.c" $cflags -Wl,-Bstatic $slibs
-    if readelf -d "$T/ex-$lang-shared" 2>/dev/null | grep -q 'NEEDED.*libbrdffit.so.0'; then pass; else
-        fail "README example, $lang, shared: does not load libbrdffit.so.0"
+    if readelf -d "$T/ex-$lang-shared" 2>/dev/null | grep -q 'NEEDED.*libbrdffit.so.1'; then pass; else
+        fail "README example, $lang, shared: does not load libbrdffit.so.1"
     fi
     if readelf -d "$T/ex-$lang-static" 2>/dev/null | grep -q 'NEEDED.*libbrdffit'; then
         fail "README example, $lang, static: still needs libbrdffit.so"
@@ -186,8 +186,8 @@ expect "README example through pkg-config, PREFIX=$PP: builds" \
 if readelf -d "$T/ex-prefix" 2>/dev/null | grep -E -q "(RUNPATH|RPATH).*\[$PP/lib\]"; then pass; else
     fail "README example, PREFIX=$PP: no run path $PP/lib: $(readelf -d "$T/ex-prefix" | grep -E 'RUNPATH|RPATH')"
 fi
-if env -u LD_LIBRARY_PATH ldd "$T/ex-prefix" 2>&1 | grep -q "libbrdffit.so.0 => $PP/lib/libbrdffit.so.0"; then pass; else
-    fail "README example, PREFIX=$PP: does not load $PP/lib/libbrdffit.so.0:"
+if env -u LD_LIBRARY_PATH ldd "$T/ex-prefix" 2>&1 | grep -q "libbrdffit.so.1 => $PP/lib/libbrdffit.so.1"; then pass; else
+    fail "README example, PREFIX=$PP: does not load $PP/lib/libbrdffit.so.1:"
     env -u LD_LIBRARY_PATH ldd "$T/ex-prefix" 2>&1 | sed 's/^/    /' >&2
 fi
 if env -u LD_LIBRARY_PATH "$T/ex-prefix" "$T/ct.binary" >"$T/out" 2>&1 && fits_back "$T/out"; then pass; else
@@ -195,12 +195,12 @@ if env -u LD_LIBRARY_PATH "$T/ex-prefix" "$T/ct.binary" >"$T/out" 2>&1 && fits_b
     sed 's/^/    /' "$T/out" >&2
 fi
 # the control: linked without the run path it does not find the library
-# (unless a libbrdffit.so.0 is installed where the loader looks anyway)
+# (unless a libbrdffit.so.1 is installed where the loader looks anyway)
 $CC -std=c11 -o "$T/ex-norpath" "$T/example.c" $(pc --cflags) -L"$PP/lib" -lbrdffit >"$T/out" 2>&1
 if env -u LD_LIBRARY_PATH "$T/ex-norpath" "$T/ct.binary" >"$T/out" 2>&1; then
-    echo "packaging: SKIP the control without the run path: it ran, a libbrdffit.so.0 is" \
+    echo "packaging: SKIP the control without the run path: it ran, a libbrdffit.so.1 is" \
          "installed where the loader finds it ($(env -u LD_LIBRARY_PATH ldd "$T/ex-norpath" | grep libbrdffit))"
-elif grep -q 'libbrdffit.so.0: cannot open shared object file' "$T/out"; then pass; else
+elif grep -q 'libbrdffit.so.1: cannot open shared object file' "$T/out"; then pass; else
     fail "README example without the run path failed otherwise:"
     sed 's/^/    /' "$T/out" >&2
 fi

@@ -101,6 +101,8 @@ START_TEST(reused_memory_same_sets_and_fits)
     ck_assert_msg(tu_context(BRDFFIT_BACKEND_AUTO, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     brdffit_release_memory();
     brdffit_fit_result r[2];
+    for (int k = 0; k < 2; k++)
+        brdffit_fit_result_init(&r[k]);
     double *data = NULL, *w = NULL;
     int *bin = NULL;
     size_t n = 0, nd = 0;

@@ -406,8 +406,9 @@ static void check_batch_pages(const char *out)
     char *idx = slurp(path);
     ck_assert_int_eq(count_lines(idx, "class=\"best\""), 3);
     ck_assert_int_eq(count_lines(idx, "not fitted: "), 2);
-    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") && strstr(idx, "0.1.0") &&
-                      strstr(idx, "median Error") && strstr(idx, "headline.svg"),
+    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") &&
+                      strstr(idx, brdffit_version()) && strstr(idx, "median Error") &&
+                      strstr(idx, "headline.svg"),
                   "%s", idx);
     ck_assert_msg(strstr(idx, "published "), "no published Error in the matrix");
     free(idx);
@@ -558,17 +559,17 @@ START_TEST(resume_after_sigkill_equals_clean_run)
     snprintf(args, sizeof args, "batch '%s/in' --out '%s' " FAST, dir, out);
 
     /* 1: killed right after its second record was synced */
-    run_out r = run_with("BRDFFIT_FAULT=record:2", args);
+    run_out r = tu_run_cli_faults("BRDFFIT_FAULT=record:2", args);
     expect_status(r, 128 + SIGKILL, "killed after record 2");
     run_free(&r);
     ck_assert_int_eq(journal_count(out, "fit"), 2);
     /* 2: killed after a material's renders and plots were written, before their record */
-    r = run_with("BRDFFIT_FAULT=asset:1", args);
+    r = tu_run_cli_faults("BRDFFIT_FAULT=asset:1", args);
     expect_status(r, 128 + SIGKILL, "killed after the renders");
     run_free(&r);
     ck_assert_int_eq(journal_count(out, "assets"), 0);
     /* 3: killed in the middle of writing its second record: a torn last line */
-    r = run_with("BRDFFIT_FAULT=torn:2", args);
+    r = tu_run_cli_faults("BRDFFIT_FAULT=torn:2", args);
     expect_status(r, 128 + SIGKILL, "killed mid-record");
     run_free(&r);
     char path[1200];
@@ -577,7 +578,7 @@ START_TEST(resume_after_sigkill_equals_clean_run)
     ck_assert_msg(j[0] && j[strlen(j) - 1] != '\n', "no torn last line:\n%s", j);
     free(j);
     /* 4: killed while writing the pages of the report */
-    r = run_with("BRDFFIT_FAULT=page:2", args);
+    r = tu_run_cli_faults("BRDFFIT_FAULT=page:2", args);
     expect_status(r, 128 + SIGKILL, "killed in the report");
     ck_assert_msg(strstr(r.err, "cut short"), "the torn line is not reported:\n%s", r.err);
     run_free(&r);

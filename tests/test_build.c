@@ -97,12 +97,50 @@ START_TEST(header_change_rebuilds_its_includers)
 }
 END_TEST
 
+/* Occurrences of the bytes of text in the file at path; -1 when it cannot be read. */
+static long count_in_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return -1;
+    size_t n = strlen(text), have = 0, cap = 1 << 16;
+    char *buf = malloc(cap + n);
+    long count = 0;
+    size_t got;
+    while (buf && (got = fread(buf + have, 1, cap, f)) > 0) {
+        size_t end = have + got;
+        for (size_t i = 0; i + n <= end; i++)
+            if (memcmp(buf + i, text, n) == 0)
+                count++;
+        /* keep the last n - 1 bytes: a match across two reads */
+        have = end < n - 1 ? end : n - 1;
+        memmove(buf, buf + end - have, have);
+    }
+    free(buf);
+    fclose(f);
+    return count;
+}
+
+/* Fault injection (BRDFFIT_FAULT, src/cli/fault.c) is in the tests' build of
+ * the program and not in the one that is installed: the installed program
+ * has not the variable's name; the faults build has it. */
+START_TEST(fault_injection_only_in_the_test_build)
+{
+    long shipped = count_in_file(tu_cli(), "BRDFFIT_FAULT");
+    long faults = count_in_file(tu_cli_faults(), "BRDFFIT_FAULT");
+    ck_assert_msg(shipped == 0, "%s: BRDFFIT_FAULT %ld times (-1: unreadable)", tu_cli(), shipped);
+    ck_assert_msg(faults > 0, "%s: BRDFFIT_FAULT %ld times (-1: unreadable)", tu_cli_faults(),
+                  faults);
+}
+END_TEST
+
 Suite *build_suite(void)
 {
     Suite *s = suite_create("build");
     TCase *tc = tcase_create("build");
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, header_change_rebuilds_its_includers);
+    tcase_add_test(tc, fault_injection_only_in_the_test_build);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -188,6 +188,7 @@ START_TEST(samples_errors)
     size_t n = brdffit_samples_count(s);
     ck_assert(n > 0);
     brdffit_sample one;
+    brdffit_sample_init(&one);
     char want[128];
     snprintf(want, sizeof want, "brdffit_samples_get: index %zu, but the set has %zu samples", n,
              n);

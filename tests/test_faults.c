@@ -122,6 +122,7 @@ START_TEST(one_sample_refused)
     ck_assert_uint_eq(brdffit_samples_count(s), 1);
     for (int m = 0; m < BRDFFIT_MODEL_COUNT; m++) {
         brdffit_fit_result r;
+        brdffit_fit_result_init(&r);
         ck_assert_int_eq(fit_on(s, (brdffit_model)m, &r, &err), BRDFFIT_E_TOO_FEW_SAMPLES);
         ck_assert_int_eq(err.status, BRDFFIT_E_TOO_FEW_SAMPLES);
         ck_assert_msg(strstr(err.message, "1 sample at 1 distinct geometry"), "%s", err.message);
@@ -145,6 +146,7 @@ START_TEST(tiny_cutoff_refused)
     ck_assert_int_eq(brdffit_samples_create(t, &so, &s, &err), BRDFFIT_OK);
     ck_assert_uint_gt(brdffit_samples_count(s), 1);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_int_eq(fit_on(s, BRDFFIT_WARD, &r, &err), BRDFFIT_E_TOO_FEW_SAMPLES);
     ck_assert_msg(strstr(err.message, "at 1 distinct geometry"), "%s", err.message);
     ck_assert_msg(strstr(err.message, "3 unknowns per channel"), "%s", err.message);
@@ -171,6 +173,7 @@ START_TEST(geometries_counted_per_model)
     ck_assert_int_eq(brdffit_samples_create(t, NULL, &s, &err), BRDFFIT_OK);
     ck_assert_uint_eq(brdffit_samples_count(s), 4 * 180);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     brdffit_status st = fit_on(s, BRDFFIT_WARD_DUER, &r, &err);
     ck_assert_msg(st != BRDFFIT_E_TOO_FEW_SAMPLES, "%s", err.message);
     ck_assert_int_eq(fit_on(s, BRDFFIT_HE, &r, &err), BRDFFIT_E_TOO_FEW_SAMPLES);
@@ -199,6 +202,7 @@ START_TEST(no_specular_ends_on_bound)
     brdffit_samples *s = NULL;
     ck_assert_int_eq(brdffit_samples_create(t, &so, &s, &err), BRDFFIT_OK);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(fit_on(s, BRDFFIT_WARD_DUER, &r, &err) == BRDFFIT_OK, "%s", err.message);
     unsigned sbits = BRDFFIT_AT_BOUND_S_R | BRDFFIT_AT_BOUND_S_G | BRDFFIT_AT_BOUND_S_B;
     ck_assert_msg((r.at_bound & sbits) == sbits, "at_bound %#x, s %g %g %g", r.at_bound, r.params.s[0],

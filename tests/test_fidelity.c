@@ -123,6 +123,7 @@ START_TEST(bound_is_flagged)
     brdffit_context *ctx = make_context();
     brdffit_error err;
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_msg(r.at_bound & BRDFFIT_AT_BOUND_P0, "alpha %g (truth %g): at_bound 0x%x", r.params.p[0],
                   alpha, r.at_bound);
@@ -175,6 +176,7 @@ START_TEST(zero_diffuse_channel)
     double rms;
     ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_ASHIKHMIN_SHIRLEY, &zero, &rms, &err), BRDFFIT_OK);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_ASHIKHMIN_SHIRLEY, NULL, &r, &err) == BRDFFIT_OK, "%s",
                   err.message);
     ck_assert_msg(r.error < 1e-6 * rms, "Error %g, rms %g", r.error, rms);

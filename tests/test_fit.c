@@ -88,6 +88,7 @@ static brdffit_fit_result fit_recovered(brdffit_context *ctx, const brdffit_samp
     const char *name = brdffit_model_get(m)->name;
     brdffit_error err;
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, m, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     assert_finite_result(&r);
     ck_assert_msg(r.error < 1e-6 * rms, "%s/%s: Error %g, rms %g", material, name, r.error, rms);
@@ -184,6 +185,7 @@ START_TEST(beats_published)
         double e_pub;
         ck_assert_msg(brdffit_error_of(ctx, s, m, &pub, &e_pub, &err) == BRDFFIT_OK, "%s", err.message);
         brdffit_fit_result r;
+        brdffit_fit_result_init(&r);
         ck_assert_msg(brdffit_fit(ctx, s, m, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
         assert_finite_result(&r);
         ck_assert_msg(r.error <= e_pub, "%s/%s: fitted Error %.6g > published %.6g", material,
@@ -224,6 +226,7 @@ START_TEST(degenerate_data)
     fo.refine = 1;
     fo.max_evals = 60;
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, m, &fo, &r, &err) == BRDFFIT_OK, "%s", err.message);
     assert_finite_result(&r);
     if (kind == DATA_ZERO)
@@ -248,6 +251,7 @@ START_TEST(bad_arguments)
     brdffit_samples *s = samples_of(t, BRDFFIT_SCALE_STANDARD);
     brdffit_context *ctx = make_context();
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     brdffit_fit_options fo;
     brdffit_fit_options_default(&fo);
     ck_assert_int_eq(brdffit_fit(NULL, s, BRDFFIT_WARD, NULL, &r, &err), BRDFFIT_E_INVALID_ARGUMENT);
@@ -332,6 +336,7 @@ static brdffit_fit_result fit_he(brdffit_context *ctx, const brdffit_samples *s,
     brdffit_fit_options_default(&o);
     o.starts = starts;
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, &o, &r, &err) == BRDFFIT_OK, "he/%s: %s", material,
                   err.message);
     assert_finite_result(&r);

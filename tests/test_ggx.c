@@ -132,6 +132,7 @@ START_TEST(fits_its_own_table)
     double rms = 0;
     ck_assert_int_eq(brdffit_error_of(ctx, s, BRDFFIT_GGX, &zero, &rms, &err), BRDFFIT_OK);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_GGX, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_msg(r.error < 1e-6 * rms, "set %d: Error %g of rms %g", _i, r.error, rms);
     for (int c = 0; c < 3; c++) {

@@ -9,9 +9,11 @@
 #include "cli.h"
 
 #include <check.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define FIT_HEAD "{\"kind\":\"fit\",\"material\":\"alum-bronze\",\"file\":{\"path\":\"/d/a.binary\",\"size\":"
 #define FIT_MID  ",\"hash\":\"8143736677fba4d1\"},\"settings\":{\"version\":\"0.1.0\",\"scale\":\"standard\"," \
@@ -102,11 +104,66 @@ START_TEST(journal_refuses_impossible_lines)
 }
 END_TEST
 
+/* A file of n bytes, byte i = i * mul + add, into path. */
+static void pattern_file(char *path, size_t len, size_t n, unsigned mul, unsigned add)
+{
+    ck_assert_ptr_nonnull(tu_tmpfile(path, len));
+    unsigned char *data = malloc(n);
+    ck_assert_ptr_nonnull(data);
+    for (size_t i = 0; i < n; i++)
+        data[i] = (unsigned char)(i * mul + add);
+    ck_assert_int_eq(tu_write_bytes(path, data, n), 0);
+    free(data);
+}
+
+typedef struct identify_job {
+    const char *path;
+    bj_identity want;
+    int wrong; /* identities that differed from want */
+} identify_job;
+
+static void *identify_again(void *arg)
+{
+    identify_job *j = arg;
+    for (int round = 0; round < 40; round++) {
+        bj_identity id;
+        brdffit_error err;
+        if (bj_identify(j->path, &id, &err) != 0 || !bj_identity_equal(&id, &j->want))
+            j->wrong++;
+    }
+    return NULL;
+}
+
+/* bj_identify from two threads at once (the batch's prefetch thread and its
+ * main thread do): each file's identity is the one it has alone. */
+START_TEST(identify_from_two_threads)
+{
+    char pa[512], pb[512];
+    pattern_file(pa, sizeof pa, 3 << 16, 7, 1);
+    pattern_file(pb, sizeof pb, 3 << 16, 13, 5);
+    identify_job ja = { .path = pa }, jb = { .path = pb };
+    brdffit_error err;
+    ck_assert_msg(bj_identify(pa, &ja.want, &err) == 0, "%s", err.message);
+    ck_assert_msg(bj_identify(pb, &jb.want, &err) == 0, "%s", err.message);
+    ck_assert_str_ne(ja.want.hash, jb.want.hash);
+    pthread_t ta, tb;
+    ck_assert_int_eq(pthread_create(&ta, NULL, identify_again, &ja), 0);
+    ck_assert_int_eq(pthread_create(&tb, NULL, identify_again, &jb), 0);
+    pthread_join(ta, NULL);
+    pthread_join(tb, NULL);
+    ck_assert_int_eq(ja.wrong, 0);
+    ck_assert_int_eq(jb.wrong, 0);
+    unlink(pa);
+    unlink(pb);
+}
+END_TEST
+
 Suite *journal_suite(void)
 {
     Suite *s = suite_create("journal");
     TCase *tc = tcase_create("lines");
     tcase_add_test(tc, journal_line_round_trips);
+    tcase_add_test(tc, identify_from_two_threads);
     tcase_add_loop_test(tc, journal_refuses_impossible_lines, 0, NBAD);
     tcase_add_loop_test(tc, journal_refuses_out_of_range_numbers, 0, 3);
     suite_add_tcase(s, tc);

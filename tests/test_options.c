@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* test_options.c -- the sized options structs: a caller's smaller struct (the
  * first members only) gets the defaults for the rest, members beyond its size
- * are never read, and bad sizes are refused with BRDFFIT_E_OPTIONS_SIZE. */
+ * are never read, and bad sizes are refused with BRDFFIT_E_OPTIONS_SIZE.  The
+ * sized results (brdffit_fit_result, brdffit_sample): a caller's older, smaller
+ * struct gets its members and nothing after them. */
 #include "testutil.h"
 
 #include "internal.h"
@@ -188,6 +190,8 @@ START_TEST(fit_options_prefix)
     brdffit_fit_options_default(&full);
     full.starts = 2;
     brdffit_fit_result want, got;
+    brdffit_fit_result_init(&want);
+    brdffit_fit_result_init(&got);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD_DUER, &full, &want, &err) == BRDFFIT_OK, "%s",
                   err.message);
     struct {
@@ -257,6 +261,21 @@ typedef struct size_case {
     brdffit_context *ctx;
 } size_case;
 
+/* The small table, its samples and a host context. */
+static void case_open(size_case *c)
+{
+    c->t = small_table();
+    c->s = small_samples(c->t);
+    ck_assert_int_eq(tu_context(BRDFFIT_BACKEND_HOST, &c->ctx, NULL), BRDFFIT_OK);
+}
+
+static void case_close(size_case *c)
+{
+    brdffit_context_free(c->ctx);
+    brdffit_samples_free(c->s);
+    brdffit_table_free(c->t);
+}
+
 /* The call of kind's options struct (all defaults, then `size`). */
 static brdffit_status call_sized(const size_case *c, brdffit_struct_kind kind, size_t size,
                                  brdffit_error *err)
@@ -266,6 +285,7 @@ static brdffit_status call_sized(const size_case *c, brdffit_struct_kind kind, s
     brdffit_samples *s = NULL;
     brdffit_context *ctx = NULL;
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     brdffit_status st = BRDFFIT_E_FIT_FAILED;
     if (kind == BRDFFIT_STRUCT_SAMPLE_OPTIONS) {
         brdffit_sample_options o;
@@ -317,9 +337,7 @@ START_TEST(bad_sizes_refused)
      * in most of them; inside `width` / `ntheta_i`, ints, for the others */
     static const char *const cut[] = { "cutoff_deg", "device", "ftol", "lights", "theta_i_deg" };
     size_case c;
-    c.t = small_table();
-    c.s = small_samples(c.t);
-    ck_assert_int_eq(tu_context(BRDFFIT_BACKEND_HOST, &c.ctx, NULL), BRDFFIT_OK);
+    case_open(&c);
     for (size_t k = 0; k < NSIZED; k++) {
         size_t full = brdffit_struct_size(sized[k]);
         size_t inside = brdffit_struct_offset(sized[k], cut[k]) + 1;
@@ -345,9 +363,214 @@ START_TEST(bad_sizes_refused)
         ck_assert_msg(call_sized(&c, sized[k], sizeof(size_t), &err) == BRDFFIT_OK, "%s: %s",
                       names[k], err.message);
     }
-    brdffit_context_free(c.ctx);
-    brdffit_samples_free(c.s);
-    brdffit_table_free(c.t);
+    case_close(&c);
+}
+END_TEST
+
+/* brdffit_fit_result in its first sized layout, the members before
+ * seconds_build: what a program built against that header holds.  Every
+ * member where the library's struct has it. */
+typedef struct old_fit_result {
+    size_t size;
+    brdffit_model model;
+    brdffit_params params;
+    double error;
+    int cminpack_info;
+    int iterations;
+    int passes;
+    double seconds;
+    double seconds_solver;
+    double seconds_passes;
+    size_t samples;
+    brdffit_backend backend;
+    unsigned at_bound;
+    unsigned flags;
+} old_fit_result;
+
+#define SAME_OFFSET(m) \
+    _Static_assert(offsetof(old_fit_result, m) == offsetof(brdffit_fit_result, m), #m)
+SAME_OFFSET(size);
+SAME_OFFSET(model);
+SAME_OFFSET(params);
+SAME_OFFSET(error);
+SAME_OFFSET(cminpack_info);
+SAME_OFFSET(iterations);
+SAME_OFFSET(passes);
+SAME_OFFSET(seconds);
+SAME_OFFSET(seconds_solver);
+SAME_OFFSET(seconds_passes);
+SAME_OFFSET(samples);
+SAME_OFFSET(backend);
+SAME_OFFSET(at_bound);
+SAME_OFFSET(flags);
+#undef SAME_OFFSET
+_Static_assert(sizeof(old_fit_result) < sizeof(brdffit_fit_result),
+               "the library's result has members the old one has not");
+
+#define GUARD 64
+#define GUARD_BYTE 0xA5
+
+/* A call refused for the size of the result it was given (struct `name`,
+ * bytes[0..n) with `size` first): BRDFFIT_E_OPTIONS_SIZE, the message naming
+ * the struct and saying why, and no byte after `size` written. */
+static void expect_size_refused(brdffit_status st, const brdffit_error *err, const char *name,
+                                size_t size, const char *why, const unsigned char *bytes, size_t n)
+{
+    ck_assert_msg(st == BRDFFIT_E_OPTIONS_SIZE, "%s size %zu: status %d (%s)", name, size,
+                  (int)st, err->message);
+    ck_assert_msg(strncmp(err->message, name, strlen(name)) == 0 &&
+                      err->message[strlen(name)] == ':', "%s", err->message);
+    ck_assert_msg(strstr(err->message, why), "size %zu: %s", size, err->message);
+    size_t got;
+    memcpy(&got, bytes, sizeof got);
+    ck_assert_uint_eq(got, size);
+    for (size_t b = sizeof got; b < n; b++)
+        ck_assert_msg(bytes[b] == GUARD_BYTE, "%s size %zu: byte %zu written", name, size, b);
+}
+
+/* A fit into an old caller's result: the members it has are those of the same
+ * fit into the whole struct; not a byte after its size is written (guard bytes
+ * after it; an exactly sized heap block for AddressSanitizer). */
+START_TEST(old_fit_result_written_within_size)
+{
+    size_case c;
+    case_open(&c);
+    brdffit_error err;
+    brdffit_fit_options fo;
+    brdffit_fit_options_default(&fo);
+    fo.starts = 2;
+    brdffit_fit_result want;
+    brdffit_fit_result_init(&want);
+    ck_assert_uint_eq(want.size, sizeof want);
+    ck_assert_int_eq(want.model, 0);
+    ck_assert(want.error == 0 && want.seconds_build == 0);
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, &want, &err) == BRDFFIT_OK, "%s",
+                  err.message);
+    ck_assert_uint_eq(want.size, sizeof want);
+
+    union {
+        old_fit_result r;
+        unsigned char bytes[sizeof(old_fit_result) + GUARD];
+    } buf;
+    memset(&buf, GUARD_BYTE, sizeof buf);
+    buf.r.size = sizeof buf.r;
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, (brdffit_fit_result *)&buf.r,
+                              &err) == BRDFFIT_OK, "%s", err.message);
+    for (size_t b = sizeof buf.r; b < sizeof buf; b++)
+        ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "byte %zu after the old result written", b);
+    const old_fit_result *o = &buf.r;
+    ck_assert_uint_eq(o->size, sizeof *o);
+    ck_assert_int_eq(o->model, BRDFFIT_WARD_DUER);
+    ck_assert(memcmp(&o->params, &want.params, sizeof o->params) == 0);
+    ck_assert(o->error == want.error);
+    ck_assert_int_eq(o->cminpack_info, want.cminpack_info);
+    ck_assert_int_eq(o->iterations, want.iterations);
+    ck_assert_int_eq(o->passes, want.passes);
+    ck_assert(o->seconds > 0 && o->seconds >= o->seconds_passes);
+    ck_assert_uint_eq(o->samples, want.samples);
+    ck_assert_uint_eq(o->samples, brdffit_samples_count(c.s));
+    ck_assert_int_eq(o->backend, BRDFFIT_BACKEND_HOST);
+    ck_assert_uint_eq(o->at_bound, want.at_bound);
+    ck_assert_uint_eq(o->flags, want.flags);
+
+    old_fit_result *heap = malloc(sizeof *heap);
+    ck_assert_ptr_nonnull(heap);
+    heap->size = sizeof *heap;
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, (brdffit_fit_result *)heap,
+                              &err) == BRDFFIT_OK, "%s", err.message);
+    ck_assert(heap->error == want.error);
+    free(heap);
+    case_close(&c);
+}
+END_TEST
+
+/* A result's size below its first sized layout, inside a member or beyond the
+ * library's struct is refused before any work, the caller's struct untouched;
+ * the first sized layout exactly is taken. */
+START_TEST(result_bad_sizes_refused)
+{
+    size_case c;
+    case_open(&c);
+    brdffit_error err;
+    brdffit_fit_options fo;
+    brdffit_fit_options_default(&fo);
+    fo.starts = 1;
+    ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_FIT_RESULT, "size"), 0);
+    ck_assert_uint_eq(bf_struct_members_end(BRDFFIT_STRUCT_FIT_RESULT),
+                      sizeof(brdffit_fit_result));
+    size_t first = MEMBER_END(brdffit_fit_result, flags);
+    size_t bad[] = { 0, sizeof(size_t), offsetof(brdffit_fit_result, flags),
+                     offsetof(brdffit_fit_result, seconds_build) + 4,
+                     sizeof(brdffit_fit_result) + 8 };
+    const char *what[] = { "size 0", "smaller than its first sized layout",
+                           "smaller than its first sized layout", "ends inside member",
+                           "larger than this library's struct" };
+    union {
+        brdffit_fit_result r;
+        unsigned char bytes[sizeof(brdffit_fit_result) + GUARD];
+    } buf;
+    for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
+        memset(&buf, GUARD_BYTE, sizeof buf);
+        buf.r.size = bad[q];
+        memset(&err, 0, sizeof err);
+        brdffit_status st = brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, &buf.r, &err);
+        expect_size_refused(st, &err, "brdffit_fit_result", bad[q], what[q], buf.bytes,
+                            sizeof buf);
+        if (q == 3)
+            ck_assert_ptr_nonnull(strstr(err.message, "'seconds_build'"));
+    }
+    memset(&buf, GUARD_BYTE, sizeof buf);
+    buf.r.size = first;
+    ck_assert_msg(brdffit_fit(c.ctx, c.s, BRDFFIT_WARD_DUER, &fo, &buf.r, &err) == BRDFFIT_OK,
+                  "%s", err.message);
+    ck_assert_int_eq(buf.r.model, BRDFFIT_WARD_DUER);
+    ck_assert(isfinite(buf.r.error));
+    for (size_t b = first; b < sizeof buf; b++)
+        ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "byte %zu after size %zu written", b, first);
+    case_close(&c);
+}
+END_TEST
+
+/* brdffit_samples_get into a caller's sample: its members only, bad sizes refused. */
+START_TEST(sample_sized)
+{
+    brdffit_table *t = small_table();
+    brdffit_samples *s = small_samples(t);
+    brdffit_sample want;
+    brdffit_sample_init(&want);
+    ck_assert_uint_eq(want.size, sizeof want);
+    ck_assert_uint_eq(brdffit_struct_offset(BRDFFIT_STRUCT_SAMPLE, "size"), 0);
+    brdffit_error err;
+    size_t last = brdffit_samples_count(s) - 1;
+    ck_assert_int_eq(brdffit_samples_get(s, last, &want, &err), BRDFFIT_OK);
+    ck_assert_uint_eq(want.size, sizeof want);
+    ck_assert(want.weight > 0 && want.wi[2] > 0);
+
+    size_t first = MEMBER_END(brdffit_sample, k);
+    unsigned char *heap = malloc(first); /* exactly the first layout, for AddressSanitizer */
+    ck_assert_ptr_nonnull(heap);
+    memcpy(heap, &first, sizeof first);
+    ck_assert_int_eq(brdffit_samples_get(s, last, (brdffit_sample *)heap, &err), BRDFFIT_OK);
+    ck_assert(memcmp(heap + sizeof first, (const unsigned char *)&want + sizeof first,
+                     first - sizeof first) == 0);
+    free(heap);
+
+    size_t bad[] = { 0, sizeof(size_t), offsetof(brdffit_sample, k), sizeof(brdffit_sample) + 8 };
+    const char *what[] = { "size 0", "smaller than its first sized layout",
+                           "smaller than its first sized layout",
+                           "larger than this library's struct" };
+    union {
+        brdffit_sample x;
+        unsigned char bytes[sizeof(brdffit_sample) + GUARD];
+    } buf;
+    for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
+        memset(&buf, GUARD_BYTE, sizeof buf);
+        buf.x.size = bad[q];
+        expect_size_refused(brdffit_samples_get(s, 0, &buf.x, &err), &err, "brdffit_sample",
+                            bad[q], what[q], buf.bytes, sizeof buf);
+    }
+    brdffit_samples_free(s);
+    brdffit_table_free(t);
 }
 END_TEST
 
@@ -363,6 +586,9 @@ Suite *options_suite(void)
     tcase_add_test(tc, fit_options_prefix);
     tcase_add_test(tc, render_curve_options_prefix);
     tcase_add_test(tc, bad_sizes_refused);
+    tcase_add_test(tc, old_fit_result_written_within_size);
+    tcase_add_test(tc, result_bad_sizes_refused);
+    tcase_add_test(tc, sample_sized);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -825,6 +825,7 @@ START_TEST(no_platform_falls_back_to_host)
     fo.starts = 4;
     fo.refine = 1;
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD, &fo, &r, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_int_eq(r.backend, BRDFFIT_BACKEND_HOST);
     ck_assert_msg(fabs(r.params.p[0] - 0.2) < 1e-4, "alpha %g", r.params.p[0]);
@@ -892,6 +893,7 @@ START_TEST(prepare_builds_ahead)
     double built = brdffit_context_build_seconds(ctx, BRDFFIT_WARD);
     ck_assert(built > 0.0);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_WARD, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert(r.seconds_build == 0.0);
     ck_assert_msg(brdffit_context_prepare(ctx, BRDFFIT_WARD, &err) == BRDFFIT_OK, "%s", err.message);

@@ -128,6 +128,7 @@ START_TEST(prepare_makes_what_fits_use)
     brdffit_context *ctx = NULL;
     ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_COOK_TORRANCE, NULL, &r, &err) == BRDFFIT_OK, "%s",
                   err.message);
@@ -151,6 +152,9 @@ START_TEST(prepared_fit_is_fresh_fit)
     brdffit_context *ctx = NULL;
     ck_assert_msg(tu_context(BRDFFIT_BACKEND_OPENCL, &ctx, &err) == BRDFFIT_OK, "%s", err.message);
     brdffit_fit_result a, b, c;
+    brdffit_fit_result_init(&a);
+    brdffit_fit_result_init(&b);
+    brdffit_fit_result_init(&c);
     ck_assert_msg(brdffit_fit(ctx, fresh, m, NULL, &a, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_msg(brdffit_fit(ctx, prepared, m, NULL, &b, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_msg(brdffit_fit(ctx, fresh, m, NULL, &c, &err) == BRDFFIT_OK, "%s", err.message);

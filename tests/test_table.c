@@ -551,6 +551,7 @@ static void check_sample_block(const brdffit_samples *sm, const double *v, size_
     EXPECT_RESET();
     for (size_t m = 0; m < n; m++) {
         brdffit_sample x;
+        brdffit_sample_init(&x);
         EXPECT(brdffit_samples_get(sm, m, &x, NULL) == BRDFFIT_OK);
         int b = (int)brdffit_bin_index(x.i, x.j, x.k);
         EXPECT(b > prev); /* each bin once, in table order */
@@ -617,6 +618,7 @@ static void check_material(const char *name)
     check_sample_block(sm, v, n, bc.sw);
 
     brdffit_sample x;
+    brdffit_sample_init(&x);
     ck_assert_int_eq(brdffit_samples_get(sm, n, &x, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_samples_get(sm, 0, NULL, NULL), BRDFFIT_E_INVALID_ARGUMENT);
     ck_assert_int_eq(brdffit_samples_get(NULL, 0, &x, NULL), BRDFFIT_E_INVALID_ARGUMENT);
@@ -855,6 +857,8 @@ START_TEST(test_scales)
     EXPECT_RESET();
     for (size_t m = 0; m < brdffit_samples_count(ss); m++) {
         brdffit_sample a, b;
+        brdffit_sample_init(&a);
+        brdffit_sample_init(&b);
         EXPECT(brdffit_samples_get(ss, m, &a, NULL) == BRDFFIT_OK);
         EXPECT(brdffit_samples_get(sf, m, &b, NULL) == BRDFFIT_OK);
         size_t n = brdffit_bin_index(a.i, a.j, a.k);
@@ -965,6 +969,7 @@ START_TEST(test_sample_cutoffs)
     EXPECT_RESET();
     for (size_t m = 0; m < n30; m++) {
         brdffit_sample x;
+        brdffit_sample_init(&x);
         EXPECT(brdffit_samples_get(s, m, &x, NULL) == BRDFFIT_OK);
         EXPECT(x.wi[2] >= cos(30 * PI / 180) - 1e-12);
         EXPECT(x.wo[2] >= cos(30 * PI / 180) - 1e-12);

@@ -64,6 +64,7 @@ static void create_and_fit(worker *w)
     brdffit_fit_options fo;
     fit_options(&fo);
     brdffit_fit_result r;
+    brdffit_fit_result_init(&r);
     w->st_fit = brdffit_fit(ctx, w->samples, w->model, &fo, &r, &err);
     if (w->st_fit == BRDFFIT_OK) {
         w->error = r.error;

@@ -395,10 +395,21 @@ char *tu_slurp(const char *path)
     return buf;
 }
 
-tu_run_out tu_run_cli(const char *env, const char *args)
+const char *tu_cli(void)
+{
+    const char *cli = getenv("BRDFFIT_CLI");
+    return cli && *cli ? cli : "./build/brdffit";
+}
+
+const char *tu_cli_faults(void)
+{
+    const char *cli = getenv("BRDFFIT_CLI_FAULTS");
+    return cli && *cli ? cli : "./build/brdffit-faults";
+}
+
+static tu_run_out run_program(const char *cli, const char *env, const char *args)
 {
     tu_run_out r = { -1, NULL, NULL };
-    const char *cli = getenv("BRDFFIT_CLI");
     char out[512], err[512];
     if (!tu_tmpfile(out, sizeof out) || !tu_tmpfile(err, sizeof err))
         return r;
@@ -406,8 +417,7 @@ tu_run_out tu_run_cli(const char *env, const char *args)
     char *cmd = malloc(len);
     if (!cmd)
         return r;
-    snprintf(cmd, len, "%s '%s' %s >'%s' 2>'%s' </dev/null", env, cli && *cli ? cli : "./build/brdffit",
-             args, out, err);
+    snprintf(cmd, len, "%s '%s' %s >'%s' 2>'%s' </dev/null", env, cli, args, out, err);
     int rc = system(cmd);
     free(cmd);
     r.status = rc == -1 ? -1 : WIFEXITED(rc) ? WEXITSTATUS(rc) : 128 + WTERMSIG(rc);
@@ -416,6 +426,16 @@ tu_run_out tu_run_cli(const char *env, const char *args)
     unlink(out);
     unlink(err);
     return r;
+}
+
+tu_run_out tu_run_cli(const char *env, const char *args)
+{
+    return run_program(tu_cli(), env, args);
+}
+
+tu_run_out tu_run_cli_faults(const char *env, const char *args)
+{
+    return run_program(tu_cli_faults(), env, args);
 }
 
 int tu_count_lines(const char *s)

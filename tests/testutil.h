@@ -81,6 +81,12 @@ typedef struct tu_run_out {
  * ./build/brdffit; env such as "env -u POCL_CACHE_DIR HOME=/x" or ""; args
  * already quoted), stdin from /dev/null. */
 tu_run_out tu_run_cli(const char *env, const char *args);
+/* The same with the tests' build of the program, fault injection compiled in
+ * ($BRDFFIT_CLI_FAULTS, default ./build/brdffit-faults): env sets BRDFFIT_FAULT. */
+tu_run_out tu_run_cli_faults(const char *env, const char *args);
+/* The program tu_run_cli / tu_run_cli_faults runs. */
+const char *tu_cli(void);
+const char *tu_cli_faults(void);
 void tu_run_free(tu_run_out *r);
 /* Fails the test, showing both outputs, unless the run exited with want. */
 #define TU_EXPECT_STATUS(r, want, args)                                                        \

@@ -448,6 +448,7 @@ int main(int argc, char **argv)
             bool failed = false;
             for (int rep = 0; rep < a.reps && !failed; rep++) {
                 brdffit_fit_result r;
+                brdffit_fit_result_init(&r);
                 if (brdffit_fit(ctx, samples, m, nullptr, &r, &err) != BRDFFIT_OK) {
                     std::fprintf(stderr, "bench-ceres: %s\n", err.message);
                     failed = true;

@@ -59,7 +59,7 @@ from .table import Table, scale_factors
 
 
 def library_version():
-    """The loaded library's version string ("0.1.0")."""
+    """The loaded library's version string ("1.0.0")."""
     from ._lib import library
 
     return library().version
@@ -67,7 +67,7 @@ def library_version():
 
 def version():
     """The loaded library's version string, as brdffit_version() returns it
-    ("0.1.0"); the same as library_version()."""
+    ("1.0.0"); the same as library_version()."""
     return library_version()
 
 

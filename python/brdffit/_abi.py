@@ -7,7 +7,9 @@ member's offset with what the library reports (brdffit_struct_size and
 brdffit_struct_offset) and refuses the library on any difference, so a
 mirror that drifted from the header is an error, never garbage.  The
 options structs start with ``size``, which their brdffit_*_options_default()
-sets: the library reads the members within it.
+sets: the library reads the members within it.  The results the library
+fills (Sample, FitResult) start with ``size`` too, which their constructor
+sets to the mirror's size: the library writes the members within it.
 """
 
 import ctypes as C
@@ -65,8 +67,17 @@ class SampleOptions(C.Structure):
     _fields_ = [("size", C.c_size_t), ("scale", c_enum), ("cutoff_deg", C.c_double)]
 
 
-class Sample(C.Structure):
+class _SizedResult(C.Structure):
+    """A struct the library fills: ``size`` (its first member) set on creation."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.size = C.sizeof(self)
+
+
+class Sample(_SizedResult):
     _fields_ = [
+        ("size", C.c_size_t),
         ("wi", _d3),
         ("wo", _d3),
         ("rgb", _d3),
@@ -94,8 +105,9 @@ class FitOptions(C.Structure):
     ]
 
 
-class FitResult(C.Structure):
+class FitResult(_SizedResult):
     _fields_ = [
+        ("size", C.c_size_t),
         ("model", c_enum),
         ("params", Params),
         ("error", C.c_double),

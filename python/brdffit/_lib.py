@@ -4,9 +4,9 @@
 Where the library comes from, first match wins:
   1. the path given to brdffit.load_library(path);
   2. $BRDFFIT_LIBRARY;
-  3. next to the package: libbrdffit.so.0 in the package's own folder (the
+  3. next to the package: libbrdffit.so.1 in the package's own folder (the
      copy `pip install ./python` puts there, or the link `make install` does);
-  4. the system: the dynamic loader's search for libbrdffit.so.0
+  4. the system: the dynamic loader's search for libbrdffit.so.1
      (LD_LIBRARY_PATH, ld.so.cache), then ctypes.util.find_library.
 A path given in 1 or 2 that does not load is an error; it never falls
 through to another library.
@@ -26,7 +26,7 @@ from . import _abi
 from ._version import LIBRARY_VERSION
 from .errors import LibraryError, make_error
 
-SONAME = "libbrdffit.so.0"
+SONAME = "libbrdffit.so.1"
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 
 _lock = threading.Lock()
@@ -170,7 +170,7 @@ def load_library(path=None):
         raise LibraryError(
             "libbrdffit not found; looked at:\n  "
             + "\n  ".join(tried)
-            + "\nbuild it (make) and set BRDFFIT_LIBRARY=/path/to/libbrdffit.so.0, "
+            + "\nbuild it (make) and set BRDFFIT_LIBRARY=/path/to/libbrdffit.so.1, "
             "call brdffit.load_library(path), or install it (make install)"
         )
 

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """Fixtures of the Python tests: the package from this source tree, the library
-built beside it ($BRDFFIT_LIBRARY, else ../build/libbrdffit.so.0), the brdffit
+built beside it ($BRDFFIT_LIBRARY, else ../build/libbrdffit.so.1), the brdffit
 program ($BRDFFIT_CLI, else ../build/brdffit) and ../shared ($BRDFFIT_SHARED)."""
 
 import os
@@ -16,7 +16,7 @@ REPO = os.path.dirname(PYDIR)
 sys.path.insert(0, PYDIR)  # the package under test is this tree's, whatever is installed
 
 if not os.environ.get("BRDFFIT_LIBRARY"):
-    os.environ["BRDFFIT_LIBRARY"] = os.path.join(REPO, "build", "libbrdffit.so.0")
+    os.environ["BRDFFIT_LIBRARY"] = os.path.join(REPO, "build", "libbrdffit.so.1")
 LIBRARY = os.path.abspath(os.environ["BRDFFIT_LIBRARY"])
 os.environ["BRDFFIT_LIBRARY"] = LIBRARY
 if not os.environ.get("POCL_CACHE_DIR"):

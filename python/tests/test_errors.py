@@ -52,6 +52,20 @@ def test_samples_get_index_beyond_the_set(brdffit):
         f"brdffit_samples_get: index {s.count}, but the set has {s.count} samples")
 
 
+def test_sized_results_set_and_checked(brdffit):
+    from brdffit import _abi, _lib
+
+    assert _abi.Sample().size == ctypes.sizeof(_abi.Sample)
+    assert _abi.FitResult().size == ctypes.sizeof(_abi.FitResult)
+    s = brdffit.Samples(brdffit.Table.zeros())
+    out = _abi.Sample()
+    out.size = 8
+    with pytest.raises(brdffit.OptionsSizeError) as e:
+        _lib.call("brdffit_samples_get", s._h.ptr, 0, ctypes.byref(out))
+    assert e.value.message.startswith(
+        "brdffit_sample: size 8 is smaller than its first sized layout")
+
+
 def test_image_error_non_finite_pixel(brdffit):
     ref = np.ones((2, 3, 4), dtype=np.float32)
     img = ref.copy()

@@ -90,7 +90,7 @@ def test_environment_variable(tmp_path):
 
 def test_environment_variable_wrong_does_not_fall_through(tmp_path):
     site = package_copy(tmp_path)
-    os.symlink(LIBRARY, site / "brdffit" / "libbrdffit.so.0")  # would load, if tried
+    os.symlink(LIBRARY, site / "brdffit" / "libbrdffit.so.1")  # would load, if tried
     r = run_python("import brdffit; brdffit.models()",
                    {"BRDFFIT_LIBRARY": str(tmp_path / "absent.so")}, str(site), str(tmp_path))
     assert r.returncode != 0
@@ -100,12 +100,12 @@ def test_environment_variable_wrong_does_not_fall_through(tmp_path):
 
 def test_next_to_package(tmp_path):
     site = package_copy(tmp_path)
-    os.symlink(LIBRARY, site / "brdffit" / "libbrdffit.so.0")
+    os.symlink(LIBRARY, site / "brdffit" / "libbrdffit.so.1")
     r = run_python("import brdffit; print(brdffit.load_library().path); print(len(brdffit.models()))",
                    {}, str(site), str(tmp_path))
     assert r.returncode == 0, r.stderr
     path, count = r.stdout.split()
-    assert path == str(site / "brdffit" / "libbrdffit.so.0")
+    assert path == str(site / "brdffit" / "libbrdffit.so.1")
     assert int(count) >= 7
 
 
@@ -114,14 +114,14 @@ def test_system_search(tmp_path):
     r = run_python("import brdffit; print(brdffit.load_library().path); print(brdffit.library_version())",
                    {"LD_LIBRARY_PATH": os.path.dirname(LIBRARY)}, str(site), str(tmp_path))
     assert r.returncode == 0, r.stderr
-    assert r.stdout.split()[0] == "libbrdffit.so.0"
+    assert r.stdout.split()[0] == "libbrdffit.so.1"
 
 
 def test_not_found_says_where_it_looked(brdffit, monkeypatch):
     from brdffit import _lib
 
     monkeypatch.delenv("BRDFFIT_LIBRARY")
-    monkeypatch.setattr(_lib, "SONAME", "libbrdffit-absent-for-test.so.0")
+    monkeypatch.setattr(_lib, "SONAME", "libbrdffit-absent-for-test.so.1")
     monkeypatch.setattr(_lib.ctypes.util, "find_library", lambda name: None)
     with pytest.raises(brdffit.LibraryError) as e:
         brdffit.load_library()
@@ -286,9 +286,9 @@ def test_make_install_puts_the_package_beside_the_library(tmp_path):
     found = list(dest.glob("opt/bf/lib/python3*/dist-packages/brdffit/__init__.py"))
     assert len(found) == 1, list(dest.rglob("*"))
     pkg = found[0].parent
-    link = pkg / "libbrdffit.so.0"
+    link = pkg / "libbrdffit.so.1"
     assert link.is_symlink() and not os.path.isabs(os.readlink(link))
-    assert os.path.samefile(link, dest / "opt/bf/lib/libbrdffit.so.0")
+    assert os.path.samefile(link, dest / "opt/bf/lib/libbrdffit.so.1")
     r = run_python("import brdffit; print(brdffit.load_library().path)", {},
                    str(pkg.parent), str(tmp_path))
     assert r.returncode == 0, r.stderr

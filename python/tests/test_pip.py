@@ -22,9 +22,9 @@ import pytest
 from conftest import LIBRARY, PYDIR, REPO
 
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"),
-                                reason="the library is built for Linux (ELF, .so.0)")
+                                reason="the library is built for Linux (ELF, .so.1)")
 
-SONAME = "libbrdffit.so.0"
+SONAME = "libbrdffit.so.1"
 
 
 def header_version():

@@ -201,12 +201,27 @@ int out_copy(const char *from, const char *to, brdffit_error *err);
 /* Join dir and name into buf ("dir/name"); -1 when it does not fit. */
 int out_join(char *buf, size_t len, const char *dir, const char *name);
 
-/* ---- fault.c: fault injection for the tests (BRDFFIT_FAULT=POINT:N) ---- */
+/* ---- fault.c: fault injection for the tests (BRDFFIT_FAULT=POINT:N) ----
+ * Only in the test build of the program (build/brdffit-faults, compiled
+ * -DBRDFFIT_FAULTS); in the program that is installed the hooks are no-ops
+ * and the environment is not read. */
 
+#ifdef BRDFFIT_FAULTS
 /* 1 when this pass of point is the one BRDFFIT_FAULT names. */
 int cli_fault_hit(const char *point);
 /* SIGKILL the program when this pass of point is the one BRDFFIT_FAULT names. */
 void cli_fault_point(const char *point);
+#else
+static inline int cli_fault_hit(const char *point)
+{
+    (void)point;
+    return 0;
+}
+static inline void cli_fault_point(const char *point)
+{
+    (void)point;
+}
+#endif
 
 /* ---- assets.c ---- */
 
@@ -270,12 +285,5 @@ int rp_sort_model(const rp_report *rep);
 /* Median Error of model slot k over the materials it was fitted to, and how
  * often it is the best; NAN / 0 when none. */
 double rp_median(const rp_report *rep, int k, int *nbest, int *nfitted);
-
-/* Assets: the files the renders and plots of a material are, for its page. */
-typedef struct rp_asset {
-    char file[128];       /* relative to the material's directory */
-    char caption[256];
-    int kind;             /* 0 image (PNG), 1 plot (SVG), 2 other (EXR, linked) */
-} rp_asset;
 
 #endif

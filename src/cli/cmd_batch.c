@@ -543,7 +543,7 @@ static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples
     const brdffit_model_info *mi = brdffit_model_get(model);
     brdffit_fit_result res;
     brdffit_error err;
-    memset(&res, 0, sizeof res);
+    brdffit_fit_result_init(&res);
     memset(&err, 0, sizeof err);
     double t0 = now();
     int note = R->P.quiet ? 0 : kernel_note_begin(stderr, R->ctx, model);

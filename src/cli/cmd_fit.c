@@ -98,7 +98,7 @@ static best_fit fit_models(runner *R, const cli_material *m, const brdffit_sampl
         brdffit_model model = o->models[i];
         brdffit_fit_result r;
         brdffit_error err;
-        memset(&r, 0, sizeof r);
+        brdffit_fit_result_init(&r);
         memset(&err, 0, sizeof err);
         int note = kernel_note_begin(stderr, R->ctx, model);
         brdffit_status st = brdffit_fit(R->ctx, s, model, &o->fit, &r, &err);

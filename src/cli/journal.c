@@ -115,14 +115,24 @@ int bj_identify(const char *path, bj_identity *id, brdffit_error *err)
         snprintf(err->message, sizeof err->message, "%.1000s: not a regular file", path);
         return -1;
     }
-    static unsigned char buf[1 << 16];
+    /* this call's own buffer: the prefetch thread and the main thread identify
+     * files at the same time; a multiple of 8 bytes, as hash_words reads */
+    enum { CHUNK = 1 << 16 };
+    unsigned char *buf = malloc(CHUNK);
+    if (!buf) {
+        fclose(f);
+        err->status = BRDFFIT_E_NO_MEMORY;
+        snprintf(err->message, sizeof err->message, "%.1000s: out of memory to read it", path);
+        return -1;
+    }
     uint64_t h = FNV_OFFSET;
     long long size = 0;
     size_t got;
-    while ((got = fread(buf, 1, sizeof buf, f)) > 0) {
+    while ((got = fread(buf, 1, CHUNK, f)) > 0) {
         h = hash_words(h, buf, got);
         size += (long long)got;
     }
+    free(buf);
     int bad = ferror(f);
     fclose(f);
     if (bad) {

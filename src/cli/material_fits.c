@@ -183,6 +183,7 @@ int mf_fit(const brdffit_table *table, const char *material, const brdffit_model
     }
     for (int k = 0; k < nmodels && *nfits < RF_MAX_FITS; k++) {
         brdffit_fit_result r;
+        brdffit_fit_result_init(&r);
         int note = kernel_note_begin(stderr, ctx, models[k]);
         brdffit_status st = brdffit_fit(ctx, s, models[k], fit, &r, &err);
         kernel_note_end(stderr, note, ctx, models[k]);

@@ -360,23 +360,3 @@ const char *svg_color(int i)
     int n = (int)(sizeof palette / sizeof palette[0]);
     return palette[((i % n) + n) % n];
 }
-
-int svg_nice_ticks(double lo, double hi, int target, double *ticks, int max)
-{
-    if (!isfinite(lo) || !isfinite(hi) || !(hi > lo) || target < 1 || max < 1)
-        return 0;
-    double raw = (hi - lo) / target;
-    double mag = pow(10.0, floor(log10(raw)));
-    double step = mag * 10;
-    static const double mult[] = { 1, 2, 5, 10 };
-    for (int i = 0; i < 4; i++)
-        if (mult[i] * mag >= raw) {
-            step = mult[i] * mag;
-            break;
-        }
-    double first = ceil(lo / step - 1e-9) * step;
-    int n = 0;
-    for (double t = first; t <= hi + step * 1e-9 && n < max; t = first + n * step)
-        ticks[n++] = fabs(t) < step * 1e-9 ? 0.0 : t;
-    return n;
-}

@@ -110,8 +110,4 @@ void svg_text_rotated(xml_writer *w, double x, double y, double angle, const cha
  * (Okabe & Ito's eight, black last), as "#rrggbb". */
 const char *svg_color(int i);
 
-/* "Nice" ticks (1, 2, 5 x 10^k steps) covering [lo, hi] with about target of
- * them: writes at most max values into ticks and returns how many. */
-int svg_nice_ticks(double lo, double hi, int target, double *ticks, int max);
-
 #endif

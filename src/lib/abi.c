@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* abi.c -- the layout of the public structs as compiled: reported to FFI
- * mirrors, and used to read a caller's sized options struct by its size. */
+ * mirrors, and used to read a caller's sized options struct, and to write a
+ * caller's sized result, by its size. */
 #include "internal.h"
 
 #include <stddef.h>
@@ -45,6 +46,7 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_SAMPLE_OPTIONS, brdffit_sample_options, scale),
     M(BRDFFIT_STRUCT_SAMPLE_OPTIONS, brdffit_sample_options, cutoff_deg),
 
+    M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, size),
     M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, wi),
     M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, wo),
     M(BRDFFIT_STRUCT_SAMPLE, brdffit_sample, rgb),
@@ -66,6 +68,7 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, max_evals),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, lambda_um),
 
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, size),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, model),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, params),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, error),
@@ -159,19 +162,47 @@ size_t bf_struct_members_end(brdffit_struct_kind kind)
     return end;
 }
 
-/* The size a caller's sized struct of `kind` (an options struct: `size` is
- * its first member) claims, checked against this library's struct. */
+/* The smallest size the library takes of a sized struct the caller gives:
+ * `size` alone for an options struct (every member has a default); a
+ * result's first sized layout, its members up to the one named. */
+static size_t smallest_size(brdffit_struct_kind kind, const char **last)
+{
+    *last = NULL;
+    if (kind == BRDFFIT_STRUCT_FIT_RESULT)
+        *last = "flags";
+    else if (kind == BRDFFIT_STRUCT_SAMPLE)
+        *last = "k";
+    for (size_t m = 0; *last && m < NMEMBERS; m++)
+        if (members[m].kind == kind && strcmp(members[m].name, *last) == 0)
+            return members[m].offset + members[m].size;
+    return sizeof(size_t);
+}
+
+/* The size a caller's sized struct of `kind` (`size` is its first member)
+ * claims, checked against this library's struct. */
 static brdffit_status options_size(brdffit_struct_kind kind, const void *opt, size_t *size,
                                    brdffit_error *err)
 {
     const abi_struct *s = &structs[kind];
+    const char *last;
+    size_t smallest = smallest_size(kind, &last);
     memcpy(size, opt, sizeof *size);
+    if (*size == 0 && last)
+        return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
+                       "%s: size 0 (set it with %s_init() or to sizeof(%s): the struct's size "
+                       "as the caller was compiled; %zu bytes in this library)",
+                       s->name, s->name, s->name, s->size);
     if (*size == 0)
         return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
                        "%s: size 0 (set it with %s_default(): the struct's size as the "
                        "caller was compiled; %zu bytes in this library)",
                        s->name, s->name, s->size);
-    if (*size < sizeof *size)
+    if (*size < smallest && last)
+        return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
+                       "%s: size %zu is smaller than its first sized layout (%zu bytes: `size` "
+                       "up to '%s')",
+                       s->name, *size, smallest, last);
+    if (*size < smallest)
         return bf_fail(err, BRDFFIT_E_OPTIONS_SIZE,
                        "%s: size %zu is smaller than its `size` member (%zu bytes)", s->name,
                        *size, sizeof *size);
@@ -211,6 +242,12 @@ brdffit_status bf_options_read(brdffit_struct_kind kind, const void *opt, void *
     if (st == BRDFFIT_OK)
         copy_members(kind, out, opt, size);
     return st;
+}
+
+brdffit_status bf_sized_check(brdffit_struct_kind kind, const void *out, brdffit_error *err)
+{
+    size_t size;
+    return options_size(kind, out, &size, err);
 }
 
 brdffit_status bf_options_write(brdffit_struct_kind kind, const void *src, void *out,

@@ -1300,6 +1300,7 @@ static brdffit_status exact_error(lmstate *S, lmrun *best)
 static void fill_result(const lmstate *S, const lmrun *best, brdffit_fit_result *result)
 {
     memset(result, 0, sizeof *result);
+    result->size = sizeof *result;
     result->model = S->fm.model;
     memcpy(result->params.d, best->lin.d, sizeof result->params.d);
     memcpy(result->params.s, best->lin.s, sizeof result->params.s);
@@ -1353,11 +1354,14 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     double t_start = bf_now();
     if (!ctx || !samples || !result)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_fit: NULL context, samples or result");
+    brdffit_status st = bf_sized_check(BRDFFIT_STRUCT_FIT_RESULT, result, err);
+    if (st != BRDFFIT_OK)
+        return st;
     if (!brdffit_model_get(model))
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
     brdffit_fit_options o;
     brdffit_fit_options_default(&o);
-    brdffit_status st = bf_options_read(BRDFFIT_STRUCT_FIT_OPTIONS, opt, &o, err);
+    st = bf_options_read(BRDFFIT_STRUCT_FIT_OPTIONS, opt, &o, err);
     if (st != BRDFFIT_OK)
         return st;
     st = check_fit_options(&o, err);
@@ -1408,15 +1412,18 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
         st = exact_error(&S, &best);
     if (st != BRDFFIT_OK)
         goto done;
-    fill_result(&S, &best, result);
-    result->passes = ps.passes + sd.passes + bd.passes;
-    result->seconds_build = ps.seconds_build;
-    result->samples = samples->n;
-    result->backend = brdffit_context_backend(ctx);
-    result->seconds_passes = ps.seconds + sd.seconds + bd.seconds;
-    result->seconds_solver = solver_seconds;
-    result->seconds = bf_now() - t_start;
-    bf_ok(err);
+    brdffit_fit_result r; /* the library's whole struct; the caller gets its size of it */
+    fill_result(&S, &best, &r);
+    r.passes = ps.passes + sd.passes + bd.passes;
+    r.seconds_build = ps.seconds_build;
+    r.samples = samples->n;
+    r.backend = brdffit_context_backend(ctx);
+    r.seconds_passes = ps.seconds + sd.seconds + bd.seconds;
+    r.seconds_solver = solver_seconds;
+    r.seconds = bf_now() - t_start;
+    st = bf_options_write(BRDFFIT_STRUCT_FIT_RESULT, &r, result, err);
+    if (st == BRDFFIT_OK)
+        bf_ok(err);
 done:
     bf_driver_close(&bd);
     bf_driver_close(&sd);

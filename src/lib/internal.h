@@ -78,6 +78,10 @@ brdffit_status bf_options_read(brdffit_struct_kind kind, const void *opt, void *
                                brdffit_error *err);
 brdffit_status bf_options_write(brdffit_struct_kind kind, const void *src, void *out,
                                 brdffit_error *err);
+/* The check alone, of a sized result the caller gives (brdffit_fit_result,
+ * brdffit_sample): also refused is a size smaller than its first sized
+ * layout.  bf_options_write then fills it. */
+brdffit_status bf_sized_check(brdffit_struct_kind kind, const void *out, brdffit_error *err);
 /* The end of the last member of struct `kind` (its size without tail padding). */
 size_t bf_struct_members_end(brdffit_struct_kind kind);
 

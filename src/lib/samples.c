@@ -290,17 +290,22 @@ brdffit_status brdffit_samples_get(const brdffit_samples *samples, size_t index,
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
                        "brdffit_samples_get: index %zu, but the set has %zu samples", index,
                        samples->n);
-    bf_ok(err);
+    brdffit_sample one;
+    memset(&one, 0, sizeof one);
+    one.size = sizeof one;
     const double *d = samples->data;
     size_t np = samples->npad;
     for (int c = 0; c < 3; c++) {
-        out->wi[c] = d[(size_t)(BF_F_IX + c) * np + index];
-        out->wo[c] = d[(size_t)(BF_F_OX + c) * np + index];
-        out->rgb[c] = d[(size_t)(BF_F_R + c) * np + index];
+        one.wi[c] = d[(size_t)(BF_F_IX + c) * np + index];
+        one.wo[c] = d[(size_t)(BF_F_OX + c) * np + index];
+        one.rgb[c] = d[(size_t)(BF_F_R + c) * np + index];
     }
-    out->weight = samples->w[index];
-    bf_bin_ijk((size_t)samples->bin[index], &out->i, &out->j, &out->k);
-    return BRDFFIT_OK;
+    one.weight = samples->w[index];
+    bf_bin_ijk((size_t)samples->bin[index], &one.i, &one.j, &one.k);
+    brdffit_status st = bf_options_write(BRDFFIT_STRUCT_SAMPLE, &one, out, err);
+    if (st == BRDFFIT_OK)
+        bf_ok(err);
+    return st;
 }
 
 brdffit_status brdffit_samples_options(const brdffit_samples *samples,

@@ -79,7 +79,11 @@
  *   Sized options.  Every options struct (brdffit_sample_options,
  *   brdffit_context_options, brdffit_fit_options, brdffit_render_options,
  *   brdffit_curve_options) starts with `size_t size`, which its _default()
- *   function sets to sizeof the struct as the CALLER was compiled; members
+ *   sets to sizeof the struct as the CALLER was compiled: _default() is
+ *   inline (compiled into the caller) and calls the library's
+ *   brdffit_*_options_init(opt, sizeof *opt), which writes the defaults of
+ *   the members that lie within that size and nothing after it (FFI calls
+ *   _init with its mirror's size); members
  *   are only ever appended, and no options struct ends in padding (tested),
  *   so a member appended later never lies inside an older caller's struct.
  *   The library reads the members that lie wholly within `size` and gives
@@ -372,7 +376,11 @@ typedef struct brdffit_sample_options {
     double cutoff_deg;     /* theta_i, theta_o <= cutoff; default 80      */
 } brdffit_sample_options;
 
-void brdffit_sample_options_default(brdffit_sample_options *opt);
+void brdffit_sample_options_init(brdffit_sample_options *opt, size_t size);
+static inline void brdffit_sample_options_default(brdffit_sample_options *opt)
+{
+    brdffit_sample_options_init(opt, sizeof *opt);
+}
 
 typedef struct brdffit_samples brdffit_samples;
 
@@ -446,7 +454,11 @@ typedef struct brdffit_context_options {
                                    device, else the first device                */
 } brdffit_context_options;
 
-void brdffit_context_options_default(brdffit_context_options *opt);
+void brdffit_context_options_init(brdffit_context_options *opt, size_t size);
+static inline void brdffit_context_options_default(brdffit_context_options *opt)
+{
+    brdffit_context_options_init(opt, sizeof *opt);
+}
 
 /* A context is used by one thread at a time (its kernels' arguments are set
  * per pass); use one context per thread to fit in parallel: contexts may be
@@ -512,7 +524,11 @@ typedef struct brdffit_fit_options {
     double lambda_um[3]; /* He only: wavelengths; 0 = (0.645, 0.526, 0.444)  */
 } brdffit_fit_options;
 
-void brdffit_fit_options_default(brdffit_fit_options *opt);
+void brdffit_fit_options_init(brdffit_fit_options *opt, size_t size);
+static inline void brdffit_fit_options_default(brdffit_fit_options *opt)
+{
+    brdffit_fit_options_init(opt, sizeof *opt);
+}
 
 /* What a fit found.  `error` is the fit's Error, the metric "ngan-l2" of
  * params (as brdffit_error_of gives it): a measure of the fit, not a
@@ -713,7 +729,11 @@ typedef struct brdffit_render_options {
     int threads;            /* worker threads; 0 (default): the online CPUs, at most 16 */
 } brdffit_render_options;
 
-void brdffit_render_options_default(brdffit_render_options *opt);
+void brdffit_render_options_init(brdffit_render_options *opt, size_t size);
+static inline void brdffit_render_options_default(brdffit_render_options *opt)
+{
+    brdffit_render_options_init(opt, sizeof *opt);
+}
 
 /* Render the measured table (brdffit_table_lookup) / a model (the evaluators
  * at params) into rgba (see the conventions).  opt NULL: the defaults.
@@ -757,7 +777,11 @@ typedef struct brdffit_curve_options {
     brdffit_scale scale;    /* table channel scale; default BRDFFIT_SCALE_STANDARD */
 } brdffit_curve_options;
 
-void brdffit_curve_options_default(brdffit_curve_options *opt);
+void brdffit_curve_options_init(brdffit_curve_options *opt, size_t size);
+static inline void brdffit_curve_options_default(brdffit_curve_options *opt)
+{
+    brdffit_curve_options_init(opt, sizeof *opt);
+}
 
 /* The theta_o of the npoints samples, in degrees, into theta_o_deg. */
 brdffit_status brdffit_curve_theta_o(const brdffit_curve_options *opt, double *theta_o_deg,

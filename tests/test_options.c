@@ -431,6 +431,50 @@ static void expect_size_refused(brdffit_status st, const brdffit_error *err, con
 /* A fit into an old caller's result: the members it has are those of the same
  * fit into the whole struct; not a byte after its size is written (guard bytes
  * after it; an exactly sized heap block for AddressSanitizer). */
+/* An options struct as a caller built against an older header has it (the
+ * fit options without lambda_um, the member appended last): _default() in
+ * that caller sets its own size, and the library writes the defaults of its
+ * members and nothing after them. */
+typedef struct old_fit_options {
+    size_t size;
+    int starts, refine;
+    double ftol, xtol, gtol;
+    int max_evals;
+} old_fit_options;
+
+START_TEST(old_options_defaults_within_size)
+{
+    brdffit_fit_options full;
+    brdffit_fit_options_default(&full);
+    ck_assert_uint_eq(full.size, sizeof full);
+    ck_assert_uint_eq(offsetof(old_fit_options, max_evals),
+                      brdffit_struct_offset(BRDFFIT_STRUCT_FIT_OPTIONS, "max_evals"));
+    size_t old = offsetof(old_fit_options, max_evals) + sizeof(int);
+    ck_assert(old < sizeof full);
+
+    union {
+        old_fit_options o;
+        unsigned char bytes[sizeof(old_fit_options) + GUARD];
+    } buf;
+    memset(&buf, GUARD_BYTE, sizeof buf);
+    brdffit_fit_options_init((brdffit_fit_options *)&buf.o, old);
+    for (size_t b = old; b < sizeof buf; b++)
+        ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "byte %zu after the old options written", b);
+    ck_assert_uint_eq(buf.o.size, old);
+    ck_assert_int_eq(buf.o.starts, full.starts);
+    ck_assert_int_eq(buf.o.refine, full.refine);
+    ck_assert(buf.o.ftol == full.ftol && buf.o.xtol == full.xtol && buf.o.gtol == full.gtol);
+    ck_assert_int_eq(buf.o.max_evals, full.max_evals);
+
+    /* too small for `size` itself: nothing written */
+    memset(&buf, GUARD_BYTE, sizeof buf);
+    brdffit_fit_options_init((brdffit_fit_options *)&buf.o, sizeof(size_t) - 1);
+    for (size_t b = 0; b < sizeof buf; b++)
+        ck_assert_msg(buf.bytes[b] == GUARD_BYTE, "byte %zu written for a size below `size`", b);
+    brdffit_fit_options_init(NULL, sizeof full); /* no effect, no crash */
+}
+END_TEST
+
 START_TEST(old_fit_result_written_within_size)
 {
     size_case c;
@@ -586,6 +630,7 @@ Suite *options_suite(void)
     tcase_add_test(tc, fit_options_prefix);
     tcase_add_test(tc, render_curve_options_prefix);
     tcase_add_test(tc, bad_sizes_refused);
+    tcase_add_test(tc, old_options_defaults_within_size);
     tcase_add_test(tc, old_fit_result_written_within_size);
     tcase_add_test(tc, result_bad_sizes_refused);
     tcase_add_test(tc, sample_sized);

@@ -6,7 +6,7 @@ member.  At load time brdffit._lib compares each mirror's size and every
 member's offset with what the library reports (brdffit_struct_size and
 brdffit_struct_offset) and refuses the library on any difference, so a
 mirror that drifted from the header is an error, never garbage.  The
-options structs start with ``size``, which their brdffit_*_options_default()
+options structs start with ``size``, which brdffit_*_options_init(opt, size)
 sets: the library reads the members within it.  The results the library
 fills (Sample, FitResult) start with ``size`` too, which their constructor
 sets to the mirror's size: the library writes the members within it.
@@ -224,7 +224,7 @@ FUNCTIONS = {
     "brdffit_table_lookup_batch": (
         _status, [_P, C.c_size_t, _P, _P, c_enum, c_enum, _P, _err]),
     # samples
-    "brdffit_sample_options_default": (None, [C.POINTER(SampleOptions)]),
+    "brdffit_sample_options_init": (None, [C.POINTER(SampleOptions), C.c_size_t]),
     "brdffit_samples_create": (_status, [_P, C.POINTER(SampleOptions), C.POINTER(_P), _err]),
     "brdffit_samples_free": (None, [_P]),
     "brdffit_samples_count": (C.c_size_t, [_P]),
@@ -234,12 +234,12 @@ FUNCTIONS = {
     "brdffit_samples_options": (_status, [_P, C.POINTER(SampleOptions), _err]),
     "brdffit_samples_prepare": (_status, [_P, c_enum, _err]),
     # contexts and fits
-    "brdffit_context_options_default": (None, [C.POINTER(ContextOptions)]),
+    "brdffit_context_options_init": (None, [C.POINTER(ContextOptions), C.c_size_t]),
     "brdffit_context_create": (_status, [C.POINTER(ContextOptions), C.POINTER(_P), _err]),
     "brdffit_context_free": (None, [_P]),
     "brdffit_context_backend": (c_enum, [_P]),
     "brdffit_context_describe": (C.c_char_p, [_P]),
-    "brdffit_fit_options_default": (None, [C.POINTER(FitOptions)]),
+    "brdffit_fit_options_init": (None, [C.POINTER(FitOptions), C.c_size_t]),
     "brdffit_fit": (
         _status,
         [_P, _P, c_enum, C.POINTER(FitOptions), C.POINTER(FitResult), _err],
@@ -250,7 +250,7 @@ FUNCTIONS = {
     ),
     # renders and incidence-plane curves
     "brdffit_render_default_lights": (C.c_int, [C.POINTER(Light)]),
-    "brdffit_render_options_default": (None, [C.POINTER(RenderOptions)]),
+    "brdffit_render_options_init": (None, [C.POINTER(RenderOptions), C.c_size_t]),
     "brdffit_render_table": (
         _status, [_P, C.POINTER(RenderOptions), _P, C.c_size_t, _err]),
     "brdffit_render_model": (
@@ -262,7 +262,7 @@ FUNCTIONS = {
         [_P, _P, C.c_int, C.c_int, C.c_size_t, C.POINTER(C.c_double), C.POINTER(C.c_size_t),
          _err],
     ),
-    "brdffit_curve_options_default": (None, [C.POINTER(CurveOptions)]),
+    "brdffit_curve_options_init": (None, [C.POINTER(CurveOptions), C.c_size_t]),
     "brdffit_curve_theta_o": (_status, [C.POINTER(CurveOptions), _P, _err]),
     "brdffit_curve_table": (_status, [_P, C.POINTER(CurveOptions), _P, C.c_size_t, _err]),
     "brdffit_curve_model": (

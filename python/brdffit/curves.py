@@ -35,7 +35,7 @@ def incidence_curves(source, params=None, *, theta_i=(20, 40, 60, 75), points=18
     table, m, cp = shading_source(source, params)
     lib = _lib.cdll()
     opt = _abi.CurveOptions()
-    lib.brdffit_curve_options_default(ctypes.byref(opt))
+    lib.brdffit_curve_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
     single = np.ndim(theta_i) == 0
     try:
         angles = np.array(theta_i, dtype=np.float64).reshape(-1)

@@ -41,7 +41,7 @@ class Context:
             )
         lib = _lib.cdll()
         opt = _abi.ContextOptions()
-        lib.brdffit_context_options_default(ctypes.byref(opt))
+        lib.brdffit_context_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
         opt.backend = _abi.BACKENDS[backend]
         if device is not None:
             opt.device = str(device).encode("utf-8")
@@ -136,7 +136,7 @@ def fit_options(**options):
     """A brdffit_fit_options: the library's defaults, then options by name
     (the struct's members: starts, refine, ftol, ...)."""
     opt = _abi.FitOptions()
-    _lib.cdll().brdffit_fit_options_default(ctypes.byref(opt))
+    _lib.cdll().brdffit_fit_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
     for name, value in options.items():
         if name not in _OPTION_FIELDS:
             raise TypeError(

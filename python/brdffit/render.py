@@ -127,7 +127,7 @@ def render(source, params=None, *, size=256, lights=None, env=None, env_samples=
     table, m, cp = shading_source(source, params)
     lib = _lib.cdll()
     opt = _abi.RenderOptions()
-    lib.brdffit_render_options_default(ctypes.byref(opt))
+    lib.brdffit_render_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
     n = c_int("size", size)
     opt.width = n
     _set_lights(opt, lights)

@@ -35,7 +35,7 @@ class Samples:
             )
         lib = _lib.cdll()
         opt = _abi.SampleOptions()
-        lib.brdffit_sample_options_default(ctypes.byref(opt))
+        lib.brdffit_sample_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
         if cutoff is not None:
             opt.cutoff_deg = float(cutoff)
         opt.scale = scale_id(scale)
@@ -63,7 +63,7 @@ class Samples:
 
     def _options(self):
         opt = _abi.SampleOptions()
-        _lib.cdll().brdffit_sample_options_default(ctypes.byref(opt))
+        _lib.cdll().brdffit_sample_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
         _lib.call("brdffit_samples_options", self._h.ptr, ctypes.byref(opt))
         return opt
 

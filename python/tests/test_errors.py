@@ -79,7 +79,7 @@ def test_curve_theta_o_options_size(brdffit):
     from brdffit import _abi, _lib
 
     opt = _abi.CurveOptions()
-    _lib.cdll().brdffit_curve_options_default(ctypes.byref(opt))
+    _lib.cdll().brdffit_curve_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
     assert opt.size == ctypes.sizeof(opt)
     out = np.empty(opt.npoints)
     opt.size = ctypes.sizeof(opt) + 8

@@ -259,3 +259,13 @@ brdffit_status bf_options_write(brdffit_struct_kind kind, const void *src, void 
         copy_members(kind, out, src, size);
     return st;
 }
+
+void bf_options_init(brdffit_struct_kind kind, const void *dflt, void *opt, size_t size)
+{
+    size_t have = structs[kind].size;
+    if (!opt || size < sizeof size)
+        return;
+    memset(opt, 0, size < have ? size : have);
+    memcpy(opt, &size, sizeof size);
+    copy_members(kind, opt, dflt, size < have ? size : have);
+}

@@ -26,14 +26,14 @@
 extern const char *const bf_kernel_sources[];
 extern const size_t bf_kernel_source_count;
 
-void brdffit_context_options_default(brdffit_context_options *opt)
+void brdffit_context_options_init(brdffit_context_options *opt, size_t size)
 {
-    if (!opt)
-        return;
-    memset(opt, 0, sizeof *opt);
-    opt->size = sizeof *opt;
-    opt->backend = BRDFFIT_BACKEND_AUTO;
-    opt->device = NULL;
+    brdffit_context_options d;
+    memset(&d, 0, sizeof d);
+    d.size = sizeof d;
+    d.backend = BRDFFIT_BACKEND_AUTO;
+    d.device = NULL;
+    bf_options_init(BRDFFIT_STRUCT_CONTEXT_OPTIONS, &d, opt, size);
 }
 
 static void info_string(cl_platform_id p, cl_device_id d, cl_uint what, char *buf, size_t len)

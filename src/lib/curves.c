@@ -13,18 +13,18 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-void brdffit_curve_options_default(brdffit_curve_options *opt)
+void brdffit_curve_options_init(brdffit_curve_options *opt, size_t size)
 {
     static const double dflt[4] = { 20, 40, 60, 75 };
-    if (!opt)
-        return;
-    memset(opt, 0, sizeof *opt);
-    opt->size = sizeof *opt;
-    opt->ntheta_i = 4;
-    memcpy(opt->theta_i_deg, dflt, sizeof dflt);
-    opt->npoints = 180;
-    opt->interp = BRDFFIT_INTERP_TRILINEAR;
-    opt->scale = BRDFFIT_SCALE_STANDARD;
+    brdffit_curve_options d;
+    memset(&d, 0, sizeof d);
+    d.size = sizeof d;
+    d.ntheta_i = 4;
+    memcpy(d.theta_i_deg, dflt, sizeof dflt);
+    d.npoints = 180;
+    d.interp = BRDFFIT_INTERP_TRILINEAR;
+    d.scale = BRDFFIT_SCALE_STANDARD;
+    bf_options_init(BRDFFIT_STRUCT_CURVE_OPTIONS, &d, opt, size);
 }
 
 /* The options in effect, checked: opt's members inside opt->size over the defaults. */

@@ -492,18 +492,18 @@ static int seed_serves(const lmstate *S, const double *x)
            memcmp(S->seed->x, x, S->nx * sizeof *x) == 0;
 }
 
-void brdffit_fit_options_default(brdffit_fit_options *opt)
+void brdffit_fit_options_init(brdffit_fit_options *opt, size_t size)
 {
-    if (!opt)
-        return;
-    memset(opt, 0, sizeof *opt);
-    opt->size = sizeof *opt;
-    opt->starts = 0; /* the model's default_starts */
-    opt->refine = 1;
-    opt->ftol = 1e-8;
-    opt->xtol = 1e-8;
-    opt->gtol = 0.0;
-    opt->max_evals = 200;
+    brdffit_fit_options d;
+    memset(&d, 0, sizeof d);
+    d.size = sizeof d;
+    d.starts = 0; /* the model's default_starts */
+    d.refine = 1;
+    d.ftol = 1e-8;
+    d.xtol = 1e-8;
+    d.gtol = 0.0;
+    d.max_evals = 200;
+    bf_options_init(BRDFFIT_STRUCT_FIT_OPTIONS, &d, opt, size);
 }
 
 const char *brdffit_metric_name(void)

@@ -82,6 +82,14 @@ brdffit_status bf_options_write(brdffit_struct_kind kind, const void *src, void 
  * brdffit_sample): also refused is a size smaller than its first sized
  * layout.  bf_options_write then fills it. */
 brdffit_status bf_sized_check(brdffit_struct_kind kind, const void *out, brdffit_error *err);
+/* An options struct's defaults (dflt, a whole struct of `kind`) in the
+ * caller's opt of `size` bytes (its sizeof as the caller was compiled):
+ * `size` set, the members that lie wholly within it copied, the rest of its
+ * bytes up to this library's struct cleared.  A size that a call then
+ * refuses (larger than this library's struct, ending inside a member) is
+ * written as given, so that the call names it.  Nothing for a NULL opt or a
+ * size smaller than `size` itself. */
+void bf_options_init(brdffit_struct_kind kind, const void *dflt, void *opt, size_t size);
 /* The end of the last member of struct `kind` (its size without tail padding). */
 size_t bf_struct_members_end(brdffit_struct_kind kind);
 

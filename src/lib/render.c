@@ -28,18 +28,18 @@ int brdffit_render_default_lights(brdffit_light out[2])
     return 2;
 }
 
-void brdffit_render_options_default(brdffit_render_options *opt)
+void brdffit_render_options_init(brdffit_render_options *opt, size_t size)
 {
-    if (!opt)
-        return;
-    memset(opt, 0, sizeof *opt);
-    opt->size = sizeof *opt;
-    opt->width = 256;
-    opt->nlights = BRDFFIT_RENDER_DEFAULT_LIGHTS;
-    opt->env_samples = 256;
-    opt->interp = BRDFFIT_INTERP_TRILINEAR;
-    opt->scale = BRDFFIT_SCALE_STANDARD;
-    opt->threads = 0;
+    brdffit_render_options d;
+    memset(&d, 0, sizeof d);
+    d.size = sizeof d;
+    d.width = 256;
+    d.nlights = BRDFFIT_RENDER_DEFAULT_LIGHTS;
+    d.env_samples = 256;
+    d.interp = BRDFFIT_INTERP_TRILINEAR;
+    d.scale = BRDFFIT_SCALE_STANDARD;
+    d.threads = 0;
+    bf_options_init(BRDFFIT_STRUCT_RENDER_OPTIONS, &d, opt, size);
 }
 
 /* ------------------------------------------------------------------ shading */

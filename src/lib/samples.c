@@ -14,14 +14,14 @@
 /* cos(theta) >= cos(cutoff) - COS_TOL counts as within the cutoff */
 #define COS_TOL 1e-12
 
-void brdffit_sample_options_default(brdffit_sample_options *opt)
+void brdffit_sample_options_init(brdffit_sample_options *opt, size_t size)
 {
-    if (!opt)
-        return;
-    memset(opt, 0, sizeof *opt);
-    opt->size = sizeof *opt;
-    opt->cutoff_deg = 80.0;
-    opt->scale = BRDFFIT_SCALE_STANDARD;
+    brdffit_sample_options d;
+    memset(&d, 0, sizeof d);
+    d.size = sizeof d;
+    d.cutoff_deg = 80.0;
+    d.scale = BRDFFIT_SCALE_STANDARD;
+    bf_options_init(BRDFFIT_STRUCT_SAMPLE_OPTIONS, &d, opt, size);
 }
 
 void brdffit_samples_free(brdffit_samples *samples)

@@ -424,7 +424,8 @@ static void check_batch_pages(const char *out)
     free(page);
     snprintf(path, sizeof path, "%s/blue-rubber/params.tsv", out);
     char *pt = slurp(path);
-    ck_assert_msg(strstr(pt, "\nward\t") && strstr(pt, "\nblinn-phong\t"), "%s", pt);
+    ck_assert_msg(strstr(pt, "\nblue-rubber\tward\t") && strstr(pt, "\nblue-rubber\tblinn-phong\t"),
+                  "%s", pt);
     free(pt);
 }
 
@@ -875,18 +876,24 @@ END_TEST
 
 /* ------------------------------------------------------------------ score, demo */
 
-/* Field col (0-based) of the fits.tsv row of material and model, into buf. */
-static const char *fits_field(const char *out, const char *material, const char *model, int col,
-                              char *buf, size_t len)
+/* The field of column `column` (named in the header line) of the fits.tsv
+ * row of material and model, into buf. */
+static const char *fits_field(const char *out, const char *material, const char *model,
+                              const char *column, char *buf, size_t len)
 {
     char path[1200], line[8192];
     snprintf(path, sizeof path, "%s/fits.tsv", out);
     FILE *f = fopen(path, "r");
     ck_assert_ptr_nonnull(f);
-    char *fld[32];
-    int n;
+    char *fld[40];
+    int n, col = -1;
     const char *found = NULL;
-    while ((n = tu_tsv_next(f, line, sizeof line, fld, 32)) > 0)
+    if ((n = tu_tsv_next(f, line, sizeof line, fld, 40)) > 0)
+        for (int i = 0; i < n; i++)
+            if (strcmp(fld[i], column) == 0)
+                col = i;
+    ck_assert_msg(col >= 2, "no column %s in the header of %s", column, path);
+    while ((n = tu_tsv_next(f, line, sizeof line, fld, 40)) > 0)
         if (n > col && strcmp(fld[0], material) == 0 && strcmp(fld[1], model) == 0) {
             snprintf(buf, len, "%s", fld[col]);
             found = buf;
@@ -920,15 +927,16 @@ START_TEST(score_agrees_with_the_batch)
     ck_assert_ptr_nonnull(tu_merl_table("blue-rubber", table, sizeof table));
 
     /* the fitted parameters (10 digits) score the fitted Error */
+    static const char *const cols[7] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0" };
     char p[12][64], params[1024] = "";
     for (int c = 0; c < 7; c++) {
-        fits_field(out, "blue-rubber", "ward", 2 + c, p[c], sizeof p[c]);
+        fits_field(out, "blue-rubber", "ward", cols[c], p[c], sizeof p[c]);
         strcat(params, c ? "," : "");
         strcat(params, p[c]);
     }
     char e_fit[64], e_pub[64];
-    fits_field(out, "blue-rubber", "ward", 11, e_fit, sizeof e_fit);
-    fits_field(out, "blue-rubber", "ward", 17, e_pub, sizeof e_pub);
+    fits_field(out, "blue-rubber", "ward", "error", e_fit, sizeof e_fit);
+    fits_field(out, "blue-rubber", "ward", "published_error", e_pub, sizeof e_pub);
     snprintf(args, sizeof args, "score '%s' --model ward --params %s", table, params);
     run_out r = run(args);
     expect_status(r, 0, args);
@@ -973,13 +981,119 @@ START_TEST(demo_batch_prints_its_index)
     check_page(out, "index.html");
     check_material_files(out, "synthetic-alum-bronze-ct");
     char e[64];
-    fits_field(out, "synthetic-alum-bronze-ct", "cook-torrance", 11, e, sizeof e);
+    fits_field(out, "synthetic-alum-bronze-ct", "cook-torrance", "error", e, sizeof e);
     ck_assert_msg(strtod(e, NULL) < 1e-6, "the generating model fits with Error %s", e);
     /* again: everything is in the journal */
     r = run(args);
     expect_status(r, 0, args);
     ck_assert_msg(strstr(r.err, "done (journaled)"), "%s", r.err);
     run_free(&r);
+    tmpdir_remove(dir);
+}
+END_TEST
+
+/* The journal's fit record, the fit record of `demo --json` (a fit and a
+ * failure) and those of params.json have the same keys: one schema
+ * (docs/fit-record.md). */
+START_TEST(one_record_schema_everywhere)
+{
+    char dir[512], args[4096], out[1024], path[1200], keys[4096], want[4096];
+    tmpdir(dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/demo", dir);
+    snprintf(args, sizeof args, "batch --demo --out '%s' --model ward --starts 1 --no-render --no-plot",
+             out);
+    run_out r = run(args);
+    expect_status(r, 0, args);
+    run_free(&r);
+
+    /* fit --json: a fit of the demo material, and a missing file's failure */
+    r = run("demo --json --model ward --starts 1");
+    expect_status(r, 0, "demo --json");
+    ck_assert_msg(tu_json_object_line(strtok(r.out, "\n")), "%s", r.out);
+    ck_assert_int_gt(tu_json_keys(r.out, want, sizeof want), 25);
+    run_free(&r);
+    r = run("fit --json --model ward /nonexistent-brdffit-dir/gone.binary");
+    expect_status(r, 1, "fit --json of a missing file");
+    ck_assert_int_eq(tu_json_keys(r.out, keys, sizeof keys) > 0, 1);
+    ck_assert_str_eq(keys, want);
+    run_free(&r);
+
+    /* the journal: every line */
+    snprintf(path, sizeof path, "%s/journal.jsonl", out);
+    char *j = slurp(path);
+    ck_assert_ptr_nonnull(j);
+    int lines = 0;
+    for (char *line = strtok(j, "\n"); line; line = strtok(NULL, "\n"), lines++) {
+        ck_assert_msg(tu_json_keys(line, keys, sizeof keys) > 0, "%s", line);
+        ck_assert_str_eq(keys, want);
+    }
+    ck_assert_int_ge(lines, 1);
+    free(j);
+
+    /* params.json: its fit record */
+    snprintf(path, sizeof path, "%s/synthetic-alum-bronze-ct/params.json", out);
+    char *pj = slurp(path);
+    ck_assert_msg(pj && tu_json_object_line(strtok(pj, "\n")), "%s", pj ? pj : path);
+    const char *fit = tu_json_element(tu_json_member(pj, "fits"), 0);
+    ck_assert_msg(fit != NULL, "no fit in %s", pj);
+    ck_assert_msg(tu_json_keys(fit, keys, sizeof keys) > 0, "%s", pj);
+    ck_assert_str_eq(keys, want);
+    free(pj);
+    tmpdir_remove(dir);
+}
+END_TEST
+
+/* Append a copy of the journal's first fit record that succeeded, with this
+ * status text, status code and message. */
+static void append_fit_as(const char *out, const char *status, int code, const char *message)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/journal.jsonl", out);
+    char *j = slurp(path);
+    ck_assert_ptr_nonnull(j);
+    static const char ok[] = "\"status\":\"ok\",\"status_code\":0,\"message\":\"\"";
+    char *fit = NULL, *at = NULL;
+    for (char *line = strtok(j, "\n"); line && !at; line = strtok(NULL, "\n"))
+        if (strncmp(line, "{\"kind\":\"fit\"", 13) == 0 && (at = strstr(line, ok)) != NULL)
+            fit = line;
+    ck_assert_msg(at != NULL, "no fit that succeeded in %s", path);
+    *at = '\0';
+    FILE *f = fopen(path, "a");
+    ck_assert_ptr_nonnull(f);
+    fprintf(f, "%s\"status\":\"%s\",\"status_code\":%d,\"message\":\"%s\"%s\n", fit, status,
+            code, message, at + strlen(ok));
+    ck_assert_int_eq(fclose(f), 0);
+    free(j);
+}
+
+/* Resume decides by the status code, not by the words: a failed fit whose
+ * text is today's wording of a transient failure but whose code is not is
+ * kept; one whose code is transient but whose words are not is fitted again. */
+START_TEST(resume_decides_by_status_code)
+{
+    char dir[512], args[4096], out[1024];
+    tmpdir(dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/demo", dir);
+    snprintf(args, sizeof args, "batch --demo --out '%s' --model ward --starts 1 --no-render --no-plot",
+             out);
+    run_out r = run(args);
+    expect_status(r, 0, args);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 1);
+
+    append_fit_as(out, brdffit_strerror(BRDFFIT_E_OPENCL), BRDFFIT_E_FIT_FAILED,
+                  "OpenCL error");
+    r = run(args);
+    ck_assert_msg(strstr(r.err, "done (journaled)"), "a fit failed on the data was redone:\n%s", r.err);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 2);
+
+    append_fit_as(out, "the device went away (reworded)", BRDFFIT_E_OPENCL, "reworded");
+    r = run(args);
+    expect_status(r, 0, args);
+    ck_assert_msg(!strstr(r.err, "done (journaled)"), "a transient failure was kept:\n%s", r.err);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 4);
     tmpdir_remove(dir);
 }
 END_TEST
@@ -999,6 +1113,8 @@ Suite *batch_suite(void)
     tcase_add_test(tc, progress_lines);
     tcase_add_test(tc, score_agrees_with_the_batch);
     tcase_add_test(tc, demo_batch_prints_its_index);
+    tcase_add_test(tc, one_record_schema_everywhere);
+    tcase_add_test(tc, resume_decides_by_status_code);
     suite_add_tcase(s, tc);
     return s;
 }

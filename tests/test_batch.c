@@ -7,6 +7,8 @@
  * progress line, `score` against the batch's own numbers. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
+#include "batch.h"
+#include "cli.h"
 
 #include <check.h>
 #include <ctype.h>
@@ -1098,6 +1100,116 @@ START_TEST(resume_decides_by_status_code)
 }
 END_TEST
 
+/* r as the journal line of the earlier form (before fit_record.h): "file"
+ * {path, size, hash}, "ok", the "status" text, "on_bound". */
+static void write_old_form(FILE *f, const fit_record *r)
+{
+    static const char *const kinds[] = { "fit", "failure", "published", "assets" };
+    fprintf(f, "{\"kind\":\"%s\",\"material\":", kinds[r->kind]);
+    json_string(f, r->material);
+    fputs(",\"file\":{\"path\":", f);
+    json_string(f, r->id.path);
+    fprintf(f, ",\"size\":%lld,\"hash\":", r->id.size);
+    json_string(f, r->id.hash);
+    fputs("},\"settings\":{\"version\":", f);
+    json_string(f, r->settings.version);
+    fputs(",\"scale\":", f);
+    json_string(f, r->settings.scale);
+    fputs(",\"cutoff_deg\":", f);
+    json_number(f, r->settings.cutoff_deg);
+    fprintf(f, ",\"starts\":%d},\"model\":", r->settings.starts);
+    json_string(f, r->model);
+    fprintf(f, ",\"ok\":%s,\"status\":", fr_ok(r) ? "true" : "false");
+    json_string(f, fr_status_text(r));
+    fputs(",\"message\":", f);
+    json_string(f, r->message);
+    if (r->kind == FR_FIT || r->kind == FR_PUBLISHED) {
+        fputs(",\"d\":", f);
+        json_numbers(f, r->params.d, 3);
+        fputs(",\"s\":", f);
+        json_numbers(f, r->params.s, 3);
+        fputs(",\"p\":", f);
+        json_numbers(f, r->params.p, r->nparams);
+        fputs(",\"lambda_um\":", f);
+        json_numbers(f, r->params.lambda_um, 3);
+        fputs(",\"error\":", f);
+        json_number(f, r->error);
+    }
+    if (r->kind == FR_FIT) {
+        /* on_bound: "n=lower,d_b=0" */
+        char list[128], names[256] = "";
+        brdffit_model m;
+        ck_assert_int_eq(brdffit_model_from_name(r->model, &m, NULL), BRDFFIT_OK);
+        fr_at_bound_text(m, r->at_bound, ",", list, sizeof list);
+        for (char *save = NULL, *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+            int linear = strlen(t) == 3 && (t[0] == 'd' || t[0] == 's') && t[1] == '_';
+            size_t o = strlen(names);
+            snprintf(names + o, sizeof names - o, "%s%s=%s", o ? "," : "", t, linear ? "0" : "lower");
+        }
+        fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"cminpack_info\":%d,\"seconds\":",
+                r->iterations, r->passes, r->cminpack_info);
+        json_number(f, r->seconds);
+        fprintf(f, ",\"samples\":%lld,\"on_bound\":\"%s\",\"backend\":", r->samples, names);
+        json_string(f, r->backend);
+    }
+    if (r->kind == FR_ASSETS) {
+        fputs(",\"assets_key\":", f);
+        json_string(f, r->assets_key);
+        fputs(",\"assets\":", f);
+        json_string(f, r->assets);
+    }
+    fputs("}\n", f);
+}
+
+/* An --out directory whose journal an earlier version wrote resumes: its
+ * records are read (nothing fitted or drawn again) and the report is the same. */
+START_TEST(old_form_journal_resumes)
+{
+    char dir[512], args[4096], out[1024], path[1200];
+    tmpdir(dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/demo", dir);
+    snprintf(args, sizeof args, "batch --demo --out '%s' --model ward,he --starts 1 --no-render", out);
+    run_out r = run(args);
+    expect_status(r, 0, args);
+    run_free(&r);
+    char *clean = fits_sans_timing(out);
+
+    /* the journal rewritten in the earlier form */
+    snprintf(path, sizeof path, "%s/journal.jsonl", out);
+    char *j = slurp(path);
+    ck_assert_ptr_nonnull(j);
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    int n = 0, assets = 0;
+    static fit_record rec;
+    for (char *line = strtok(j, "\n"); line; line = strtok(NULL, "\n"), n++) {
+        ck_assert_msg(fr_read_json(line, &rec, FR_NEED_KEY) == 0, "%s", line);
+        assets += rec.kind == FR_ASSETS;
+        write_old_form(f, &rec);
+    }
+    ck_assert_int_eq(fclose(f), 0);
+    free(j);
+    ck_assert_int_eq(n, 3);
+    ck_assert_int_eq(assets, 1);
+    j = slurp(path);
+    ck_assert_msg(strstr(j, "\"ok\":true") && !strstr(j, "status_code"), "%s", j);
+    free(j);
+
+    r = run(args);
+    expect_status(r, 0, args);
+    ck_assert_msg(strstr(r.err, "done (journaled)") && !strstr(r.err, "not journal records"),
+                  "the earlier journal was not resumed:\n%s", r.err);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 2);
+    ck_assert_int_eq(journal_count(out, "assets"), 1);
+    char *resumed = fits_sans_timing(out);
+    ck_assert_str_eq(resumed, clean);
+    free(resumed);
+    free(clean);
+    tmpdir_remove(dir);
+}
+END_TEST
+
 Suite *batch_suite(void)
 {
     Suite *s = suite_create("batch");
@@ -1115,6 +1227,7 @@ Suite *batch_suite(void)
     tcase_add_test(tc, demo_batch_prints_its_index);
     tcase_add_test(tc, one_record_schema_everywhere);
     tcase_add_test(tc, resume_decides_by_status_code);
+    tcase_add_test(tc, old_form_journal_resumes);
     suite_add_tcase(s, tc);
     return s;
 }

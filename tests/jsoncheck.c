@@ -6,6 +6,7 @@
  * judge its output.  See testutil.h. */
 #include "testutil.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -264,4 +265,76 @@ int tu_json_array_len(const char *obj, const char *key)
     for (const char *s = v + 1; s < j.p - 1; s++)
         n += (*s == ',');
     return (j.p - v > 2) ? n + 1 : 0;
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+/* The keys of the object at obj (text may follow it), sorted, joined by ','
+ * into out; the number of keys, or -1 when obj is not an object. */
+int tu_json_keys(const char *obj, char *out, size_t len)
+{
+    char names[128][64];
+    char *sorted[128];
+    int n = 0;
+    jp j = { obj };
+    if (!obj || *j.p != '{')
+        return -1;
+    j.p++;
+    j_ws(&j);
+    if (*j.p != '}') {
+        for (;;) {
+            j_ws(&j);
+            if (n >= 128 || !j_string(&j, names[n], sizeof names[n]))
+                return -1;
+            sorted[n] = names[n];
+            n++;
+            j_ws(&j);
+            if (*j.p++ != ':')
+                return -1;
+            j_ws(&j);
+            if (!j_value(&j, 1))
+                return -1;
+            j_ws(&j);
+            if (*j.p == ',') {
+                j.p++;
+                continue;
+            }
+            if (*j.p == '}')
+                break;
+            return -1;
+        }
+    }
+    qsort(sorted, (size_t)n, sizeof *sorted, cmp_str);
+    size_t used = 0;
+    out[0] = '\0';
+    for (int i = 0; i < n; i++) {
+        int w = snprintf(out + used, len - used, "%s%s", i ? "," : "", sorted[i]);
+        if (w < 0 || (size_t)w >= len - used)
+            return -1;
+        used += (size_t)w;
+    }
+    return n;
+}
+
+/* The start of element i of the array at arr, or NULL. */
+const char *tu_json_element(const char *arr, int i)
+{
+    if (!arr || *arr != '[')
+        return NULL;
+    jp j = { arr + 1 };
+    for (int k = 0;; k++) {
+        j_ws(&j);
+        if (*j.p == ']')
+            return NULL;
+        if (k == i)
+            return j.p;
+        if (!j_value(&j, 1))
+            return NULL;
+        j_ws(&j);
+        if (*j.p++ != ',')
+            return NULL;
+    }
 }

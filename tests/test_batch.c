@@ -7,6 +7,8 @@
  * progress line, `score` against the batch's own numbers. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
+#include "batch.h"
+#include "cli.h"
 
 #include <check.h>
 #include <ctype.h>
@@ -425,7 +427,8 @@ static void check_batch_pages(const char *out)
     free(page);
     snprintf(path, sizeof path, "%s/blue-rubber/params.tsv", out);
     char *pt = slurp(path);
-    ck_assert_msg(strstr(pt, "\nward\t") && strstr(pt, "\nblinn-phong\t"), "%s", pt);
+    ck_assert_msg(strstr(pt, "\nblue-rubber\tward\t") && strstr(pt, "\nblue-rubber\tblinn-phong\t"),
+                  "%s", pt);
     free(pt);
 }
 
@@ -876,18 +879,24 @@ END_TEST
 
 /* ------------------------------------------------------------------ score, demo */
 
-/* Field col (0-based) of the fits.tsv row of material and model, into buf. */
-static const char *fits_field(const char *out, const char *material, const char *model, int col,
-                              char *buf, size_t len)
+/* The field of column `column` (named in the header line) of the fits.tsv
+ * row of material and model, into buf. */
+static const char *fits_field(const char *out, const char *material, const char *model,
+                              const char *column, char *buf, size_t len)
 {
     char path[1200], line[8192];
     snprintf(path, sizeof path, "%s/fits.tsv", out);
     FILE *f = fopen(path, "r");
     ck_assert_ptr_nonnull(f);
-    char *fld[32];
-    int n;
+    char *fld[40];
+    int n, col = -1;
     const char *found = NULL;
-    while ((n = tu_tsv_next(f, line, sizeof line, fld, 32)) > 0)
+    if ((n = tu_tsv_next(f, line, sizeof line, fld, 40)) > 0)
+        for (int i = 0; i < n; i++)
+            if (strcmp(fld[i], column) == 0)
+                col = i;
+    ck_assert_msg(col >= 2, "no column %s in the header of %s", column, path);
+    while ((n = tu_tsv_next(f, line, sizeof line, fld, 40)) > 0)
         if (n > col && strcmp(fld[0], material) == 0 && strcmp(fld[1], model) == 0) {
             snprintf(buf, len, "%s", fld[col]);
             found = buf;
@@ -921,15 +930,16 @@ START_TEST(score_agrees_with_the_batch)
     ck_assert_ptr_nonnull(tu_merl_table("blue-rubber", table, sizeof table));
 
     /* the fitted parameters (10 digits) score the fitted Error */
+    static const char *const cols[7] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0" };
     char p[12][64], params[1024] = "";
     for (int c = 0; c < 7; c++) {
-        fits_field(out, "blue-rubber", "ward", 2 + c, p[c], sizeof p[c]);
+        fits_field(out, "blue-rubber", "ward", cols[c], p[c], sizeof p[c]);
         strcat(params, c ? "," : "");
         strcat(params, p[c]);
     }
     char e_fit[64], e_pub[64];
-    fits_field(out, "blue-rubber", "ward", 11, e_fit, sizeof e_fit);
-    fits_field(out, "blue-rubber", "ward", 17, e_pub, sizeof e_pub);
+    fits_field(out, "blue-rubber", "ward", "error", e_fit, sizeof e_fit);
+    fits_field(out, "blue-rubber", "ward", "published_error", e_pub, sizeof e_pub);
     snprintf(args, sizeof args, "score '%s' --model ward --params %s", table, params);
     run_out r = run(args);
     expect_status(r, 0, args);
@@ -974,13 +984,229 @@ START_TEST(demo_batch_prints_its_index)
     check_page(out, "index.html");
     check_material_files(out, "synthetic-alum-bronze-ct");
     char e[64];
-    fits_field(out, "synthetic-alum-bronze-ct", "cook-torrance", 11, e, sizeof e);
+    fits_field(out, "synthetic-alum-bronze-ct", "cook-torrance", "error", e, sizeof e);
     ck_assert_msg(strtod(e, NULL) < 1e-6, "the generating model fits with Error %s", e);
     /* again: everything is in the journal */
     r = run(args);
     expect_status(r, 0, args);
     ck_assert_msg(strstr(r.err, "done (journaled)"), "%s", r.err);
     run_free(&r);
+    tmpdir_remove(dir);
+}
+END_TEST
+
+/* The journal's fit record, the fit record of `demo --json` (a fit and a
+ * failure) and those of params.json have the same keys: one schema
+ * (docs/fit-record.md). */
+START_TEST(one_record_schema_everywhere)
+{
+    char dir[512], args[4096], out[1024], path[1200], keys[4096], want[4096];
+    tmpdir(dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/demo", dir);
+    snprintf(args, sizeof args, "batch --demo --out '%s' --model ward --starts 1 --no-render --no-plot",
+             out);
+    run_out r = run(args);
+    expect_status(r, 0, args);
+    run_free(&r);
+
+    /* fit --json: a fit of the demo material, and a missing file's failure */
+    r = run("demo --json --model ward --starts 1");
+    expect_status(r, 0, "demo --json");
+    ck_assert_msg(tu_json_object_line(strtok(r.out, "\n")), "%s", r.out);
+    ck_assert_int_gt(tu_json_keys(r.out, want, sizeof want), 25);
+    run_free(&r);
+    r = run("fit --json --model ward /nonexistent-brdffit-dir/gone.binary");
+    expect_status(r, 1, "fit --json of a missing file");
+    ck_assert_int_eq(tu_json_keys(r.out, keys, sizeof keys) > 0, 1);
+    ck_assert_str_eq(keys, want);
+    run_free(&r);
+
+    /* the journal: every line */
+    snprintf(path, sizeof path, "%s/journal.jsonl", out);
+    char *j = slurp(path);
+    ck_assert_ptr_nonnull(j);
+    int lines = 0;
+    for (char *line = strtok(j, "\n"); line; line = strtok(NULL, "\n"), lines++) {
+        ck_assert_msg(tu_json_keys(line, keys, sizeof keys) > 0, "%s", line);
+        ck_assert_str_eq(keys, want);
+    }
+    ck_assert_int_ge(lines, 1);
+    free(j);
+
+    /* params.json: its fit record */
+    snprintf(path, sizeof path, "%s/synthetic-alum-bronze-ct/params.json", out);
+    char *pj = slurp(path);
+    ck_assert_msg(pj && tu_json_object_line(strtok(pj, "\n")), "%s", pj ? pj : path);
+    const char *fit = tu_json_element(tu_json_member(pj, "fits"), 0);
+    ck_assert_msg(fit != NULL, "no fit in %s", pj);
+    ck_assert_msg(tu_json_keys(fit, keys, sizeof keys) > 0, "%s", pj);
+    ck_assert_str_eq(keys, want);
+    free(pj);
+    tmpdir_remove(dir);
+}
+END_TEST
+
+/* Append a copy of the journal's first fit record that succeeded, with this
+ * status text, status code and message. */
+static void append_fit_as(const char *out, const char *status, int code, const char *message)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/journal.jsonl", out);
+    char *j = slurp(path);
+    ck_assert_ptr_nonnull(j);
+    static const char ok[] = "\"status\":\"ok\",\"status_code\":0,\"message\":\"\"";
+    char *fit = NULL, *at = NULL;
+    for (char *line = strtok(j, "\n"); line && !at; line = strtok(NULL, "\n"))
+        if (strncmp(line, "{\"kind\":\"fit\"", 13) == 0 && (at = strstr(line, ok)) != NULL)
+            fit = line;
+    ck_assert_msg(at != NULL, "no fit that succeeded in %s", path);
+    *at = '\0';
+    FILE *f = fopen(path, "a");
+    ck_assert_ptr_nonnull(f);
+    fprintf(f, "%s\"status\":\"%s\",\"status_code\":%d,\"message\":\"%s\"%s\n", fit, status,
+            code, message, at + strlen(ok));
+    ck_assert_int_eq(fclose(f), 0);
+    free(j);
+}
+
+/* Resume decides by the status code, not by the words: a failed fit whose
+ * text is today's wording of a transient failure but whose code is not is
+ * kept; one whose code is transient but whose words are not is fitted again. */
+START_TEST(resume_decides_by_status_code)
+{
+    char dir[512], args[4096], out[1024];
+    tmpdir(dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/demo", dir);
+    snprintf(args, sizeof args, "batch --demo --out '%s' --model ward --starts 1 --no-render --no-plot",
+             out);
+    run_out r = run(args);
+    expect_status(r, 0, args);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 1);
+
+    append_fit_as(out, brdffit_strerror(BRDFFIT_E_OPENCL), BRDFFIT_E_FIT_FAILED,
+                  "OpenCL error");
+    r = run(args);
+    ck_assert_msg(strstr(r.err, "done (journaled)"), "a fit failed on the data was redone:\n%s", r.err);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 2);
+
+    append_fit_as(out, "the device went away (reworded)", BRDFFIT_E_OPENCL, "reworded");
+    r = run(args);
+    expect_status(r, 0, args);
+    ck_assert_msg(!strstr(r.err, "done (journaled)"), "a transient failure was kept:\n%s", r.err);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 4);
+    tmpdir_remove(dir);
+}
+END_TEST
+
+/* r as the journal line of the earlier form (before fit_record.h): "file"
+ * {path, size, hash}, "ok", the "status" text, "on_bound". */
+static void write_old_form(FILE *f, const fit_record *r)
+{
+    static const char *const kinds[] = { "fit", "failure", "published", "assets" };
+    fprintf(f, "{\"kind\":\"%s\",\"material\":", kinds[r->kind]);
+    json_string(f, r->material);
+    fputs(",\"file\":{\"path\":", f);
+    json_string(f, r->id.path);
+    fprintf(f, ",\"size\":%lld,\"hash\":", r->id.size);
+    json_string(f, r->id.hash);
+    fputs("},\"settings\":{\"version\":", f);
+    json_string(f, r->settings.version);
+    fputs(",\"scale\":", f);
+    json_string(f, r->settings.scale);
+    fputs(",\"cutoff_deg\":", f);
+    json_number(f, r->settings.cutoff_deg);
+    fprintf(f, ",\"starts\":%d},\"model\":", r->settings.starts);
+    json_string(f, r->model);
+    fprintf(f, ",\"ok\":%s,\"status\":", fr_ok(r) ? "true" : "false");
+    json_string(f, fr_status_text(r));
+    fputs(",\"message\":", f);
+    json_string(f, r->message);
+    if (r->kind == FR_FIT || r->kind == FR_PUBLISHED) {
+        fputs(",\"d\":", f);
+        json_numbers(f, r->params.d, 3);
+        fputs(",\"s\":", f);
+        json_numbers(f, r->params.s, 3);
+        fputs(",\"p\":", f);
+        json_numbers(f, r->params.p, r->nparams);
+        fputs(",\"lambda_um\":", f);
+        json_numbers(f, r->params.lambda_um, 3);
+        fputs(",\"error\":", f);
+        json_number(f, r->error);
+    }
+    if (r->kind == FR_FIT) {
+        /* on_bound: "n=lower,d_b=0" */
+        char list[128], names[256] = "";
+        brdffit_model m;
+        ck_assert_int_eq(brdffit_model_from_name(r->model, &m, NULL), BRDFFIT_OK);
+        fr_at_bound_text(m, r->at_bound, ",", list, sizeof list);
+        for (char *save = NULL, *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+            int linear = strlen(t) == 3 && (t[0] == 'd' || t[0] == 's') && t[1] == '_';
+            size_t o = strlen(names);
+            snprintf(names + o, sizeof names - o, "%s%s=%s", o ? "," : "", t, linear ? "0" : "lower");
+        }
+        fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"cminpack_info\":%d,\"seconds\":",
+                r->iterations, r->passes, r->cminpack_info);
+        json_number(f, r->seconds);
+        fprintf(f, ",\"samples\":%lld,\"on_bound\":\"%s\",\"backend\":", r->samples, names);
+        json_string(f, r->backend);
+    }
+    if (r->kind == FR_ASSETS) {
+        fputs(",\"assets_key\":", f);
+        json_string(f, r->assets_key);
+        fputs(",\"assets\":", f);
+        json_string(f, r->assets);
+    }
+    fputs("}\n", f);
+}
+
+/* An --out directory whose journal an earlier version wrote resumes: its
+ * records are read (nothing fitted or drawn again) and the report is the same. */
+START_TEST(old_form_journal_resumes)
+{
+    char dir[512], args[4096], out[1024], path[1200];
+    tmpdir(dir, sizeof dir);
+    snprintf(out, sizeof out, "%s/demo", dir);
+    snprintf(args, sizeof args, "batch --demo --out '%s' --model ward,he --starts 1 --no-render", out);
+    run_out r = run(args);
+    expect_status(r, 0, args);
+    run_free(&r);
+    char *clean = fits_sans_timing(out);
+
+    /* the journal rewritten in the earlier form */
+    snprintf(path, sizeof path, "%s/journal.jsonl", out);
+    char *j = slurp(path);
+    ck_assert_ptr_nonnull(j);
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    int n = 0, assets = 0;
+    static fit_record rec;
+    for (char *line = strtok(j, "\n"); line; line = strtok(NULL, "\n"), n++) {
+        ck_assert_msg(fr_read_json(line, &rec, FR_NEED_KEY) == 0, "%s", line);
+        assets += rec.kind == FR_ASSETS;
+        write_old_form(f, &rec);
+    }
+    ck_assert_int_eq(fclose(f), 0);
+    free(j);
+    ck_assert_int_eq(n, 3);
+    ck_assert_int_eq(assets, 1);
+    j = slurp(path);
+    ck_assert_msg(strstr(j, "\"ok\":true") && !strstr(j, "status_code"), "%s", j);
+    free(j);
+
+    r = run(args);
+    expect_status(r, 0, args);
+    ck_assert_msg(strstr(r.err, "done (journaled)") && !strstr(r.err, "not journal records"),
+                  "the earlier journal was not resumed:\n%s", r.err);
+    run_free(&r);
+    ck_assert_int_eq(journal_count(out, "fit"), 2);
+    ck_assert_int_eq(journal_count(out, "assets"), 1);
+    char *resumed = fits_sans_timing(out);
+    ck_assert_str_eq(resumed, clean);
+    free(resumed);
+    free(clean);
     tmpdir_remove(dir);
 }
 END_TEST
@@ -1000,6 +1226,9 @@ Suite *batch_suite(void)
     tcase_add_test(tc, progress_lines);
     tcase_add_test(tc, score_agrees_with_the_batch);
     tcase_add_test(tc, demo_batch_prints_its_index);
+    tcase_add_test(tc, one_record_schema_everywhere);
+    tcase_add_test(tc, resume_decides_by_status_code);
+    tcase_add_test(tc, old_form_journal_resumes);
     suite_add_tcase(s, tc);
     return s;
 }

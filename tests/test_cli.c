@@ -52,9 +52,10 @@ static int split_lines(char *text, char **lines, int max)
 /* Checks every key a successful fit record must have. */
 static void check_fit_record(const char *line, const char *want_material, const char *want_model)
 {
-    static const char *const keys[] = { "material", "model", "d", "s", "p", "error", "metric",
-                                        "status", "iterations", "passes", "seconds",
-                                        "seconds_build", "backend", "samples", "cminpack_info" };
+    static const char *const keys[] = { "kind", "material", "model", "d", "s", "p", "error",
+                                        "settings", "status", "status_code", "message",
+                                        "iterations", "passes", "seconds", "seconds_build",
+                                        "backend", "samples", "cminpack_info", "at_bound", "flags" };
     ck_assert_msg(tu_json_object_line(line), "not one JSON object: %s", line);
     ck_assert_msg(line[0] == '{' && line[strlen(line) - 1] == '}', "line: %s", line);
     for (size_t k = 0; k < sizeof keys / sizeof keys[0]; k++)
@@ -62,6 +63,10 @@ static void check_fit_record(const char *line, const char *want_material, const 
     char s[256];
     ck_assert(tu_json_get_string(line, "status", s, sizeof s));
     ck_assert_msg(strcmp(s, "ok") == 0, "status %s in %s", s, line);
+    double code;
+    ck_assert(tu_json_get_number(line, "status_code", &code) && code == BRDFFIT_OK);
+    ck_assert(tu_json_get_string(line, "kind", s, sizeof s));
+    ck_assert_str_eq(s, "fit");
     ck_assert(tu_json_get_string(line, "material", s, sizeof s));
     ck_assert_str_eq(s, want_material);
     ck_assert(tu_json_get_string(line, "model", s, sizeof s));
@@ -74,9 +79,9 @@ static void check_fit_record(const char *line, const char *want_material, const 
     ck_assert_int_eq(tu_json_array_len(line, "d"), 3);
     ck_assert_int_eq(tu_json_array_len(line, "s"), 3);
     ck_assert_int_eq(tu_json_array_len(line, "p"), brdffit_model_get(m)->nparams);
-    const char *metric = tu_json_member(line, "metric");
+    const char *metric = tu_json_member(line, "settings");
     ck_assert_ptr_nonnull(metric);
-    ck_assert(tu_json_get_string(metric, "name", s, sizeof s));
+    ck_assert(tu_json_get_string(metric, "metric", s, sizeof s));
     ck_assert_str_eq(s, brdffit_metric_name());
     double cut;
     ck_assert(tu_json_get_number(metric, "cutoff_deg", &cut));
@@ -244,7 +249,7 @@ START_TEST(fit_missing_file)
 END_TEST
 
 /* A truncated table and a missing file: both reported on stderr and as JSON
- * records with "status" and "error_message"; names with quotes, backslashes
+ * records with "status", "status_code" and "message"; names with quotes, backslashes
  * and tabs come out escaped. */
 START_TEST(json_failure_records)
 {
@@ -278,11 +283,16 @@ START_TEST(json_failure_records)
         char s[2048];
         ck_assert(tu_json_get_string(lines[i], "status", s, sizeof s));
         ck_assert_str_ne(s, "ok");
-        ck_assert(tu_json_get_string(lines[i], "error_message", s, sizeof s));
+        double code;
+        ck_assert(tu_json_get_number(lines[i], "status_code", &code));
+        ck_assert_int_eq((int)code, i == 0 ? BRDFFIT_E_FILE_TRUNCATED : BRDFFIT_E_FILE_OPEN);
+        ck_assert(tu_json_get_string(lines[i], "kind", s, sizeof s));
+        ck_assert_str_eq(s, "failure");
+        ck_assert(tu_json_get_string(lines[i], "message", s, sizeof s));
         ck_assert_msg(strstr(s, i == 0 ? bad : "gone.binary") != NULL, "message %s", s);
         ck_assert(tu_json_get_string(lines[i], "material", s, sizeof s));
         ck_assert_str_eq(s, i == 0 ? name : "gone");
-        ck_assert_ptr_nonnull(tu_json_member(lines[i], "metric"));
+        ck_assert_ptr_nonnull(tu_json_member(lines[i], "settings"));
     }
     run_free(&r);
     unlink(bad);
@@ -338,7 +348,7 @@ START_TEST(fit_json_good_and_missing)
     int n = split_lines(r.out, lines, 16);
     ck_assert_msg(n == 2, "%d lines, expected 2:\n%s", n, r.out);
     check_fit_record(lines[0], "blue-rubber", "ward");
-    const char *metric = tu_json_member(lines[0], "metric");
+    const char *metric = tu_json_member(lines[0], "settings");
     double cut;
     char scale[32];
     ck_assert(tu_json_get_number(metric, "cutoff_deg", &cut));
@@ -349,7 +359,7 @@ START_TEST(fit_json_good_and_missing)
     char s[1024];
     ck_assert(tu_json_get_string(lines[1], "status", s, sizeof s));
     ck_assert_str_eq(s, brdffit_strerror(BRDFFIT_E_FILE_OPEN));
-    ck_assert(tu_json_get_string(lines[1], "error_message", s, sizeof s));
+    ck_assert(tu_json_get_string(lines[1], "message", s, sizeof s));
     ck_assert(strstr(s, "/nonexistent-brdffit-dir/missing.binary") != NULL);
     run_free(&r);
 }

@@ -173,5 +173,10 @@ int tu_json_get_number(const char *obj, const char *key, double *x);
 int tu_json_get_element(const char *obj, const char *key, int i, double *x);
 /* Length of the array member key, or -1. */
 int tu_json_array_len(const char *obj, const char *key);
+/* The keys of the object at obj (text may follow it), sorted, joined by ','
+ * into out; their number, or -1 when obj is not an object. */
+int tu_json_keys(const char *obj, char *out, size_t len);
+/* The start of element i of the array at arr (a member's value), or NULL. */
+const char *tu_json_element(const char *arr, int i);
 
 #endif

@@ -33,7 +33,8 @@ def test_fit_equals_the_program(brdffit, ctx, cli, alum_bronze, model, cutoff, s
     assert r.error == rec["error"]
     assert (r.iterations, r.passes, r.cminpack_info, r.samples) == \
         (rec["iterations"], rec["passes"], rec["cminpack_info"], rec["samples"])
-    assert rec["metric"]["scale"] == scale
+    assert rec["settings"]["scale"] == scale and rec["settings"]["metric"] == "ngan-l2"
+    assert rec["kind"] == "fit" and rec["status_code"] == 0 and rec["message"] == ""
     assert r.status == brdffit.Status.OK and r.converged
     assert r.model is brdffit.model(model) and r.seconds > 0
     assert 0 <= r.seconds_solver <= r.seconds and 0 <= r.seconds_passes <= r.seconds

@@ -34,7 +34,7 @@ static int assets_write(const char *dir, const char *material, const brdffit_tab
 }
 
 int batch_assets(const char *dir, const char *material, const brdffit_table *table,
-                 const brdffit_sample_options *sample, const bj_record *const *fits, int nfits,
+                 const brdffit_sample_options *sample, const fit_record *const *fits, int nfits,
                  int render, int plot, char *list, size_t len, brdffit_error *err)
 {
     rf_fit rf[RF_MAX_FITS];

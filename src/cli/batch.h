@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* batch.h -- what the files of `brdffit batch`, `report` and `score` share.
  *
- *   journal.c      the journal DIR/journal.jsonl: records, settings, material
- *                  identity, append (fsync'd) and load (a torn last line ignored)
+ *   journal.c      the journal DIR/journal.jsonl: settings, material identity,
+ *                  append (fsync'd) and load (a torn last line ignored) of the
+ *                  records of fit_record.h
  *   jsonread.c     a small reader for the JSON objects the journal holds
  *   published.c    the published-fits TSV (material, model, d, s, p0..p2)
  *   outfile.c      files of the report written whole (temporary + rename), errors kept
@@ -20,24 +21,11 @@
 #define BRDFFIT_BATCH_H
 
 #include "brdffit.h"
+#include "fit_record.h"
 
 #include <stdio.h>
 
-#define BJ_PATH_MAX 4096
-#define BJ_NAME_MAX 256
-#define BJ_MSG_MAX 512
-#define BJ_MODEL_NAME_MAX 32
 #define BJ_MAX_MODELS 32   /* model ids below this (the registry has fewer) */
-#define BJ_ASSETS_MAX 4096
-
-/* The settings a fit depends on besides the material and the model.  Records
- * made with other settings are not reused. */
-typedef struct bj_settings {
-    char version[32];      /* brdffit_version()                       */
-    char scale[16];        /* "standard" | "flat"                     */
-    double cutoff_deg;
-    int starts;            /* --starts; 0 = each model's own default  */
-} bj_settings;
 
 void bj_settings_make(bj_settings *s, const brdffit_sample_options *so, const brdffit_fit_options *fo);
 int bj_settings_equal(const bj_settings *a, const bj_settings *b);
@@ -45,56 +33,19 @@ int bj_settings_equal(const bj_settings *a, const bj_settings *b);
 const char *bj_settings_diff(const bj_settings *journal, const bj_settings *run, char *buf,
                              size_t len);
 
-/* A material's identity: its path (made absolute), size and a hash of its bytes
- * (64-bit FNV-1a over 8-byte words, hex).  The embedded demo material has path "(embedded)". */
-typedef struct bj_identity {
-    char path[BJ_PATH_MAX];
-    long long size;
-    char hash[20];
-} bj_identity;
-
 /* Identify the file at path (reads it whole).  0, or -1 with err filled. */
 int bj_identify(const char *path, bj_identity *id, brdffit_error *err);
 /* The identity of bytes in memory (the embedded material). */
 void bj_identify_bytes(const char *label, const void *data, size_t len, bj_identity *id);
 int bj_identity_equal(const bj_identity *a, const bj_identity *b);
 
-typedef enum bj_kind {
-    BJ_FIT = 0,         /* a model fitted (or its fit failed: ok = 0)           */
-    BJ_FAILURE = 1,     /* the material could not be read or sampled           */
-    BJ_PUBLISHED = 2,   /* the Error of a material's published parameters       */
-    BJ_ASSETS = 3       /* the renders and plots of a material are written      */
-} bj_kind;
-
-typedef struct bj_record {
-    bj_kind kind;
-    char material[BJ_NAME_MAX];
-    bj_identity id;
-    bj_settings settings;
-    char model[BJ_MODEL_NAME_MAX];  /* BJ_FIT, BJ_PUBLISHED; BJ_ASSETS: "" */
-    int ok;
-    char status[64];                /* "ok" or brdffit_strerror()          */
-    char message[BJ_MSG_MAX];       /* why it failed                       */
-    brdffit_params params;          /* d, s, p (nparams), lambda_um (He)   */
-    int nparams;
-    double error;
-    int iterations, passes, cminpack_info;
-    double seconds;
-    long long samples;
-    char on_bound[128];             /* "n=upper,d_b=0" or ""               */
-    char backend[16];               /* "opencl" | "host"                   */
-    char assets_key[BJ_MSG_MAX];    /* BJ_ASSETS: what was drawn ("render,plot:ward,he") */
-    char assets[BJ_ASSETS_MAX];     /* BJ_ASSETS: lines "kind<TAB>file<TAB>caption"   */
-    int origin;                     /* not journaled: which journal it came from      */
-} bj_record;
-
 /* A growing array of records. */
 typedef struct bj_records {
-    bj_record *r;
+    fit_record *r;
     int n, cap;
 } bj_records;
 
-int bj_records_push(bj_records *rs, const bj_record *r);
+int bj_records_push(bj_records *rs, const fit_record *r);
 void bj_records_free(bj_records *rs);
 
 /* The journal of an output directory, open for appending. */
@@ -107,7 +58,7 @@ typedef struct bj_journal {
  * the middle of a write) is cut off first; *torn says so.  0 or -1 (err). */
 int bj_journal_open(bj_journal *j, const char *dir, int *torn, brdffit_error *err);
 /* Append one record as one line, then fsync: 0, or -1 with err filled. */
-int bj_journal_append(bj_journal *j, const bj_record *r, brdffit_error *err);
+int bj_journal_append(bj_journal *j, const fit_record *r, brdffit_error *err);
 void bj_journal_close(bj_journal *j);
 
 /* Read the records of a journal file into rs (appended).  A missing file is
@@ -115,20 +66,12 @@ void bj_journal_close(bj_journal *j);
  * last line in *torn).  0, or -1 when the file cannot be read (err). */
 int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdffit_error *err);
 
-/* One record as a JSON object (no newline) onto f. */
-void bj_record_json(FILE *f, const bj_record *r);
-/* Parse one JSON line into r: 0, or -1 when it is not a record. */
-int bj_record_parse(const char *line, bj_record *r);
-
-/* The lobe parameters (and d, s) at a bound, as "name=lower,..." into buf. */
-const char *bj_on_bound(brdffit_model model, const brdffit_params *p, char *buf, size_t len);
-
 /* ---- jsonread.c ---- */
 
 typedef enum jr_type { JR_NULL = 0, JR_BOOL, JR_NUMBER, JR_STRING, JR_ARRAY, JR_OBJECT } jr_type;
 
 #define JR_MAX_MEMBERS 48
-#define JR_MAX_ARRAY 8
+#define JR_MAX_ARRAY 16
 
 /* A flat JSON object: members whose values are null, true/false, numbers,
  * strings, arrays of up to JR_MAX_ARRAY numbers, or a flat object (settings). */
@@ -138,7 +81,8 @@ typedef struct jr_member {
     double num;
     double arr[JR_MAX_ARRAY];
     int narr;
-    char *str;            /* JR_STRING: decoded, NUL-terminated (owned)  */
+    char *str;            /* JR_STRING: decoded, NUL-terminated (owned);
+                             JR_ARRAY: its string elements, one a line, or NULL */
     int sub;              /* JR_OBJECT: index of its first member; nsub members follow */
     int nsub;
 } jr_member;
@@ -230,7 +174,7 @@ static inline void cli_fault_point(const char *point)
  * "kind<TAB>file<TAB>caption" (kind: image, plot, data) into list.
  * 0, or -1 with err (BRDFFIT_E_FILE_WRITE when dir could not be written). */
 int batch_assets(const char *dir, const char *material, const brdffit_table *table,
-                 const brdffit_sample_options *sample, const bj_record *const *fits, int nfits,
+                 const brdffit_sample_options *sample, const fit_record *const *fits, int nfits,
                  int render, int plot, char *list, size_t len, brdffit_error *err);
 
 /* ---- report_data.c ---- */
@@ -243,10 +187,10 @@ int batch_assets(const char *dir, const char *material, const brdffit_table *tab
 typedef struct rp_material {
     char name[BJ_NAME_MAX];
     bj_identity id;
-    const bj_record *failure;       /* the material could not be read: why    */
-    const bj_record *fit[BJ_MAX_MODELS];       /* by slot of rp_report.models, or NULL */
-    const bj_record *published[BJ_MAX_MODELS]; /* by slot, or NULL                     */
-    const bj_record *assets;
+    const fit_record *failure;       /* the material could not be read: why    */
+    const fit_record *fit[BJ_MAX_MODELS];       /* by slot of rp_report.models, or NULL */
+    const fit_record *published[BJ_MAX_MODELS]; /* by slot, or NULL                     */
+    const fit_record *assets;
     char asset_dir[BJ_PATH_MAX];    /* where its renders and plots are (report: a shard) */
 } rp_material;
 

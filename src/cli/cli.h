@@ -6,7 +6,8 @@
  *                 blocks of options
  *   man.c         the same as a manual page (`brdffit help --man`)
  *   cmd_fit.c     `fit` and `demo`: tables, sample sets, one context, the fits
- *                 (the next file read meanwhile by batch.h's prefetch.c)
+ *                 through fit_pipeline.c (the next file read meanwhile by
+ *                 batch.h's prefetch.c)
  *   cmd_models.c  `models`: the models and their lobe parameters
  *   cmd_eval.c    `eval`: one BRDF value
  *   args.c        strict number parsing, usage errors, the list of model names
@@ -14,7 +15,11 @@
  *   material.c    what a fit report is about: a material's name from its path
  *   kernel_note.c on a terminal, a line while a model's kernels are compiled
  *   hints.c       what an input of the wrong kind was probably meant to be
- *   report.c      the paper-style table and the JSON Lines records
+ *   report.c      the paper-style table of the fits
+ *   fit_record.c  the fit record: its JSON (fit --json, the batch journal,
+ *                 params.json) and TSV (fits.tsv, params.tsv) (fit_record.h)
+ *   fit_pipeline.c  the one loop that reads a table, samples it and fits it
+ *                 (fit, demo, batch, render/plot's fits; fit_pipeline.h)
  *   json.c        JSON text: escaped strings, round-tripping numbers
  *   text.c        text for the terminal: control characters made harmless
  *   demo_material.c  the embedded synthetic material (demo, batch --demo)
@@ -217,14 +222,6 @@ void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
                 const brdffit_params *p, double error, const brdffit_fit_result *r);
 void report_row_failed(FILE *f, brdffit_model model, const brdffit_error *err);
 void report_legend(FILE *f, const brdffit_model *models, int nmodels);
-
-/* JSON Lines mode: one object per fit; r is NULL when the fit failed. */
-void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
-                     const brdffit_samples *s, brdffit_model model, brdffit_status st,
-                     const brdffit_error *err, const brdffit_fit_result *r);
-/* One object for a material that could not be fitted at all (file, samples, context). */
-void report_json_failure(FILE *f, const cli_material *m, brdffit_status st,
-                         const brdffit_error *err);
 
 /* ---- json.c ---- */
 

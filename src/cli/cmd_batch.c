@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "batch.h"
 #include "cli.h"
+#include "fit_pipeline.h"
 #include "prefetch.h"
 
 #include <dirent.h>
@@ -373,23 +374,23 @@ typedef struct batch_run {
     double seconds_render;   /* of the render jobs (in their thread)   */
     struct render_job *job;  /* the renders and plots in flight        */
     table_prefetch *pre;     /* the next material's table, read meanwhile */
+    fp_job fit_job;          /* the models and settings of every material's fits */
 } batch_run;
 
-static void fill_key(bj_record *r, bj_kind kind, const batch_material *m, const bj_settings *s)
+static void fill_key(fit_record *r, fr_kind kind, const batch_material *m, const bj_settings *s)
 {
-    memset(r, 0, sizeof *r);
-    r->kind = kind;
+    fr_init(r, kind);
     snprintf(r->material, sizeof r->material, "%s", m->name);
     r->id = m->id;
     r->settings = *s;
 }
 
 /* The record of this key already journaled (last one), or NULL. */
-static const bj_record *find(const batch_run *R, bj_kind kind, const batch_material *m,
+static const fit_record *find(const batch_run *R, fr_kind kind, const batch_material *m,
                              const char *model)
 {
     for (int i = R->all.n - 1; i >= 0; i--) {
-        const bj_record *r = &R->all.r[i];
+        const fit_record *r = &R->all.r[i];
         if (r->kind == kind && strcmp(r->model, model) == 0 && strcmp(r->material, m->name) == 0 &&
             bj_identity_equal(&r->id, &m->id) && bj_settings_equal(&r->settings, &R->settings))
             return r;
@@ -398,7 +399,7 @@ static const bj_record *find(const batch_run *R, bj_kind kind, const batch_mater
 }
 
 /* Journal a record and keep it; a failure to write stops the batch. */
-static int keep(batch_run *R, const bj_record *r)
+static int keep(batch_run *R, const fit_record *r)
 {
     if (bj_journal_append(&R->journal, r, &R->out_err) != 0) {
         R->out_failed = 1;
@@ -449,20 +450,10 @@ static int same_params(const brdffit_params *a, const brdffit_params *b, int np)
     return 1;
 }
 
-/* A fit that failed for a reason outside the data (no device, an OpenCL or
- * kernel-build failure, an unusable kernel cache, no memory) is tried again by
- * the next run. */
-static int done_fit(const bj_record *r)
+/* A fit journaled and not to be done again (fr_retry: by its status code). */
+static int done_fit(const fit_record *r)
 {
-    static const brdffit_status transient[] = { BRDFFIT_E_NO_MEMORY, BRDFFIT_E_NO_DEVICE,
-                                                BRDFFIT_E_OPENCL, BRDFFIT_E_KERNEL_BUILD,
-                                                BRDFFIT_E_CACHE_DIR };
-    if (!r)
-        return 0;
-    for (size_t i = 0; i < sizeof transient / sizeof transient[0]; i++)
-        if (!r->ok && strcmp(r->status, brdffit_strerror(transient[i])) == 0)
-            return 0;
-    return 1;
+    return r && !fr_retry(r);
 }
 
 static todo plan(const batch_run *R, const batch_material *m)
@@ -472,10 +463,10 @@ static todo plan(const batch_run *R, const batch_material *m)
     const cli_options *o = &R->b->common;
     for (int i = 0; i < o->nmodels; i++) {
         const char *mn = brdffit_model_get(o->models[i])->name;
-        t.fits[i] = !done_fit(find(R, BJ_FIT, m, mn));
+        t.fits[i] = !done_fit(find(R, FR_FIT, m, mn));
         const pub_row *pr = R->have_pub ? pub_find(&R->pub, m->name, o->models[i]) : NULL;
         if (pr) {
-            const bj_record *pb = find(R, BJ_PUBLISHED, m, mn);
+            const fit_record *pb = find(R, FR_PUBLISHED, m, mn);
             t.published[i] =
                 !pb || !same_params(&pb->params, &pr->params, brdffit_model_get(o->models[i])->nparams);
         }
@@ -484,7 +475,7 @@ static todo plan(const batch_run *R, const batch_material *m)
     if (want_assets(R)) {
         char key[BJ_MSG_MAX];
         assets_key(R, key, sizeof key);
-        const bj_record *a = find(R, BJ_ASSETS, m, "");
+        const fit_record *a = find(R, FR_ASSETS, m, "");
         t.assets = !a || strcmp(a->assets_key, key) != 0;
         t.any |= t.assets;
     }
@@ -493,26 +484,30 @@ static todo plan(const batch_run *R, const batch_material *m)
 
 /* ------------------------------------------------------------------ one material */
 
-static void material_failed(batch_run *R, batch_material *m, const brdffit_error *err)
+/* A material's failure: said, journaled. */
+static void failure_record(batch_run *R, const fit_record *r)
 {
-    bj_record r;
-    fill_key(&r, BJ_FAILURE, m, &R->settings);
-    if (!m->identified) { /* not even readable: the path as given, no size or hash */
-        snprintf(r.id.path, sizeof r.id.path, "%s", m->path);
-        r.id.size = -1;
-    }
-    r.ok = 0;
-    snprintf(r.status, sizeof r.status, "%s", brdffit_strerror(err->status));
-    snprintf(r.message, sizeof r.message, "%.500s", err->message[0] ? err->message : r.status);
-    if (!m->identified)
-        m->id = r.id;
     R->failures++;
     if (R->P.live && !R->P.quiet)
         fputs("\r\033[K", stderr);
     fputs("brdffit: ", stderr);
-    plain_string(stderr, r.message);
+    plain_string(stderr, r->message);
     fputc('\n', stderr);
-    keep(R, &r);
+    keep(R, r);
+}
+
+static void material_failed(batch_run *R, batch_material *m, const brdffit_error *err)
+{
+    fit_record r;
+    fill_key(&r, FR_FAILURE, m, &R->settings);
+    if (!m->identified) { /* not even readable: the path as given, no size or hash */
+        snprintf(r.id.path, sizeof r.id.path, "%s", m->path);
+        r.id.size = -1;
+    }
+    fr_set_failure(&r, err->status, err);
+    if (!m->identified)
+        m->id = r.id;
+    failure_record(R, &r);
 }
 
 static int ensure_context(batch_run *R, brdffit_error *err)
@@ -537,62 +532,17 @@ static brdffit_status load_table(const batch_material *m, brdffit_scale scale, b
     return brdffit_table_read(m->path, t, err);
 }
 
-static void fit_one(batch_run *R, const batch_material *m, const brdffit_samples *s,
-                    brdffit_model model)
-{
-    const brdffit_model_info *mi = brdffit_model_get(model);
-    brdffit_fit_result res;
-    brdffit_error err;
-    brdffit_fit_result_init(&res);
-    memset(&err, 0, sizeof err);
-    double t0 = now();
-    int note = R->P.quiet ? 0 : kernel_note_begin(stderr, R->ctx, model);
-    brdffit_status st = brdffit_fit(R->ctx, s, model, &R->b->common.fit, &res, &err);
-    kernel_note_end(stderr, note, R->ctx, model);
-    R->seconds_fitting += now() - t0;
-    R->P.fit_seconds += now() - t0;
-    R->P.fitted_now++;
-    bj_record r;
-    fill_key(&r, BJ_FIT, m, &R->settings);
-    snprintf(r.model, sizeof r.model, "%s", mi->name);
-    r.ok = st == BRDFFIT_OK;
-    /* "limit": fitted, but the LM run kept stopped on its evaluation limit */
-    snprintf(r.status, sizeof r.status, "%s",
-             !r.ok ? brdffit_strerror(st) : res.flags & BRDFFIT_FIT_LIMIT ? "limit" : "ok");
-    r.nparams = mi->nparams;
-    r.samples = (long long)brdffit_samples_count(s);
-    snprintf(r.backend, sizeof r.backend, "%s",
-             brdffit_context_backend(R->ctx) == BRDFFIT_BACKEND_OPENCL ? "opencl" : "host");
-    if (r.ok) {
-        r.params = res.params;
-        r.error = res.error;
-        r.iterations = res.iterations;
-        r.passes = res.passes;
-        r.cminpack_info = res.cminpack_info;
-        r.seconds = res.seconds;
-        bj_on_bound(model, &res.params, r.on_bound, sizeof r.on_bound);
-    } else {
-        r.error = NAN;
-        r.seconds = NAN;
-        snprintf(r.message, sizeof r.message, "%.500s", err.message);
-        R->failures++;
-        fputs(R->P.live && !R->P.quiet ? "\r\033[K" : "", stderr);
-        cli_error("%s: fitting %s failed: %s", m->name, mi->name,
-                  err.message[0] ? err.message : r.status);
-    }
-    keep(R, &r);
-}
-
 static void published_one(batch_run *R, const batch_material *m, const brdffit_samples *s,
                           brdffit_model model)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);
     const pub_row *pr = pub_find(&R->pub, m->name, model);
-    bj_record r;
-    fill_key(&r, BJ_PUBLISHED, m, &R->settings);
+    fit_record r;
+    fill_key(&r, FR_PUBLISHED, m, &R->settings);
     snprintf(r.model, sizeof r.model, "%s", mi->name);
     r.params = pr->params;
     r.nparams = mi->nparams;
+    r.has_params = 1;
     brdffit_error err;
     memset(&err, 0, sizeof err);
     double e = NAN, t0 = now();
@@ -603,10 +553,9 @@ static void published_one(batch_run *R, const batch_material *m, const brdffit_s
         kernel_note_end(stderr, note, R->ctx, model);
     }
     R->seconds_fitting += now() - t0;
-    r.ok = st == BRDFFIT_OK;
     r.error = e;
-    snprintf(r.status, sizeof r.status, "%s", r.ok ? "ok" : brdffit_strerror(st));
-    if (!r.ok)
+    r.status = st;
+    if (st != BRDFFIT_OK)
         snprintf(r.message, sizeof r.message, "published parameters of %s: %.400s", mi->name,
                  err.message);
     keep(R, &r);
@@ -623,9 +572,9 @@ typedef struct render_job {
     char dir[BJ_PATH_MAX];
     brdffit_table *table;          /* owned: freed when collected   */
     brdffit_sample_options sample;
-    bj_record *fits;               /* copies (the records array may move) */
+    fit_record *fits;               /* copies (the records array may move) */
     int nfits, render, plot;
-    bj_record rec;                 /* the BJ_ASSETS record to journal */
+    fit_record rec;                 /* the FR_ASSETS record to journal */
     int rc;
     brdffit_error err;
     double seconds;
@@ -634,7 +583,7 @@ typedef struct render_job {
 static void *render_main(void *arg)
 {
     render_job *J = arg;
-    const bj_record *fits[BJ_MAX_MODELS];
+    const fit_record *fits[BJ_MAX_MODELS];
     for (int i = 0; i < J->nfits; i++)
         fits[i] = &J->fits[i];
     double t0 = now();
@@ -668,8 +617,7 @@ static void render_collect(batch_run *R, render_job *J)
         }
         return;
     }
-    J->rec.ok = 1;
-    snprintf(J->rec.status, sizeof J->rec.status, "ok");
+    J->rec.status = BRDFFIT_OK;
     cli_fault_point("asset");
     if (!R->out_failed)
         keep(R, &J->rec);
@@ -687,7 +635,7 @@ static void render_start(batch_run *R, render_job *J, const batch_material *m, b
     J->plot = !R->b->no_plot;
     J->nfits = 0;
     J->fits = malloc((size_t)(o->nmodels > 0 ? o->nmodels : 1) * sizeof *J->fits);
-    fill_key(&J->rec, BJ_ASSETS, m, &R->settings);
+    fill_key(&J->rec, FR_ASSETS, m, &R->settings);
     assets_key(R, J->rec.assets_key, sizeof J->rec.assets_key);
     if (!J->fits || out_join(J->dir, sizeof J->dir, R->b->out, m->name) != 0 ||
         out_mkdir(J->dir, &R->out_err) != 0) {
@@ -701,8 +649,8 @@ static void render_start(batch_run *R, render_job *J, const batch_material *m, b
         return;
     }
     for (int i = 0; i < o->nmodels; i++) {
-        const bj_record *f = find(R, BJ_FIT, m, brdffit_model_get(o->models[i])->name);
-        if (f && f->ok)
+        const fit_record *f = find(R, FR_FIT, m, brdffit_model_get(o->models[i])->name);
+        if (f && fr_ok(f))
             J->fits[J->nfits++] = *f;
     }
     J->threaded = pthread_create(&J->thread, NULL, render_main, J) == 0;
@@ -715,7 +663,7 @@ static void render_start(batch_run *R, render_job *J, const batch_material *m, b
 static void note_changed(const batch_run *R, const batch_material *m)
 {
     for (int i = R->all.n - 1; i >= 0; i--) {
-        const bj_record *r = &R->all.r[i];
+        const fit_record *r = &R->all.r[i];
         if (strcmp(r->material, m->name) != 0 || r->id.size < 0 || m->embedded ||
             !bj_settings_equal(&r->settings, &R->settings))
             continue;
@@ -761,60 +709,87 @@ static int identify_material(batch_run *R, batch_material *m, int i, int n, brdf
     return R->out_failed ? -1 : 1;
 }
 
-/* The material's sample set, from *t (read here if not yet); a failure is
- * recorded with the material's name and shown. */
-static int material_samples(batch_run *R, batch_material *m, int i, int n, brdffit_table **t,
-                            brdffit_samples **s)
+/* The hooks of one material's fits (fit_pipeline.h). */
+typedef struct batch_fits {
+    batch_run *R;
+    batch_material *m;
+    const batch_material *next;
+    int i, n;
+    const todo *td;
+    double t0;                 /* the fit in progress started */
+} batch_fits;
+
+static int fits_context(void *user, brdffit_context **ctx, brdffit_error *err)
 {
-    const cli_options *o = &R->b->common;
-    brdffit_error err;
-    memset(&err, 0, sizeof err);
-    if (!*t && prefetch_wait(R->pre, m->path) && R->pre->table) { /* read meanwhile */
-        *t = R->pre->table;
-        *s = R->pre->samples;
-        R->pre->table = NULL;
-        R->pre->samples = NULL;
-        if (*s)
-            return 0;
+    batch_fits *F = user;
+    if (ensure_context(F->R, err) != 0) {
+        cli_error("cannot set up the fitting backend: %s", err->message);
+        F->R->failures++;
+        return -1;
     }
-    brdffit_status st = *t ? BRDFFIT_OK : load_table(m, o->sample.scale, t, &err);
-    if (st == BRDFFIT_OK)
-        st = brdffit_samples_create(*t, &o->sample, s, &err);
-    if (st == BRDFFIT_OK) {
-        samples_prepare(*s, o->models, o->nmodels); /* as the prefetch does */
-        return 0;
-    }
-    err.status = st;
-    if (!strstr(err.message, m->path) || m->embedded) {
-        char msg[BRDFFIT_MESSAGE_MAX];
-        snprintf(msg, sizeof msg, "%.1000s: %.1000s", m->embedded ? m->name : m->path, err.message);
-        memcpy(err.message, msg, sizeof msg);
-    }
-    material_failed(R, m, &err);
-    R->P.done_fits += o->nmodels;
-    progress_material(&R->P, i, n, m->name, "failed");
-    return R->out_failed ? -1 : 1;
+    *ctx = F->R->ctx;
+    return 0;
 }
 
-/* The fits the plan asks for, then the published parameters' scores. */
-static void fit_planned(batch_run *R, batch_material *m, int i, int n, const todo *td,
-                        const brdffit_samples *s)
+static void fits_ready(void *user, const brdffit_samples *s, brdffit_context *ctx)
 {
-    const cli_options *o = &R->b->common;
-    for (int k = 0; k < o->nmodels && !R->out_failed; k++) {
-        if (!td->fits[k]) {
-            R->P.done_fits++;
-            continue;
-        }
-        if (stop_signal)
-            break;
-        progress_live(&R->P, i, n, m->name, brdffit_model_get(o->models[k])->name);
-        fit_one(R, m, s, o->models[k]);
+    batch_fits *F = user;
+    const cli_options *o = &F->R->b->common;
+    (void)s;
+    (void)ctx;
+    if (F->next && !F->next->embedded && o->read_ahead)
+        prefetch_start(F->R->pre, F->next->path, &o->sample, 1, o->models, o->nmodels);
+}
+
+/* The fits the plan asks for. */
+static int fits_before(void *user, int k)
+{
+    batch_fits *F = user;
+    batch_run *R = F->R;
+    if (R->out_failed || stop_signal)
+        return -1;
+    if (!F->td->fits[k]) {
         R->P.done_fits++;
+        return 0;
     }
-    for (int k = 0; k < o->nmodels && !R->out_failed && !stop_signal; k++)
-        if (td->published[k])
-            published_one(R, m, s, o->models[k]);
+    progress_live(&R->P, F->i, F->n, F->m->name,
+                  brdffit_model_get(R->b->common.models[k])->name);
+    F->t0 = now();
+    return 1;
+}
+
+static void fits_record(void *user, const fit_record *r, const brdffit_fit_result *res)
+{
+    batch_fits *F = user;
+    batch_run *R = F->R;
+    if (r->kind == FR_FAILURE) { /* the table could not be read or sampled */
+        failure_record(R, r);
+        R->P.done_fits += R->b->common.nmodels;
+        progress_material(&R->P, F->i, F->n, F->m->name, "failed");
+        return;
+    }
+    double dt = now() - F->t0;
+    R->seconds_fitting += dt;
+    R->P.fit_seconds += dt;
+    R->P.fitted_now++;
+    if (!res) {
+        R->failures++;
+        fputs(R->P.live && !R->P.quiet ? "\r\033[K" : "", stderr);
+        cli_error("%s: fitting %s failed: %s", F->m->name, r->model, r->message);
+    }
+    keep(R, r);
+    R->P.done_fits++;
+}
+
+/* Then the published parameters' scores. */
+static void fits_after(void *user, const brdffit_samples *s, brdffit_context *ctx)
+{
+    batch_fits *F = user;
+    batch_run *R = F->R;
+    (void)ctx;
+    for (int k = 0; k < R->b->common.nmodels && !R->out_failed && !stop_signal; k++)
+        if (F->td->published[k])
+            published_one(R, F->m, s, R->b->common.models[k]);
 }
 
 /* next: the material after m, whose table is read while m is fitted (NULL: none). */
@@ -822,12 +797,11 @@ static int do_material(batch_run *R, batch_material *m, const batch_material *ne
 {
     const cli_options *o = &R->b->common;
     brdffit_table *t = NULL;
-    brdffit_samples *s = NULL;
     int rc = identify_material(R, m, i, n, &t);
     if (rc != 0)
         goto done;
     todo td = plan(R, m);
-    const bj_record *f = find(R, BJ_FAILURE, m, "");
+    const fit_record *f = find(R, FR_FAILURE, m, "");
     if (!td.any || f) {
         R->P.done_fits += o->nmodels;
         if (f)
@@ -835,21 +809,28 @@ static int do_material(batch_run *R, batch_material *m, const batch_material *ne
         progress_material(&R->P, i, n, m->name, f ? "failed (journaled)" : "done (journaled)");
         goto done;
     }
-    if ((rc = material_samples(R, m, i, n, &t, &s)) != 0)
-        goto done;
-    brdffit_error err;
-    if (ensure_context(R, &err) != 0) {
-        cli_error("cannot set up the fitting backend: %s", err.message);
-        R->failures++;
-        rc = -1;
+    fp_source src;
+    memset(&src, 0, sizeof src);
+    src.name = m->name;
+    src.path = m->embedded ? NULL : m->path;
+    src.shown = m->embedded ? m->name : m->path;
+    src.id = m->id;
+    if (!t && prefetch_wait(R->pre, m->path) && R->pre->table) { /* read meanwhile */
+        t = R->pre->table;
+        src.samples = R->pre->samples;
+        R->pre->table = NULL;
+        R->pre->samples = NULL;
+    }
+    src.table = t;
+    batch_fits F = { R, m, next, i, n, &td, 0 };
+    fp_hooks h = { &F, fits_context, fits_ready, fits_before, fits_record, fits_after };
+    rc = fp_fit_table(&R->fit_job, &src, &h);
+    t = src.table; /* read by fp_fit_table (kept for the renders), or ours */
+    if (rc != 0) {
+        rc = rc < 0 || R->out_failed ? -1 : 1;
         goto done;
     }
-    if (next && !next->embedded && o->read_ahead)
-        prefetch_start(R->pre, next->path, &o->sample, 1, o->models, o->nmodels);
-    fit_planned(R, m, i, n, &td, s);
     if (td.assets && !R->out_failed && !stop_signal) {
-        brdffit_samples_free(s);
-        s = NULL;
         render_start(R, R->job, m, t); /* t is the job's now */
         t = NULL;
     }
@@ -859,7 +840,6 @@ static int do_material(batch_run *R, batch_material *m, const batch_material *ne
 done:
     if (prefetch_wait(R->pre, m->path)) /* m's, not taken (journaled, failed) */
         prefetch_drop(R->pre);
-    brdffit_samples_free(s);
     brdffit_table_free(t);
     return rc < 0 ? -1 : 0;
 }
@@ -1023,6 +1003,13 @@ int cmd_batch(int argc, char **argv)
         R.pre = &pre;
         R.journal.fd = -1;
         bj_settings_make(&R.settings, &b.common.sample, &b.common.fit);
+        R.fit_job.models = b.common.models;
+        R.fit_job.nmodels = b.common.nmodels;
+        R.fit_job.sample = &b.common.sample;
+        R.fit_job.fit = &b.common.fit;
+        R.fit_job.settings = R.settings;
+        R.fit_job.kernel_notes = !b.quiet;
+        R.fit_job.keep_table = 1;
         R.P.live = isatty(STDERR_FILENO);
         R.P.quiet = b.quiet;
         R.P.t0 = now();

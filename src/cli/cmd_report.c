@@ -31,7 +31,7 @@ static int pick_settings(const bj_records *rs, char **dirs, int ndirs, bj_settin
 {
     int have = 0, from = -1;
     for (int d = 0; d < ndirs; d++) {
-        const bj_record *last = NULL;
+        const fit_record *last = NULL;
         for (int i = 0; i < rs->n; i++)
             if (rs->r[i].origin == d)
                 last = &rs->r[i];
@@ -65,7 +65,7 @@ static int build(rp_report *rep, const bj_records *rs, char **dirs, int ndirs)
         if (!mi)
             break;
         for (int i = 0; i < rs->n; i++)
-            if (rs->r[i].kind == BJ_FIT && strcmp(rs->r[i].model, mi->name) == 0 &&
+            if (rs->r[i].kind == FR_FIT && strcmp(rs->r[i].model, mi->name) == 0 &&
                 bj_settings_equal(&rs->r[i].settings, &rep->settings)) {
                 models[nm++] = (brdffit_model)id;
                 break;
@@ -80,12 +80,12 @@ static int build(rp_report *rep, const bj_records *rs, char **dirs, int ndirs)
         return -1;
     int nn = 0;
     for (int i = 0; i < rs->n; i++) {
-        const bj_record *r = &rs->r[i];
+        const fit_record *r = &rs->r[i];
         if (!bj_settings_equal(&r->settings, &rep->settings)) {
             other++;
             continue;
         }
-        if (r->kind == BJ_PUBLISHED)
+        if (r->kind == FR_PUBLISHED)
             rep->have_published = 1;
         if (!rep->backend[0] && r->backend[0])
             snprintf(rep->backend, sizeof rep->backend, "%s (from the journals)", r->backend);

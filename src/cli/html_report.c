@@ -45,13 +45,6 @@ static const char *url_segment(char *buf, size_t len, const char *s)
     return buf;
 }
 
-static double ratio(const bj_record *fit, const bj_record *pub)
-{
-    if (!fit || !pub || !fit->ok || !pub->ok || !(pub->error > 0))
-        return NAN;
-    return fit->error / pub->error;
-}
-
 static const char *param_label(brdffit_model model, int k)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);
@@ -85,33 +78,17 @@ static int finish(out_file *o, xml_writer *w, brdffit_error *err)
 
 /* ------------------------------------------------------------------ params.tsv, params.json */
 
-static void tsv_text(FILE *f, const char *s)
+/* The rows of a material in the TSV of fits (fit_record.h): its failure, or its fits. */
+static void tsv_material(FILE *f, const rp_report *rep, const rp_material *m)
 {
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++)
-        putc(*p == '\t' || *p == '\n' || *p == '\r' ? ' ' : *p, f);
+    if (m->failure) {
+        fr_write_tsv_row(f, m->failure, NULL);
+        return;
+    }
+    for (int k = 0; k < rep->nmodels; k++)
+        if (m->fit[k])
+            fr_write_tsv_row(f, m->fit[k], m->published[k]);
 }
-
-/* One fit as the columns of params.tsv and fits.tsv (from d_r on). */
-static void tsv_fit(FILE *f, const bj_record *fit, const bj_record *pub)
-{
-    char b[64];
-    for (int c = 0; c < 3; c++)
-        fprintf(f, "\t%s", num(b, sizeof b, "%.10g", fit->ok ? fit->params.d[c] : NAN));
-    for (int c = 0; c < 3; c++)
-        fprintf(f, "\t%s", num(b, sizeof b, "%.10g", fit->ok ? fit->params.s[c] : NAN));
-    for (int k = 0; k < BRDFFIT_MAX_LOBE_PARAMS; k++)
-        fprintf(f, "\t%s", k < fit->nparams && fit->ok ? num(b, sizeof b, "%.10g", fit->params.p[k]) : "");
-    fprintf(f, "\t%s", num(b, sizeof b, "%.10g", fit->ok ? fit->error : NAN));
-    fprintf(f, "	%s	%d	%d	%s	", fit->status, fit->iterations,
-            fit->passes, num(b, sizeof b, "%.3f", fit->seconds));
-    tsv_text(f, fit->on_bound);
-    fprintf(f, "\t%s", num(b, sizeof b, "%.10g", pub && pub->ok ? pub->error : NAN));
-    fprintf(f, "\t%s", num(b, sizeof b, "%.6g", ratio(fit, pub)));
-}
-
-#define TSV_FIT_HEADER                                                                       \
-    "d_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\terror\tstatus\titerations\tpasses\tseconds" \
-    "\ton_bound\tpublished_error\tratio"
 
 static int write_params_tsv(const rp_report *rep, const rp_material *m, const char *dir,
                             brdffit_error *err)
@@ -120,65 +97,17 @@ static int write_params_tsv(const rp_report *rep, const rp_material *m, const ch
     if (open_in(&o, dir, "params.tsv", err) != 0)
         return -1;
     fprintf(o.f, "# %s: metric %s, cutoff %g deg, scale %s, starts %d, brdffit %s; "
-                 "ratio = error / published_error; p0..p2 per model: brdffit models\n",
+                 "ratio = error / published_error; p0..p2 per model: brdffit models; "
+                 "the columns: docs/fit-record.md\n",
             m->name, brdffit_metric_name(), rep->settings.cutoff_deg, rep->settings.scale,
             rep->settings.starts, rep->settings.version);
-    fprintf(o.f, "model\t" TSV_FIT_HEADER "\tmessage\n");
-    for (int k = 0; k < rep->nmodels; k++) {
-        const bj_record *fit = m->fit[k];
-        if (!fit)
-            continue;
-        fputs(fit->model, o.f);
-        tsv_fit(o.f, fit, m->published[k]);
-        putc('\t', o.f);
-        tsv_text(o.f, fit->message);
-        putc('\n', o.f);
-    }
+    fr_write_tsv_header(o.f);
+    tsv_material(o.f, rep, m);
     return out_commit(&o, err);
 }
 
-static void json_fit(FILE *f, const bj_record *fit, const bj_record *pub)
-{
-    const brdffit_model_info *mi = NULL;
-    brdffit_model model;
-    if (brdffit_model_from_name(fit->model, &model, NULL) == BRDFFIT_OK)
-        mi = brdffit_model_get(model);
-    fputs("{\"model\":", f);
-    json_string(f, fit->model);
-    fputs(",\"status\":", f);
-    json_string(f, fit->status);
-    fputs(",\"param_names\":[", f);
-    for (int k = 0; mi && k < mi->nparams; k++) {
-        if (k)
-            putc(',', f);
-        json_string(f, mi->params[k].name);
-    }
-    fputs("],\"d\":", f);
-    if (fit->ok) {
-        json_numbers(f, fit->params.d, 3);
-        fputs(",\"s\":", f);
-        json_numbers(f, fit->params.s, 3);
-        fputs(",\"p\":", f);
-        json_numbers(f, fit->params.p, fit->nparams);
-    } else {
-        fputs("null,\"s\":null,\"p\":null", f);
-    }
-    fputs(",\"error\":", f);
-    json_number(f, fit->ok ? fit->error : NAN);
-    fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"seconds\":", fit->iterations,
-            fit->passes);
-    json_number(f, fit->seconds);
-    fputs(",\"on_bound\":", f);
-    json_string(f, fit->on_bound);
-    fputs(",\"published_error\":", f);
-    json_number(f, pub && pub->ok ? pub->error : NAN);
-    fputs(",\"ratio\":", f);
-    json_number(f, ratio(fit, pub));
-    fputs(",\"message\":", f);
-    json_string(f, fit->message);
-    putc('}', f);
-}
-
+/* params.json: the material, its failure record (or null), its fit records
+ * and the records of its published parameters (fit_record.h). */
 static int write_params_json(const rp_report *rep, const rp_material *m, const char *dir,
                              brdffit_error *err)
 {
@@ -188,31 +117,26 @@ static int write_params_json(const rp_report *rep, const rp_material *m, const c
     FILE *f = o.f;
     fputs("{\"material\":", f);
     json_string(f, m->name);
-    fputs(",\"file\":", f);
-    json_string(f, m->id.path);
-    fprintf(f, ",\"size\":%lld,\"hash\":", m->id.size);
-    json_string(f, m->id.hash);
-    fputs(",\"metric\":{\"name\":", f);
-    json_string(f, brdffit_metric_name());
-    fputs(",\"cutoff_deg\":", f);
-    json_number(f, rep->settings.cutoff_deg);
-    fputs(",\"scale\":", f);
-    json_string(f, rep->settings.scale);
-    fprintf(f, "},\"starts\":%d,\"version\":", rep->settings.starts);
-    json_string(f, rep->settings.version);
     fputs(",\"failure\":", f);
-    json_string(f, m->failure ? m->failure->message : NULL);
-    fputs(",\"fits\":[", f);
-    int first = 1;
-    for (int k = 0; k < rep->nmodels; k++) {
-        if (!m->fit[k])
-            continue;
-        if (!first)
-            putc(',', f);
-        first = 0;
-        json_fit(f, m->fit[k], m->published[k]);
+    if (m->failure)
+        fr_write_json(f, m->failure);
+    else
+        fputs("null", f);
+    for (int pass = 0; pass < 2; pass++) {
+        fputs(pass ? ",\"published\":[" : ",\"fits\":[", f);
+        int first = 1;
+        for (int k = 0; k < rep->nmodels; k++) {
+            const fit_record *r = pass ? m->published[k] : m->fit[k];
+            if (!r)
+                continue;
+            if (!first)
+                putc(',', f);
+            first = 0;
+            fr_write_json(f, r);
+        }
+        putc(']', f);
     }
-    fputs("]}\n", f);
+    fputs("}\n", f);
     return out_commit(&o, err);
 }
 
@@ -307,7 +231,7 @@ static void settings_table(xml_writer *w, const rp_report *rep)
 }
 
 /* An Error cell: the fitted Error, and under it the published one and the ratio. */
-static void error_cell(xml_writer *w, const bj_record *fit, const bj_record *pub, int best,
+static void error_cell(xml_writer *w, const fit_record *fit, const fit_record *pub, int best,
                        int have_pub)
 {
     char b[64], r[64];
@@ -316,16 +240,16 @@ static void error_cell(xml_writer *w, const bj_record *fit, const bj_record *pub
         xml_attr(w, "class", "best");
     if (!fit)
         xml_text(w, "-");
-    else if (!fit->ok)
-        xml_textf(w, "failed: %s", fit->status);
+    else if (!fr_ok(fit))
+        xml_textf(w, "failed: %s", fr_status_text(fit));
     else
         xml_textf(w, "%s%s", num(b, sizeof b, "%.4g", fit->error), best ? " \xe2\x98\x85" : "");
     if (have_pub && pub) {
         xml_open(w, "span");
         xml_attr(w, "class", "pub");
-        if (pub->ok)
+        if (fr_ok(pub))
             xml_textf(w, "published %s, ratio %s", num(b, sizeof b, "%.4g", pub->error),
-                      num(r, sizeof r, "%.3g", ratio(fit, pub)));
+                      num(r, sizeof r, "%.3g", fr_ratio(fit, pub)));
         else
             xml_textf(w, "published: %s", pub->message);
         xml_close(w);
@@ -355,16 +279,16 @@ static void params_table(xml_writer *w, const rp_report *rep, const rp_material 
     cell(w, "th", "name", "on a bound");
     xml_close(w);
     for (int k = 0; k < rep->nmodels; k++) {
-        const bj_record *f = m->fit[k], *p = m->published[k];
+        const fit_record *f = m->fit[k], *p = m->published[k];
         if (!f)
             continue;
         xml_open(w, "tr");
         cell(w, "td", "name", f->model);
-        if (!f->ok) {
+        if (!fr_ok(f)) {
             xml_open(w, "td");
             xml_attr(w, "class", "failed");
             xml_attr(w, "colspan", "10");
-            xml_textf(w, "failed: %s: %s", f->status, f->message);
+            xml_textf(w, "failed: %s: %s", fr_status_text(f), f->message);
             xml_close(w);
         } else {
             for (int c = 0; c < 3; c++)
@@ -383,13 +307,16 @@ static void params_table(xml_writer *w, const rp_report *rep, const rp_material 
             cell(w, "td", k == best ? "best" : NULL, b);
         }
         if (rep->have_published) {
-            cell(w, "td", NULL, p && p->ok ? num(b, sizeof b, "%.5g", p->error) : p ? "invalid" : "-");
-            cell(w, "td", NULL, num(b, sizeof b, "%.3g", ratio(f, p)));
+            cell(w, "td", NULL, p && fr_ok(p) ? num(b, sizeof b, "%.5g", p->error) : p ? "invalid" : "-");
+            cell(w, "td", NULL, num(b, sizeof b, "%.3g", fr_ratio(f, p)));
         }
         snprintf(b, sizeof b, "%d", f->iterations);
-        cell(w, "td", NULL, f->ok ? b : "-");
+        cell(w, "td", NULL, f->has_counts ? b : "-");
         cell(w, "td", NULL, num(b, sizeof b, "%.2f", f->seconds));
-        cell(w, "td", "name", f->on_bound[0] ? f->on_bound : "-");
+        char bound[128] = "";
+        if (f->has_counts)
+            fr_at_bound_text(rep->models[k], f->at_bound, ", ", bound, sizeof bound);
+        cell(w, "td", "name", bound[0] ? bound : "-");
         xml_close(w);
     }
     xml_close(w);
@@ -507,8 +434,8 @@ static int by_error(const void *a, const void *b)
 
 static double fit_error(const rp_material *m, int k)
 {
-    const bj_record *f = m->fit[k];
-    return f && f->ok && f->error > 0 && isfinite(f->error) ? f->error : NAN;
+    const fit_record *f = m->fit[k];
+    return f && fr_ok(f) && f->error > 0 && isfinite(f->error) ? f->error : NAN;
 }
 
 #define HF_W 960.0
@@ -639,34 +566,12 @@ static int write_fits_tsv(const rp_report *rep, const char *dir, brdffit_error *
     if (open_in(&o, dir, "fits.tsv", err) != 0)
         return -1;
     fprintf(o.f, "# every fit of the report: metric %s, cutoff %g deg, scale %s, starts %d, "
-                 "brdffit %s; ratio = error / published_error\n",
+                 "brdffit %s; ratio = error / published_error; the columns: docs/fit-record.md\n",
             brdffit_metric_name(), rep->settings.cutoff_deg, rep->settings.scale,
             rep->settings.starts, rep->settings.version);
-    fprintf(o.f, "material\tmodel\t" TSV_FIT_HEADER "\tfile\tsize\thash\tmessage\n");
-    for (int i = 0; i < rep->n; i++) {
-        const rp_material *m = &rep->m[i];
-        if (m->failure) {
-            tsv_text(o.f, m->name);
-            fprintf(o.f, "\t-\t\t\t\t\t\t\t\t\t\t\t%s\t\t\t\t\t\t\t", m->failure->status);
-            tsv_text(o.f, m->id.path);
-            fprintf(o.f, "\t%lld\t%s\t", m->id.size, m->id.hash);
-            tsv_text(o.f, m->failure->message);
-            putc('\n', o.f);
-            continue;
-        }
-        for (int k = 0; k < rep->nmodels; k++) {
-            if (!m->fit[k])
-                continue;
-            tsv_text(o.f, m->name);
-            fprintf(o.f, "\t%s", m->fit[k]->model);
-            tsv_fit(o.f, m->fit[k], m->published[k]);
-            putc('\t', o.f);
-            tsv_text(o.f, m->id.path);
-            fprintf(o.f, "\t%lld\t%s\t", m->id.size, m->id.hash);
-            tsv_text(o.f, m->fit[k]->message);
-            putc('\n', o.f);
-        }
-    }
+    fr_write_tsv_header(o.f);
+    for (int i = 0; i < rep->n; i++)
+        tsv_material(o.f, rep, &rep->m[i]);
     return out_commit(&o, err);
 }
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* journal.c -- the batch journal DIR/journal.jsonl: one JSON object per line,
- * one line per finished fit (and per failed material, published Error and
+/* journal.c -- the batch journal DIR/journal.jsonl: one JSON object per line
+ * (a record of fit_record.h), one line per finished fit (and per failed material, published Error and
  * written renders), appended with one write() and fsync'd before the batch
  * goes on.  Records are keyed by the material's identity (absolute path, size,
  * a 64-bit FNV-1a hash of its bytes taken over 8-byte words) and the settings (version, scale, cutoff,
@@ -162,11 +162,11 @@ int bj_identity_equal(const bj_identity *a, const bj_identity *b)
 
 /* ------------------------------------------------------------------ records */
 
-int bj_records_push(bj_records *rs, const bj_record *r)
+int bj_records_push(bj_records *rs, const fit_record *r)
 {
     if (rs->n == rs->cap) {
         int cap = rs->cap ? rs->cap * 2 : 64;
-        bj_record *g = realloc(rs->r, (size_t)cap * sizeof *g);
+        fit_record *g = realloc(rs->r, (size_t)cap * sizeof *g);
         if (!g)
             return -1;
         rs->r = g;
@@ -181,210 +181,6 @@ void bj_records_free(bj_records *rs)
     free(rs->r);
     rs->r = NULL;
     rs->n = rs->cap = 0;
-}
-
-static const char *const kind_names[] = { "fit", "failure", "published", "assets" };
-
-const char *bj_on_bound(brdffit_model model, const brdffit_params *p, char *buf, size_t len)
-{
-    const brdffit_model_info *mi = brdffit_model_get(model);
-    size_t used = 0;
-    buf[0] = '\0';
-    if (!mi)
-        return buf;
-    static const char ch[3] = { 'r', 'g', 'b' };
-    for (int c = 0; c < 3; c++) {
-        int w = 0;
-        if (p->d[c] <= 0)
-            w = snprintf(buf + used, len - used, "%sd_%c=0", used ? "," : "", ch[c]);
-        if (w > 0 && (size_t)w < len - used)
-            used += (size_t)w;
-        w = 0;
-        if (p->s[c] <= 0)
-            w = snprintf(buf + used, len - used, "%ss_%c=0", used ? "," : "", ch[c]);
-        if (w > 0 && (size_t)w < len - used)
-            used += (size_t)w;
-    }
-    for (int k = 0; k < mi->nparams; k++) {
-        double x = p->p[k], lo = mi->params[k].lower, hi = mi->params[k].upper;
-        double tol = 1e-9 * fmax(1.0, fmax(fabs(lo), fabs(hi)));
-        const char *at = x <= lo + tol ? "lower" : x >= hi - tol ? "upper" : NULL;
-        if (!at)
-            continue;
-        int w = snprintf(buf + used, len - used, "%s%s=%s", used ? "," : "", mi->params[k].name, at);
-        if (w > 0 && (size_t)w < len - used)
-            used += (size_t)w;
-    }
-    return buf;
-}
-
-void bj_record_json(FILE *f, const bj_record *r)
-{
-    fputs("{\"kind\":", f);
-    json_string(f, kind_names[r->kind]);
-    fputs(",\"material\":", f);
-    json_string(f, r->material);
-    fputs(",\"file\":{\"path\":", f);
-    json_string(f, r->id.path);
-    fprintf(f, ",\"size\":%lld,\"hash\":", r->id.size);
-    json_string(f, r->id.hash);
-    fputs("},\"settings\":{\"version\":", f);
-    json_string(f, r->settings.version);
-    fputs(",\"scale\":", f);
-    json_string(f, r->settings.scale);
-    fputs(",\"cutoff_deg\":", f);
-    json_number(f, r->settings.cutoff_deg);
-    fprintf(f, ",\"starts\":%d},\"model\":", r->settings.starts);
-    json_string(f, r->model);
-    fprintf(f, ",\"ok\":%s,\"status\":", r->ok ? "true" : "false");
-    json_string(f, r->status);
-    fputs(",\"message\":", f);
-    json_string(f, r->message);
-    if (r->kind == BJ_FIT || r->kind == BJ_PUBLISHED) {
-        fputs(",\"d\":", f);
-        json_numbers(f, r->params.d, 3);
-        fputs(",\"s\":", f);
-        json_numbers(f, r->params.s, 3);
-        fputs(",\"p\":", f);
-        json_numbers(f, r->params.p, r->nparams);
-        fputs(",\"lambda_um\":", f);
-        json_numbers(f, r->params.lambda_um, 3);
-        fputs(",\"error\":", f);
-        json_number(f, r->error);
-    }
-    if (r->kind == BJ_FIT) {
-        fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"cminpack_info\":%d,\"seconds\":",
-                r->iterations, r->passes, r->cminpack_info);
-        json_number(f, r->seconds);
-        fprintf(f, ",\"samples\":%lld,\"on_bound\":", r->samples);
-        json_string(f, r->on_bound);
-        fputs(",\"backend\":", f);
-        json_string(f, r->backend);
-    }
-    if (r->kind == BJ_ASSETS) {
-        fputs(",\"assets_key\":", f);
-        json_string(f, r->assets_key);
-        fputs(",\"assets\":", f);
-        json_string(f, r->assets);
-    }
-    putc('}', f);
-}
-
-static int get_str(const jr_object *o, const jr_member *in, const char *key, char *out, size_t len,
-                   int required)
-{
-    const jr_member *m = in ? jr_get_in(o, in, key) : jr_get(o, key);
-    if (!m || m->type != JR_STRING) {
-        out[0] = '\0';
-        return required ? -1 : 0;
-    }
-    if (strlen(m->str) >= len)
-        return -1;
-    strcpy(out, m->str);
-    return 0;
-}
-
-static int get_num(const jr_object *o, const jr_member *in, const char *key, double *x, int required)
-{
-    const jr_member *m = in ? jr_get_in(o, in, key) : jr_get(o, key);
-    if (!m || (m->type != JR_NUMBER && m->type != JR_NULL)) {
-        *x = NAN;
-        return required ? -1 : 0;
-    }
-    *x = m->num;
-    return 0;
-}
-
-/* A required whole number in [lo, hi] (a count, a size, a status code). */
-static int get_whole(const jr_object *o, const jr_member *in, const char *key, double lo,
-                     double hi, long long *v)
-{
-    double x;
-    if (get_num(o, in, key, &x, 1) != 0 || !(x >= lo && x <= hi) || x != floor(x))
-        return -1;
-    *v = (long long)x;
-    return 0;
-}
-
-static int get_arr(const jr_object *o, const char *key, double *x, int max, int *n)
-{
-    const jr_member *m = jr_get(o, key);
-    if (!m || m->type != JR_ARRAY || m->narr > max)
-        return -1;
-    for (int i = 0; i < m->narr; i++)
-        x[i] = m->arr[i];
-    if (n)
-        *n = m->narr;
-    return 0;
-}
-
-int bj_record_parse(const char *line, bj_record *r)
-{
-    jr_object o;
-    if (jr_parse(line, &o) != 0)
-        return -1;
-    memset(r, 0, sizeof *r);
-    int rc = -1;
-    char kind[32];
-    long long v;
-    if (get_str(&o, NULL, "kind", kind, sizeof kind, 1) != 0)
-        goto done;
-    r->kind = (bj_kind)-1;
-    for (int k = 0; k < 4; k++)
-        if (strcmp(kind, kind_names[k]) == 0)
-            r->kind = (bj_kind)k;
-    if ((int)r->kind < 0)
-        goto done;
-    const jr_member *file = jr_get(&o, "file"), *set = jr_get(&o, "settings");
-    if (get_str(&o, NULL, "material", r->material, sizeof r->material, 1) != 0 ||
-        get_str(&o, file, "path", r->id.path, sizeof r->id.path, 1) != 0 ||
-        get_whole(&o, file, "size", 0, 9.0e15, &r->id.size) != 0 ||
-        get_str(&o, file, "hash", r->id.hash, sizeof r->id.hash, 1) != 0)
-        goto done;
-    if (get_str(&o, set, "version", r->settings.version, sizeof r->settings.version, 1) != 0 ||
-        get_str(&o, set, "scale", r->settings.scale, sizeof r->settings.scale, 1) != 0 ||
-        get_num(&o, set, "cutoff_deg", &r->settings.cutoff_deg, 1) != 0 ||
-        get_whole(&o, set, "starts", 0, INT_MAX, &v) != 0)
-        goto done;
-    r->settings.starts = (int)v;
-    const jr_member *ok = jr_get(&o, "ok");
-    if (!ok || ok->type != JR_BOOL)
-        goto done;
-    r->ok = ok->num != 0;
-    if (get_str(&o, NULL, "model", r->model, sizeof r->model, 1) != 0 ||
-        get_str(&o, NULL, "status", r->status, sizeof r->status, 1) != 0 ||
-        get_str(&o, NULL, "message", r->message, sizeof r->message, 0) != 0)
-        goto done;
-    if (r->kind == BJ_FIT || r->kind == BJ_PUBLISHED) {
-        if (get_arr(&o, "d", r->params.d, 3, NULL) != 0 ||
-            get_arr(&o, "s", r->params.s, 3, NULL) != 0 ||
-            get_arr(&o, "p", r->params.p, BRDFFIT_MAX_LOBE_PARAMS, &r->nparams) != 0 ||
-            get_arr(&o, "lambda_um", r->params.lambda_um, 3, NULL) != 0 ||
-            get_num(&o, NULL, "error", &r->error, 1) != 0)
-            goto done;
-    }
-    if (r->kind == BJ_FIT) {
-        long long it, np, info;
-        if (get_whole(&o, NULL, "iterations", 0, INT_MAX, &it) != 0 ||
-            get_whole(&o, NULL, "passes", 0, INT_MAX, &np) != 0 ||
-            get_whole(&o, NULL, "cminpack_info", INT_MIN, INT_MAX, &info) != 0 ||
-            get_num(&o, NULL, "seconds", &r->seconds, 1) != 0 ||
-            get_whole(&o, NULL, "samples", 0, 9.0e15, &r->samples) != 0 ||
-            get_str(&o, NULL, "on_bound", r->on_bound, sizeof r->on_bound, 0) != 0 ||
-            get_str(&o, NULL, "backend", r->backend, sizeof r->backend, 0) != 0)
-            goto done;
-        r->iterations = (int)it;
-        r->passes = (int)np;
-        r->cminpack_info = (int)info;
-    }
-    if (r->kind == BJ_ASSETS &&
-        (get_str(&o, NULL, "assets_key", r->assets_key, sizeof r->assets_key, 1) != 0 ||
-         get_str(&o, NULL, "assets", r->assets, sizeof r->assets, 1) != 0))
-        goto done;
-    rc = 0;
-done:
-    jr_free(&o);
-    return rc;
 }
 
 /* ------------------------------------------------------------------ the file */
@@ -440,7 +236,7 @@ int bj_journal_open(bj_journal *j, const char *dir, int *torn, brdffit_error *er
     return out_sync_dir(dir, err);
 }
 
-int bj_journal_append(bj_journal *j, const bj_record *r, brdffit_error *err)
+int bj_journal_append(bj_journal *j, const fit_record *r, brdffit_error *err)
 {
     char *line = NULL;
     size_t len = 0;
@@ -450,7 +246,7 @@ int bj_journal_append(bj_journal *j, const bj_record *r, brdffit_error *err)
         snprintf(err->message, sizeof err->message, "out of memory writing %.1800s", j->path);
         return -1;
     }
-    bj_record_json(m, r);
+    fr_write_json(m, r);
     putc('\n', m);
     if (fclose(m) != 0 || !line) {
         free(line);
@@ -510,7 +306,7 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
     char *line = NULL;
     size_t cap = 0;
     ssize_t n;
-    bj_record *r = malloc(sizeof *r);
+    fit_record *r = malloc(sizeof *r);
     int rc = 0;
     if (!r) {
         fclose(f);
@@ -524,7 +320,7 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
             break;
         }
         line[n - 1] = '\0';
-        if (bj_record_parse(line, r) != 0) {
+        if (fr_read_json(line, r, FR_NEED_KEY) != 0) {
             (*bad)++;
             continue;
         }

@@ -2,7 +2,8 @@
 /* jsonread.c -- a small strict reader for the flat JSON objects of the journal:
  * members with null, booleans, numbers, strings (well-formed UTF-8 only, as
  * json.c writes them), arrays of numbers (nulls and strings in them read as
- * NAN) and one level of nested flat objects. */
+ * NAN; the strings of an array kept in its str, one a line) and one level of
+ * nested flat objects. */
 #include "batch.h"
 #include "utf8.h"
 
@@ -222,12 +223,21 @@ static int value(jr_parser *j, jr_member *m, int depth)
                 if (literal(j, "null") != 0)
                     return -1;
                 x = NAN;
-            } else if (*j->p == '"') { /* a string element ("param_names"): read as NAN */
+            } else if (*j->p == '"') { /* a string element: NAN, its text in str */
                 char *str = NULL;
-                int bad = string(j, &str);
-                free(str);
-                if (bad)
+                if (string(j, &str) != 0)
                     return -1;
+                size_t had = m->str ? strlen(m->str) : 0, add = strlen(str);
+                char *joined = realloc(m->str, had + add + 2);
+                if (!joined) {
+                    free(str);
+                    return -1;
+                }
+                if (had)
+                    joined[had++] = '\n';
+                memcpy(joined + had, str, add + 1);
+                m->str = joined;
+                free(str);
                 x = NAN;
             } else if (number(j, &x) != 0) {
                 return -1;

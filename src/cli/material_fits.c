@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
 /* material_fits.c -- the fitted models `render` and `plot` draw for a table:
- * read from a file of fits (the JSON Lines of `brdffit fit --json`, or a TSV
- * of the ngan2005-fits.tsv format), or fitted now. */
+ * read from a file of fits (the JSON Lines of `brdffit fit --json`, records
+ * of fit_record.h, or a TSV of the ngan2005-fits.tsv format), or fitted now
+ * (the one loop of fit_pipeline.h). */
 #define _POSIX_C_SOURCE 200809L
 #include "material_fits.h"
 #include "batch.h"
+#include "fit_pipeline.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -25,50 +27,37 @@ static int ends_with(const char *s, const char *tail)
     return n >= t && strcmp(s + n - t, tail) == 0;
 }
 
-/* One JSON Lines record of `fit --json` into f when it is an "ok" fit of the
- * material in a wanted model.  1 taken, 0 not for us, -1 malformed (why). */
-static int take_record(const jr_object *o, const char *material, const brdffit_model *models,
+/* One record of a file of fits (fit_record.h) into f when it is a fit of the
+ * material in a wanted model that succeeded.  1 taken, 0 not for us, -1
+ * malformed (why). */
+static int take_record(const fit_record *r, const char *material, const brdffit_model *models,
                        int nmodels, brdffit_scale scale, rf_fit *f, const char **why)
 {
-    const jr_member *mat = jr_get(o, "material"), *mod = jr_get(o, "model");
-    const jr_member *st = jr_get(o, "status"), *met = jr_get(o, "metric");
-    *why = "not a record of brdffit fit --json (material, model, status)";
-    if (!mat || mat->type != JR_STRING || !mod || !st || st->type != JR_STRING)
-        return -1;
-    if (strcmp(mat->str, material) != 0 || strcmp(st->str, "ok") != 0 || mod->type != JR_STRING)
+    /* status "ok" only: a fit stopped on its evaluation limit is not drawn */
+    if (r->kind != FR_FIT || strcmp(r->material, material) != 0 || !fr_ok(r) ||
+        (r->flags & BRDFFIT_FIT_LIMIT))
         return 0;
     brdffit_model m;
     *why = "unknown model";
-    if (brdffit_model_from_name(mod->str, &m, NULL) != BRDFFIT_OK)
+    if (brdffit_model_from_name(r->model, &m, NULL) != BRDFFIT_OK)
         return -1;
     if (!wanted(models, nmodels, m))
         return 0;
-    const jr_member *sc = met ? jr_get_in(o, met, "scale") : NULL;
     brdffit_scale rs;
-    if (sc && sc->type == JR_STRING && brdffit_scale_from_name(sc->str, &rs, NULL) == BRDFFIT_OK &&
+    if (r->settings.scale[0] && brdffit_scale_from_name(r->settings.scale, &rs, NULL) == BRDFFIT_OK &&
         rs != scale) {
         *why = scale == BRDFFIT_SCALE_FLAT ? "fitted with --scale standard (pass it)"
                                            : "fitted with --scale flat (pass it)";
         return -1;
     }
-    const jr_member *d = jr_get(o, "d"), *s = jr_get(o, "s"), *p = jr_get(o, "p");
-    const jr_member *e = jr_get(o, "error"), *lam = jr_get(o, "lambda_um");
     const brdffit_model_info *mi = brdffit_model_get(m);
     *why = "d, s (3 numbers) and p (the model's parameters) expected";
-    if (!d || !s || !p || d->type != JR_ARRAY || s->type != JR_ARRAY || p->type != JR_ARRAY ||
-        d->narr != 3 || s->narr != 3 || p->narr != mi->nparams)
+    if (!r->has_params || r->nparams != mi->nparams)
         return -1;
     memset(f, 0, sizeof *f);
     f->model = m;
-    for (int c = 0; c < 3; c++) {
-        f->params.d[c] = d->arr[c];
-        f->params.s[c] = s->arr[c];
-        if (lam && lam->type == JR_ARRAY && lam->narr == 3)
-            f->params.lambda_um[c] = lam->arr[c];
-    }
-    for (int k = 0; k < mi->nparams; k++)
-        f->params.p[k] = p->arr[k];
-    f->error = e && e->type == JR_NUMBER ? e->num : NAN;
+    f->params = r->params;
+    f->error = r->error;
     return 1;
 }
 
@@ -98,16 +87,22 @@ static int read_jsonl(const char *path, const char *material, const brdffit_mode
     size_t cap = 0;
     long lineno = 0;
     int rc = 0;
+    fit_record *r = malloc(sizeof *r);
+    if (!r) {
+        fclose(in);
+        err->status = BRDFFIT_E_NO_MEMORY;
+        snprintf(err->message, sizeof err->message, "%s: out of memory", path);
+        return -1;
+    }
     while (rc == 0 && getline(&line, &cap, in) > 0) {
         lineno++;
         if (strspn(line, " \t\r\n") == strlen(line))
             continue;
-        jr_object o;
-        const char *why = "not a JSON object";
+        const char *why = "not a record of brdffit fit --json (material, model, status)";
         rf_fit f;
-        int got = jr_parse(line, &o) == 0 ? take_record(&o, material, models, nmodels, scale,
-                                                        &f, &why)
-                                          : -1;
+        int got = fr_read_json(line, r, FR_NEED_FIT) == 0
+                      ? take_record(r, material, models, nmodels, scale, &f, &why)
+                      : -1;
         if (got < 0) {
             err->status = BRDFFIT_E_FILE_READ;
             snprintf(err->message, sizeof err->message, "%s: line %ld: %s", path, lineno, why);
@@ -115,8 +110,8 @@ static int read_jsonl(const char *path, const char *material, const brdffit_mode
         } else if (got > 0) {
             keep(fits, nfits, &f);
         }
-        jr_free(&o);
     }
+    free(r);
     free(line);
     fclose(in);
     return rc;
@@ -166,40 +161,76 @@ int mf_read(const char *path, const char *material, const brdffit_model *models,
     return rc;
 }
 
+typedef struct mf_run {
+    const brdffit_context_options *copt;
+    brdffit_context *ctx;
+    const char *material;
+    rf_fit *fits;
+    int *nfits;
+    int failed;
+} mf_run;
+
+static int mf_context(void *user, brdffit_context **ctx, brdffit_error *err)
+{
+    mf_run *M = user;
+    if (brdffit_context_create(M->copt, &M->ctx, err) != BRDFFIT_OK) {
+        char msg[BRDFFIT_MESSAGE_MAX];
+        snprintf(msg, sizeof msg, "%.200s: %.1800s", M->material, err->message);
+        memcpy(err->message, msg, sizeof msg);
+        return 1;
+    }
+    *ctx = M->ctx;
+    return 0;
+}
+
+static int mf_before(void *user, int k)
+{
+    mf_run *M = user;
+    (void)k;
+    return *M->nfits < RF_MAX_FITS ? 1 : -1;
+}
+
+static void mf_record(void *user, const fit_record *r, const brdffit_fit_result *res)
+{
+    mf_run *M = user;
+    if (r->kind == FR_FAILURE) {
+        cli_error("%s", r->message);
+        M->failed = -1;
+        return;
+    }
+    if (!res) {
+        cli_error("%s: %s fit failed: %s", M->material, r->model, r->message);
+        M->failed = 1;
+        return;
+    }
+    rf_fit *f = &M->fits[(*M->nfits)++];
+    memset(f, 0, sizeof *f);
+    f->model = res->model;
+    f->params = res->params;
+    f->error = res->error;
+}
+
 int mf_fit(const brdffit_table *table, const char *material, const brdffit_model *models,
            int nmodels, const brdffit_sample_options *sample, const brdffit_fit_options *fit,
            const brdffit_context_options *copt, rf_fit *fits, int *nfits)
 {
-    brdffit_error err;
-    brdffit_samples *s = NULL;
-    brdffit_context *ctx = NULL;
-    int failed = 0;
     *nfits = 0;
-    if (brdffit_samples_create(table, sample, &s, &err) != BRDFFIT_OK ||
-        brdffit_context_create(copt, &ctx, &err) != BRDFFIT_OK) {
-        cli_error("%s: %s", material, err.message);
-        brdffit_samples_free(s);
-        return -1;
-    }
-    for (int k = 0; k < nmodels && *nfits < RF_MAX_FITS; k++) {
-        brdffit_fit_result r;
-        brdffit_fit_result_init(&r);
-        int note = kernel_note_begin(stderr, ctx, models[k]);
-        brdffit_status st = brdffit_fit(ctx, s, models[k], fit, &r, &err);
-        kernel_note_end(stderr, note, ctx, models[k]);
-        if (st != BRDFFIT_OK) {
-            cli_error("%s: %s fit failed: %s", material, brdffit_model_get(models[k])->name,
-                      err.message);
-            failed = 1;
-            continue;
-        }
-        rf_fit *f = &fits[(*nfits)++];
-        memset(f, 0, sizeof *f);
-        f->model = models[k];
-        f->params = r.params;
-        f->error = r.error;
-    }
-    brdffit_context_free(ctx);
-    brdffit_samples_free(s);
-    return failed ? 1 : 0;
+    mf_run M = { copt, NULL, material, fits, nfits, 0 };
+    fp_job job;
+    memset(&job, 0, sizeof job);
+    job.models = models;
+    job.nmodels = nmodels;
+    job.sample = sample;
+    job.fit = fit;
+    bj_settings_make(&job.settings, sample, fit);
+    job.kernel_notes = 1;
+    fp_source src;
+    memset(&src, 0, sizeof src);
+    src.name = material;
+    src.table = (brdffit_table *)table; /* the caller's: never freed there */
+    src.id.size = -1;
+    fp_hooks h = { &M, mf_context, NULL, mf_before, mf_record, NULL };
+    fp_fit_table(&job, &src, &h);
+    brdffit_context_free(M.ctx);
+    return M.failed;
 }

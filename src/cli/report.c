@@ -1,14 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* report.c -- the paper-style table and the JSON Lines records of the fits. */
+/* report.c -- the paper-style table of the fits (their JSON records: fit_record.h). */
 #include "cli.h"
+#include "fit_record.h"
 
 #include <math.h>
 #include <string.h>
-
-static const char *backend_name(const brdffit_context *ctx)
-{
-    return brdffit_context_backend(ctx) == BRDFFIT_BACKEND_OPENCL ? "opencl" : "host";
-}
 
 /* ------------------------------------------------------------------ table */
 
@@ -53,24 +49,6 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
     fflush(f);
 }
 
-/* The names of the parameters a result has on a bound (lobe ones only, or
- * also d_c = 0 and s_c = 0), each passed to put(name, user). */
-static void bound_names(const brdffit_fit_result *r, int with_linear,
-                        void (*put)(const char *name, void *user), void *user)
-{
-    const brdffit_model_info *mi = brdffit_model_get(r->model);
-    static const char *const dn[3] = { "d_r", "d_g", "d_b" }, *const sn[3] = { "s_r", "s_g", "s_b" };
-    for (int k = 0; k < mi->nparams; k++)
-        if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_P0 << k))
-            put(mi->params[k].name, user);
-    for (int c = 0; with_linear && c < 3; c++)
-        if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_D_R << c))
-            put(dn[c], user);
-    for (int c = 0; with_linear && c < 3; c++)
-        if (r->at_bound & ((unsigned)BRDFFIT_AT_BOUND_S_R << c))
-            put(sn[c], user);
-}
-
 typedef struct note_buf {
     char *buf;
     size_t len;
@@ -96,7 +74,7 @@ static const char *row_note(const brdffit_fit_result *r, char *buf, size_t len)
     if (r->at_bound & BRDFFIT_AT_BOUND_LOBE) {
         size_t o = strlen(buf);
         snprintf(buf + o, len - o, " ");
-        bound_names(r, 0, note_put, &nb);
+        fr_at_bound_names(r->model, r->at_bound, 0, note_put, &nb);
     }
     return buf;
 }
@@ -158,123 +136,4 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels)
                " Error = %s (1/sr);\n  iter = Jacobian evaluations of the LM run kept,"
                " seconds = wall time of the fit\n",
             brdffit_metric_name());
-}
-
-/* ------------------------------------------------------------------ JSON */
-
-typedef struct json_list {
-    FILE *f;
-    int n;
-} json_list;
-
-static void json_list_put(const char *name, void *user)
-{
-    json_list *l = user;
-    if (l->n++)
-        putc(',', l->f);
-    json_string(l->f, name);
-}
-
-static void json_metric(FILE *f, const cli_material *m)
-{
-    fputs("\"metric\":{\"name\":", f);
-    json_string(f, brdffit_metric_name());
-    fputs(",\"cutoff_deg\":", f);
-    json_number(f, m->sample.cutoff_deg);
-    fputs(",\"scale\":", f);
-    json_string(f, brdffit_scale_name(m->sample.scale));
-    fputc('}', f);
-}
-
-static void json_head(FILE *f, const cli_material *m)
-{
-    fputs("{\"material\":", f);
-    json_string(f, m->name);
-    fputs(",\"file\":", f);
-    json_string(f, m->file);
-}
-
-void report_json_fit(FILE *f, const cli_material *m, const brdffit_context *ctx,
-                     const brdffit_samples *s, brdffit_model model, brdffit_status st,
-                     const brdffit_error *err, const brdffit_fit_result *r)
-{
-    const brdffit_model_info *mi = brdffit_model_get(model);
-    json_head(f, m);
-    fputs(",\"model\":", f);
-    json_string(f, mi->name);
-    fputs(",\"status\":", f);
-    json_string(f, st != BRDFFIT_OK ? brdffit_strerror(st)
-                   : r && (r->flags & BRDFFIT_FIT_LIMIT) ? "limit" : "ok");
-    if (st != BRDFFIT_OK || !r) {
-        fputs(",\"error_message\":", f);
-        json_string(f, err ? err->message : "");
-    }
-    fputs(",\"param_names\":[", f);
-    for (int k = 0; k < mi->nparams; k++) {
-        if (k)
-            putc(',', f);
-        json_string(f, mi->params[k].name);
-    }
-    putc(']', f);
-    if (r && st == BRDFFIT_OK) {
-        fputs(",\"d\":", f);
-        json_numbers(f, r->params.d, 3);
-        fputs(",\"s\":", f);
-        json_numbers(f, r->params.s, 3);
-        fputs(",\"p\":", f);
-        json_numbers(f, r->params.p, mi->nparams);
-        if (mi->chromatic) {
-            fputs(",\"lambda_um\":", f);
-            json_numbers(f, r->params.lambda_um, 3);
-        }
-        fputs(",\"error\":", f);
-        json_number(f, r->error);
-    } else {
-        fputs(",\"d\":null,\"s\":null,\"p\":null,\"error\":null", f);
-    }
-    putc(',', f);
-    json_metric(f, m);
-    if (r && st == BRDFFIT_OK) {
-        fprintf(f, ",\"iterations\":%d,\"passes\":%d,\"cminpack_info\":%d", r->iterations,
-                r->passes, r->cminpack_info);
-        json_list lst = { f, 0 };
-        fputs(",\"at_bound\":[", f);
-        bound_names(r, 1, json_list_put, &lst);
-        fputs("],\"flags\":[", f);
-        lst.n = 0;
-        if (r->flags & BRDFFIT_FIT_LIMIT)
-            json_list_put("limit", &lst);
-        putc(']', f);
-    } else {
-        fputs(",\"iterations\":null,\"passes\":null,\"cminpack_info\":null,"
-              "\"at_bound\":null,\"flags\":null", f);
-    }
-    fputs(",\"seconds\":", f);
-    json_number(f, r && st == BRDFFIT_OK ? r->seconds : NAN);
-    fputs(",\"seconds_solver\":", f);
-    json_number(f, r && st == BRDFFIT_OK ? r->seconds_solver : NAN);
-    fputs(",\"seconds_passes\":", f);
-    json_number(f, r && st == BRDFFIT_OK ? r->seconds_passes : NAN);
-    fputs(",\"seconds_build\":", f);
-    json_number(f, r && st == BRDFFIT_OK ? r->seconds_build : NAN);
-    fputs(",\"backend\":", f);
-    json_string(f, backend_name(ctx));
-    fputs(",\"backend_description\":", f);
-    json_string(f, brdffit_context_describe(ctx));
-    fprintf(f, ",\"samples\":%zu}\n", brdffit_samples_count(s));
-    fflush(f);
-}
-
-void report_json_failure(FILE *f, const cli_material *m, brdffit_status st,
-                         const brdffit_error *err)
-{
-    json_head(f, m);
-    fputs(",\"model\":null,\"status\":", f);
-    json_string(f, brdffit_strerror(st));
-    fputs(",\"error_message\":", f);
-    json_string(f, err ? err->message : "");
-    putc(',', f);
-    json_metric(f, m);
-    fputs("}\n", f);
-    fflush(f);
 }

@@ -53,24 +53,24 @@ int rp_add(rp_report *rep, const char *name, const bj_identity *id, const bj_rec
     snprintf(m->name, sizeof m->name, "%s", name);
     m->id = *use;
     for (int i = 0; i < rs->n; i++) {
-        const bj_record *r = &rs->r[i];
+        const fit_record *r = &rs->r[i];
         if (strcmp(r->material, name) != 0 || !bj_identity_equal(&r->id, &m->id) ||
             !bj_settings_equal(&r->settings, &rep->settings))
             continue;
         int k = slot_of(rep, r->model);
         switch (r->kind) {
-        case BJ_FAILURE: m->failure = r; break;
-        case BJ_FIT:
+        case FR_FAILURE: m->failure = r; break;
+        case FR_FIT:
             if (k >= 0) {
                 m->fit[k] = r;
                 m->failure = NULL;
             }
             break;
-        case BJ_PUBLISHED:
+        case FR_PUBLISHED:
             if (k >= 0)
                 m->published[k] = r;
             break;
-        case BJ_ASSETS:
+        case FR_ASSETS:
             m->assets = r;
             if (r->origin >= 0 && r->origin < ndirs)
                 snprintf(m->asset_dir, sizeof m->asset_dir, "%s/%s", origin_dirs[r->origin], name);
@@ -91,8 +91,8 @@ static int best_slot(const rp_report *rep, const rp_material *m)
 {
     int best = -1;
     for (int k = 0; k < rep->nmodels; k++) {
-        const bj_record *f = m->fit[k];
-        if (f && f->ok && isfinite(f->error) && (best < 0 || f->error < m->fit[best]->error))
+        const fit_record *f = m->fit[k];
+        if (f && fr_ok(f) && isfinite(f->error) && (best < 0 || f->error < m->fit[best]->error))
             best = k;
     }
     return best;
@@ -108,8 +108,8 @@ double rp_median(const rp_report *rep, int k, int *nbest, int *nfitted)
     double *e = malloc((size_t)(rep->n > 0 ? rep->n : 1) * sizeof *e);
     int n = 0, best = 0;
     for (int i = 0; i < rep->n; i++) {
-        const bj_record *f = rep->m[i].fit[k];
-        if (f && f->ok && isfinite(f->error) && e)
+        const fit_record *f = rep->m[i].fit[k];
+        if (f && fr_ok(f) && isfinite(f->error) && e)
             e[n++] = f->error;
         if (best_slot(rep, &rep->m[i]) == k)
             best++;

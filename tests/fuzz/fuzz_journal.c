@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* fuzz_journal.c -- libFuzzer target: the batch journal's line reader
- * (bj_record_parse, over the program's JSON reader jr_parse), the input
+ * (fr_read_json of src/cli/fit_record.c, over the program's JSON reader jr_parse), the input
  * being one journal line as a damaged or hostile journal.jsonl may hold.
  *
- * A line that parses must write back (bj_record_json) as a line that parses
+ * A line that parses must write back (fr_write_json) as a line that parses
  * to the same record: the journal's writer and reader agree on every record
  * the reader accepts, so resuming from a journal never changes what it says.
  * `make fuzz` builds this with clang and runs it; tests/fuzz/make_seeds.c
@@ -17,13 +17,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The fields a resume compares (bj_record minus what is not journaled). */
-static int same_record(const bj_record *a, const bj_record *b)
+/* The fields a resume and the report use (fit_record minus what is not journaled). */
+static int same_record(const fit_record *a, const fit_record *b)
 {
     return a->kind == b->kind && strcmp(a->material, b->material) == 0 &&
            strcmp(a->id.path, b->id.path) == 0 && a->id.size == b->id.size &&
            strcmp(a->id.hash, b->id.hash) == 0 && strcmp(a->model, b->model) == 0 &&
-           a->ok == b->ok && strcmp(a->status, b->status) == 0 &&
+           a->status == b->status && a->has_params == b->has_params &&
+           a->has_counts == b->has_counts && a->flags == b->flags && a->at_bound == b->at_bound &&
            strcmp(a->message, b->message) == 0 && a->nparams == b->nparams &&
            memcmp(&a->params, &b->params, sizeof a->params) == 0 &&
            (a->error == b->error || (a->error != a->error && b->error != b->error)) &&
@@ -35,22 +36,22 @@ static int same_record(const bj_record *a, const bj_record *b)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char *line = malloc(size + 1);
-    bj_record *r = malloc(sizeof *r), *back = malloc(sizeof *back);
+    fit_record *r = malloc(sizeof *r), *back = malloc(sizeof *back);
     if (!line || !r || !back)
         goto done;
     memcpy(line, data, size);
     line[size] = '\0';
-    if (bj_record_parse(line, r) != 0)
+    if (fr_read_json(line, r, FR_NEED_KEY) != 0)
         goto done;
     char *text = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&text, &len);
     if (!f)
         goto done;
-    bj_record_json(f, r);
+    fr_write_json(f, r);
     if (fclose(f) != 0)
         abort();
-    if (bj_record_parse(text, back) != 0 || !same_record(r, back))
+    if (fr_read_json(text, back, FR_NEED_KEY) != 0 || !same_record(r, back))
         abort(); /* the writer wrote what the reader does not read back */
     free(text);
 done:

@@ -118,10 +118,22 @@ static void option_seeds(void)
     option_seed("eval-bad", 1, (const char *const[]){ "lafortune", "nan", "--wi", "0", NULL });
 }
 
-/* Journal lines as brdffit batch writes them (a fit, a failure, assets). */
+/* Journal lines: a fit record as brdffit batch writes it (fit_record.h), and
+ * the earlier form's fit, failure and assets, which the reader still takes. */
 static void journal_seeds(void)
 {
     static const char *const lines[][2] = {
+        { "record", "{\"kind\":\"fit\",\"material\":\"alum-bronze\",\"file\":\"/d/alum-bronze.binary\","
+                    "\"size\":34992012,\"hash\":\"8143736677fba4d1\",\"settings\":{\"version\":\"0.1.0\","
+                    "\"metric\":\"ngan-l2\",\"scale\":\"standard\",\"cutoff_deg\":80,\"starts\":0},"
+                    "\"model\":\"he\",\"param_names\":[\"tau\",\"sigma0\",\"n\"],\"status\":\"ok\","
+                    "\"status_code\":0,\"message\":\"\",\"d\":[0.08,0.05,0.02],\"s\":[0.04,0.02,0.01],"
+                    "\"p\":[12.5,0.3,1.6],\"lambda_um\":[0.645,0.526,0.444],\"error\":0.0568,"
+                    "\"iterations\":3,\"passes\":13,\"cminpack_info\":1,\"flags\":[],"
+                    "\"at_bound\":[\"n\",\"d_b\"],\"seconds\":0.204,\"seconds_solver\":0.01,"
+                    "\"seconds_passes\":0.15,\"seconds_build\":0,\"samples\":923870,"
+                    "\"backend\":\"opencl\",\"backend_description\":\"OpenCL\",\"assets_key\":null,"
+                    "\"assets\":null}" },
         { "fit", "{\"kind\":\"fit\",\"material\":\"alum-bronze\",\"file\":{\"path\":\"/d/alum-bronze.binary\","
                  "\"size\":34992012,\"hash\":\"8143736677fba4d1\"},\"settings\":{\"version\":\"0.1.0\","
                  "\"scale\":\"standard\",\"cutoff_deg\":80,\"starts\":0},\"model\":\"he\",\"ok\":true,"

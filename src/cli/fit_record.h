@@ -1,0 +1,134 @@
+/* SPDX-License-Identifier: MIT */
+/* fit_record.h -- the fit record: what one fit of one model to one material
+ * gave (or why it failed), and the one place its fields are named.  Every
+ * file the program writes about fits uses it: `fit --json` (one record a
+ * line), the batch journal DIR/journal.jsonl, the report's params.json,
+ * params.tsv and fits.tsv.  docs/fit-record.md describes every field.
+ *
+ *   fit_record.c  the JSON writer and reader, the TSV writer, the retry
+ *                 decision of a resumed batch, the names of the at_bound bits
+ */
+#ifndef BRDFFIT_FIT_RECORD_H
+#define BRDFFIT_FIT_RECORD_H
+
+#include "brdffit.h"
+
+#include <stdio.h>
+
+#define BJ_PATH_MAX 4096
+#define BJ_NAME_MAX 256
+#define BJ_MSG_MAX 512
+#define BJ_MODEL_NAME_MAX 32
+#define BJ_ASSETS_MAX 4096
+
+/* The settings a fit depends on besides the material and the model.  Records
+ * made with other settings are not reused. */
+typedef struct bj_settings {
+    char version[32];      /* brdffit_version()                       */
+    char scale[16];        /* "standard" | "flat"                     */
+    double cutoff_deg;
+    int starts;            /* --starts; 0 = each model's own default  */
+} bj_settings;
+
+/* A material's identity: its path (made absolute), size and a hash of its bytes
+ * (64-bit FNV-1a over 8-byte words, hex).  The embedded demo material has path
+ * "(embedded)".  size -1 and hash "": not known (a file that could not be
+ * read; `fit`, which does not hash its files). */
+typedef struct bj_identity {
+    char path[BJ_PATH_MAX];
+    long long size;
+    char hash[20];
+} bj_identity;
+
+typedef enum fr_kind {
+    FR_FIT = 0,         /* a model fitted (or its fit failed: status not OK)     */
+    FR_FAILURE = 1,     /* the material could not be read, sampled or fitted at all */
+    FR_PUBLISHED = 2,   /* the Error of a material's published parameters       */
+    FR_ASSETS = 3       /* the renders and plots of a material are written      */
+} fr_kind;
+
+typedef struct fit_record {
+    fr_kind kind;
+    char material[BJ_NAME_MAX];
+    bj_identity id;                 /* "file", "size", "hash"               */
+    bj_settings settings;
+    char model[BJ_MODEL_NAME_MAX];  /* FR_FIT, FR_PUBLISHED; else ""        */
+    brdffit_status status;          /* BRDFFIT_OK or why it failed          */
+    char message[BRDFFIT_MESSAGE_MAX]; /* why it failed ("" when it did not) */
+    int has_params;                 /* params hold parameters (a fit that
+                                       succeeded, published parameters)    */
+    brdffit_params params;          /* d, s, p (nparams), lambda_um (He)    */
+    int nparams;
+    double error;                   /* NAN: none                            */
+    int has_counts;                 /* iterations .. cminpack_info, flags, at_bound
+                                       are a fit's (FR_FIT that succeeded)  */
+    int iterations, passes, cminpack_info;
+    unsigned flags;                 /* brdffit_fit_flag bits                */
+    unsigned at_bound;              /* brdffit_at_bound bits (the library's) */
+    double seconds, seconds_solver, seconds_passes, seconds_build; /* NAN: none */
+    long long samples;              /* -1: not known                        */
+    char backend[16];               /* "opencl" | "host" | ""               */
+    char backend_description[256];
+    char assets_key[BJ_MSG_MAX];    /* FR_ASSETS: what was drawn ("rf1:render=1,plot=1:ward,he") */
+    char assets[BJ_ASSETS_MAX];     /* FR_ASSETS: lines "kind<TAB>file<TAB>caption"   */
+    int origin;                     /* not written: which journal it came from        */
+} fit_record;
+
+/* An empty record of this kind: numbers NAN, counts unknown, status OK. */
+void fr_init(fit_record *r, fr_kind kind);
+/* The result of a fit (brdffit_fit's status, err and, when it succeeded, res)
+ * into r (kind, material, identity and settings are left as they are). */
+void fr_set_fit(fit_record *r, brdffit_model model, brdffit_status st, const brdffit_error *err,
+                const brdffit_fit_result *res, const brdffit_context *ctx,
+                const brdffit_samples *s);
+/* A failure: status st and err's message (or the status's text). */
+void fr_set_failure(fit_record *r, brdffit_status st, const brdffit_error *err);
+
+/* The "status" text of a record: "ok", "limit" (fitted, but the LM run kept
+ * stopped on its evaluation limit), or brdffit_strerror(status). */
+const char *fr_status_text(const fit_record *r);
+/* 1 when the record holds a result (status BRDFFIT_OK). */
+int fr_ok(const fit_record *r);
+
+/* Resume: 1 when a record journaled by an earlier run is to be done again,
+ * decided by its kind and status code only (never its message): a fit that
+ * failed for a reason outside the data (no memory, no device, OpenCL, a
+ * kernel build, the kernel cache) is fitted again; a fit that succeeded or
+ * failed on the data, and a material that could not be read (its identity
+ * decides: a changed file is a new material), are kept. */
+int fr_retry(const fit_record *r);
+
+/* The names of the at_bound bits of a model's record: lobe parameters by
+ * name, then d_r, d_g, d_b, s_r, s_g, s_b; each passed to put(name, user).
+ * with_linear 0: the lobe parameters only. */
+void fr_at_bound_names(brdffit_model model, unsigned at_bound, int with_linear,
+                       void (*put)(const char *name, void *user), void *user);
+/* The same joined by sep into buf. */
+const char *fr_at_bound_text(brdffit_model model, unsigned at_bound, const char *sep, char *buf,
+                             size_t len);
+
+/* One record as a JSON object (no newline) onto f: every field, null where
+ * it does not apply (docs/fit-record.md). */
+void fr_write_json(FILE *f, const fit_record *r);
+
+/* What the reader requires. */
+typedef enum fr_need {
+    FR_NEED_KEY = 1,    /* the journal: kind, material, file identity, settings */
+    FR_NEED_FIT = 0     /* a file of fits (`fit --json` output): material, model, status */
+} fr_need;
+
+/* Parse one JSON object into r: 0, or -1 when it is not a record.  Reads the
+ * records this program writes and those earlier versions wrote (the journal's
+ * "ok", "status" text, "on_bound", "file" {path, size, hash}; fit --json's
+ * "error_message", "metric"). */
+int fr_read_json(const char *line, fit_record *r, fr_need need);
+
+/* The TSV of fits (params.tsv, fits.tsv): the header line, then one row per
+ * record; pub (may be NULL) is the published record of the same material
+ * and model (columns published_error, ratio). */
+void fr_write_tsv_header(FILE *f);
+void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub);
+/* error / published error, or NAN. */
+double fr_ratio(const fit_record *fit, const fit_record *pub);
+
+#endif

@@ -69,7 +69,7 @@ CFLAGS   += -std=c11 $(OPT) -g -Wall -Wextra -fPIC -MMD -MP -pthread $(SAN)
 LDLIBS   += $(PKG_LIBS) -lOpenCL -lm -pthread
 LDFLAGS  += $(SAN)
 
-LIB_SRC  = $(wildcard src/lib/*.c)
+LIB_SRC  = $(wildcard src/lib/*.c src/lib/fit/*.c)
 LIB_OBJ  = $(LIB_SRC:src/lib/%.c=$(BUILD)/lib/%.o) $(BUILD)/lib/kernel_source.o
 # The kernel sources in the order they are concatenated for
 # clCreateProgramWithSource (each after what it uses).  The one place that
@@ -119,7 +119,11 @@ OBJCOPY   ?= objcopy
 # The flags above live here: a changed Makefile rebuilds the library objects.
 $(LIB_OBJ): Makefile
 
-$(BUILD)/lib/%.o: src/lib/%.c | $(BUILD)/lib
+# src/lib/fit/*.c into $(BUILD)/lib/fit/ as well
+$(BUILD)/lib/fit: | $(BUILD)/lib
+	mkdir -p $@
+
+$(BUILD)/lib/%.o: src/lib/%.c | $(BUILD)/lib $(BUILD)/lib/fit
 	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
 
 $(BUILD)/lib/kernel_source.o: $(BUILD)/lib/kernel_source.c
@@ -423,7 +427,7 @@ clean:
 	rm -rf $(BUILD) build-san build-tsan build-fuzz
 
 # The header dependencies the compiler recorded (-MMD -MP).
--include $(wildcard $(BUILD)/*/*.d)
+-include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
 
 .PHONY: all demo test sanitize tsan fuzz bench bench-ceres bench-database bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

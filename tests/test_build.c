@@ -79,7 +79,7 @@ START_TEST(header_change_rebuilds_its_includers)
     REBUILDS("src/lib/models.c");
     REBUILDS("src/lib/pass_host.c");
     KEEPS("src/lib/status.c");
-    KEEPS("src/lib/fit.c");
+    KEEPS("src/lib/fit/problem.c");
     KEEPS("src/lib/merl_file.c");
 
     /* the grid header: the table files, not the pass */
@@ -89,6 +89,16 @@ START_TEST(header_change_rebuilds_its_includers)
     REBUILDS("src/lib/lookup.c");
     KEEPS("src/lib/pass.c");
     KEEPS("src/lib/context.c");
+
+    /* the fit's own header: the fit's files, in their subfolder, and no other */
+    would_run("src/lib/fit/fit_internal.h", "libbrdffit.a", out, sizeof out);
+    REBUILDS("src/lib/fit/map.c");
+    REBUILDS("src/lib/fit/problem.c");
+    REBUILDS("src/lib/fit/screen.c");
+    REBUILDS("src/lib/fit/refine.c");
+    REBUILDS("src/lib/fit/api.c");
+    KEEPS("src/lib/linear.c");
+    KEEPS("src/lib/refine_select.c");
 
     /* the public header: everything of the library */
     would_run("include/brdffit.h", "libbrdffit.a", out, sizeof out);

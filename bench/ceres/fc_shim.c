@@ -210,7 +210,7 @@ double fc_error(const brdffit_samples *set, brdffit_model model, const double d[
 }
 
 /* Start i of n of a model whose start grid is one round (period 0, no
- * round_param: every model with partials), as fit.c's start_params makes
+ * round_param: every model with partials), as fit/screen.c's start_params makes
  * it from the registry's grid: the grid's parameter at the i-th of n points
  * spaced evenly (LINEAR) or geometrically (LOG) over lo .. hi, the others at
  * their typical start. */

@@ -52,7 +52,7 @@
 // linear convergence on a problem whose residuals stay large (Ward on
 // gold-metallic-paint2: 22 iterations, each removing ~40% of what is left;
 // brdffit's LM corrects Gauss-Newton's H by a secant estimate of the
-// residuals' curvature, fit.c secant_correct, and takes 5).  Ceres's
+// residuals' curvature, fit/problem.c secant_correct, and takes 5).  Ceres's
 // line-search BFGS (--minimizer bfgs; without bounds, which Ceres's line
 // search does not take) converged faster there but took 50-80 iterations on
 // blue-rubber and pickled-oak-260: the median over these 35 fits the same

@@ -4,7 +4,7 @@
  *
  * He refines each kept start by LM on the stride subset first, then only
  * some of those runs on all samples, each pass of which costs up to ~7
- * subset passes at a rough point (fit.c, refine_kept).  A run whose subset
+ * subset passes at a rough point (fit/refine.c, bf_refine_kept).  A run whose subset
  * r^T r ends more than SUBSET_MARGIN above the lowest is not refined, nor
  * one that stopped at an earlier run's end (join_end).  Of the others, two
  * whose ends lie in one valley (r^T r within BF_VALLEY_RR and every lobe

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* refine_select.h -- which kept starts' subset runs a fit refines on all
- * samples (refine_select.c; the fit's stages: fit.c, refine_kept). */
+ * samples (refine_select.c; the fit's stages: fit/refine.c, bf_refine_kept). */
 #ifndef BRDFFIT_REFINE_SELECT_H
 #define BRDFFIT_REFINE_SELECT_H
 

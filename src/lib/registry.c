@@ -105,7 +105,7 @@ static const bf_model_def registry[] = {
      * theta_d index, every 12th phi_d: a 108th of the samples), each kept
      * start refined by LM there first, and only the ends within BINS_MARGIN
      * of the lowest go on to the stride-12 subset, then to all samples
-     * (fit.c, bins_runs).  An end with sigma0 >= 0.3 um goes on from its
+     * (fit/refine.c, bins_runs).  An end with sigma0 >= 0.3 um goes on from its
      * start instead: He is at its rough limit there over most directions,
      * so where the bin subset's run ends along that line is no guide to the
      * stride subset's.  Why each number: docs/fitting.md, Starts and

@@ -27,7 +27,7 @@ typedef struct bf_start_grid {
 } bf_start_grid;
 
 /* When the fit corrects Gauss-Newton's H by a secant estimate of the
- * residuals' curvature (fit.c, secant_correct). */
+ * residuals' curvature (fit/problem.c, secant_correct). */
 typedef enum bf_secant_use {
     BF_SECANT_ALWAYS = 0, /* in every LM run                                   */
     BF_SECANT_ON_ALL = 1  /* in the LM runs on all samples, not in those on the
@@ -48,17 +48,17 @@ typedef struct bf_model_def {
                                   * for a lobe whose per-bin work is most of a
                                   * pass), and the kept ones taken again on the
                                   * screen_stride subset; zeros: not used     */
-    bf_secant_use secant;        /* when LM's H gets the secant correction (fit.c) */
+    bf_secant_use secant;        /* when LM's H gets the secant correction (fit/) */
     int refine_on_subset;        /* 1: each kept start is refined by LM on the
                                   * screening's subset first, then on all
-                                  * samples from where that stopped (fit.c,
-                                  * refine_kept); 0: on all samples only      */
+                                  * samples from where that stopped (fit/refine.c,
+                                  * bf_refine_kept); 0: on all samples only   */
     int refine_on_bins;          /* 1 (with refine_on_subset and screen_bins):
                                   * each kept start is refined by LM on the
                                   * bin subset before the screen_stride
                                   * subset, and only the bin ends within
                                   * BINS_MARGIN of the lowest go on there, from
-                                  * that end (fit.c, bins_runs)              */
+                                  * that end (fit/refine.c, bins_runs)       */
     int rough_param;             /* with refine_on_bins: a bin end whose lobe
                                   * parameter rough_param is at or above
                                   * rough_from goes on from its start instead */

@@ -3,7 +3,7 @@
  *
  * He's 21 starts are three rounds of 7 values of tau (at sigma0 = 0.5, 2
  * and 0.125), and with refine = 1 a fit keeps the cheapest start of each
- * round (fit.c, screen_starts).  Along a round the screening's cost falls
+ * round (fit/screen.c, screen_starts).  Along a round the screening's cost falls
  * and rises once: over the 100 MERL tables, 299 of the 300 rounds had one
  * local minimum, and in all 300 this search ends at the round's cheapest
  * start, so every fit keeps the starts a sweep of the round keeps and is the

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* round_search.h -- which starts of a round of the start grid a screening
- * takes (round_search.c; the fit's screening: fit.c). */
+ * takes (round_search.c; the fit's screening: fit/screen.c). */
 #ifndef BRDFFIT_ROUND_SEARCH_H
 #define BRDFFIT_ROUND_SEARCH_H
 

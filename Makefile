@@ -239,7 +239,7 @@ test: $(BUILD)/test_brdffit all $(BUILD)/brdffit-faults
 # leak, not hidden.
 sanitize:
 	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
-	    build-san/test_brdffit build-san/brdffit build-san/brdffit-faults
+	    build-san/test_brdffit build-san/brdffit build-san/brdffit-faults build-san/brdffit.1
 	@mkdir -p build-san/pocl-cache
 	POCL_CACHE_DIR="$(CURDIR)/build-san/pocl-cache" BRDFFIT_CLI=./build-san/brdffit \
 	BRDFFIT_CLI_FAULTS=./build-san/brdffit-faults \

@@ -10,7 +10,7 @@
  * those sums follow from a few per-lobe "moments" (A = sum a^2, sums of a^2 K,
  * a^2 K^2, a^2 G_j, a^2 K G_j, a^2 G_j G_l with G_j = dK/du_j) and per-channel
  * residual moments (a^2 e, a^2 K e, a^2 e^2, a^2 G_j e with e = rho - f).  The
- * host assembles J^T J from them (src/lib/fit.c).  G_j is a forward
+ * host assembles J^T J from them (src/lib/fit/problem.c).  G_j is a forward
  * difference in the fit's internal lobe coordinate u_j:
  *     G_j = (K(p_j) - K(p_0)) / h_j,  p_j = the lobe parameters at u + h_j e_j,
  * so the pass needs no knowledge of how the fit maps u to p.  (bf_lobe_fd

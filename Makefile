@@ -62,7 +62,10 @@ CLI_LIBS   = $(or $(filter -lOpenEXRCore%,$(shell pkg-config --libs OpenEXR 2>/d
 # into both on purpose, see all; the benchmark sees the library's.
 CPPFLAGS += -Iinclude -DCL_TARGET_OPENCL_VERSION=120 -DCL_USE_DEPRECATED_OPENCL_1_2_APIS
 LIB_INC   = -Isrc/lib -Ikernels $(PKG_CFLAGS)
-CLI_INC   = -Isrc/cli
+# The program's rooms (src/cli/*/: commands, usage, text, pipeline, record,
+# report, images) include each other's headers by name.
+CLI_DIRS  = $(patsubst %/,%,$(sort $(dir $(wildcard src/cli/*/*.[ch]))))
+CLI_INC   = -Isrc/cli $(addprefix -I,$(CLI_DIRS))
 TEST_INC  = $(LIB_INC) $(CLI_INC) -Itests
 # -MMD -MP: each object's header dependencies, written beside it (.d)
 CFLAGS   += -std=c11 $(OPT) -g -Wall -Wextra -fPIC -MMD -MP -pthread $(SAN)
@@ -79,7 +82,7 @@ KERNEL_SOURCES = kernels/bf_common.h kernels/bf_exp.h kernels/bf_models.h \
                  kernels/bf_he_tab.h kernels/bf_he_memo.h kernels/bf_he_stages.h kernels/bf_he_rows.h \
                  kernels/bf_he.h kernels/bf_lobe.h \
                  kernels/bf_layout.h kernels/bf_pass.h kernels/bf_pass.cl
-CLI_SRC  = $(wildcard src/cli/*.c)
+CLI_SRC  = $(wildcard src/cli/*.c src/cli/*/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
@@ -145,13 +148,14 @@ $(BUILD)/libbrdffit.so: $(BUILD)/$(SOFILE)
 	ln -sf $(SOFILE) $(BUILD)/$(SONAME) && ln -sf $(SONAME) $@
 
 $(BUILD)/cli/%.o: src/cli/%.c | $(BUILD)/cli
+	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CLI_INC) $(CLI_CFLAGS) $(CFLAGS) -c -o $@ $<
 
 $(BUILD)/brdffit: $(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
 # The tests' build of the program, never installed: fault injection compiled
-# in (-DBRDFFIT_FAULTS; BRDFFIT_FAULT=POINT:N kills it there, src/cli/fault.c).
+# in (-DBRDFFIT_FAULTS; BRDFFIT_FAULT=POINT:N kills it there, src/cli/record/fault.c).
 # The files that use the hooks are compiled again into cli-faults/, the others
 # are the program's.
 FAULT_SRC = $(shell grep -l 'cli_fault_' $(CLI_SRC))
@@ -160,13 +164,14 @@ $(BUILD)/cli-faults: | $(DEPS_STAMP)
 	mkdir -p $@
 
 $(BUILD)/cli-faults/%.o: src/cli/%.c | $(BUILD)/cli-faults
+	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) -DBRDFFIT_FAULTS $(CLI_INC) $(CLI_CFLAGS) $(CFLAGS) -c -o $@ $<
 
 $(BUILD)/brdffit-faults: $(filter-out $(FAULT_SRC:src/cli/%.c=$(BUILD)/cli/%.o),$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o)) \
                          $(FAULT_OBJ) $(BUILD)/libbrdffit.a
 	$(CC) $(LDFLAGS) -o $@ $^ $(CLI_LIBS) $(LDLIBS)
 
-# The manual page: the program's help text as roff (src/cli/man.c).
+# The manual page: the program's help text as roff (src/cli/usage/man.c).
 $(BUILD)/brdffit.1: $(BUILD)/brdffit
 	./$(BUILD)/brdffit help --man > $@.tmp && mv $@.tmp $@
 

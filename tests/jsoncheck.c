@@ -2,7 +2,7 @@
 /* jsoncheck.c -- a small strict JSON parser for the tests: it checks that a
  * line is one well-formed JSON object (RFC 8259 grammar: no NaN, no trailing
  * comma, no raw control characters) and reads members out of it.  Written
- * independently of the program's writer (src/cli/json.c) so the tests can
+ * independently of the program's writer (src/cli/text/json.c) so the tests can
  * judge its output.  See testutil.h. */
 #include "testutil.h"
 

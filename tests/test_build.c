@@ -131,7 +131,7 @@ static long count_in_file(const char *path, const char *text)
     return count;
 }
 
-/* Fault injection (BRDFFIT_FAULT, src/cli/fault.c) is in the tests' build of
+/* Fault injection (BRDFFIT_FAULT, src/cli/record/fault.c) is in the tests' build of
  * the program and not in the one that is installed: the installed program
  * has not the variable's name; the faults build has it. */
 START_TEST(fault_injection_only_in_the_test_build)

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* test_journal.c -- the fit record's JSON reader and writer (src/cli/fit_record.c
- * over src/cli/jsonread.c), as the batch journal uses them: what the writer
+/* test_journal.c -- the fit record's JSON reader and writer (src/cli/record/fit_record.c
+ * over src/cli/record/jsonread.c), as the batch journal uses them: what the writer
  * writes reads back the same, a journal line of the earlier form (before
  * fit_record.h: "ok", a "status" text, "on_bound", "file" {path, size, hash})
  * still reads, resume decides by the status code, and a line a damaged or

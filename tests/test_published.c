@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* test_published.c -- the program's reader of published-fit tables
- * (src/cli/published.c, the format of ngan2005-fits.tsv): a good table reads
+ * (src/cli/pipeline/published.c, the format of ngan2005-fits.tsv): a good table reads
  * back value for value; each kind of malformed table is refused with the line
  * and the reason, and leaves no rows behind. */
 #define _POSIX_C_SOURCE 200809L

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_render_files.c -- a material's render and plot files (src/cli/render_files.c):
+/* test_render_files.c -- a material's render and plot files (src/cli/images/render_files.c):
  * EXR read back through OpenEXR, PNG decoded through libpng and compared with
  * the sRGB curve written here, SVG parsed as XML (expat); bad directories and
  * bad EXR files. */

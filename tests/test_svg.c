@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_svg.c -- the program's XML/SVG writer (src/cli/svg.c): documents parse
+/* test_svg.c -- the program's XML/SVG writer (src/cli/images/svg.c): documents parse
  * as XML (expat), escaped text reads back as given, failures are reported. */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"

@@ -1,31 +1,32 @@
 /* SPDX-License-Identifier: MIT */
 /* cli.h -- what the source files of the brdffit program share.
  *
+ * The program is in rooms, one folder a job:
  *   brdffit.c     main: the table of subcommands, --help, --version
- *   usage.c       the help text, from the table of subcommands and their
- *                 blocks of options
- *   man.c         the same as a manual page (`brdffit help --man`)
- *   cmd_fit.c     `fit` and `demo`: tables, sample sets, one context, the fits
- *                 through fit_pipeline.c (the next file read meanwhile by
- *                 batch.h's prefetch.c)
- *   cmd_models.c  `models`: the models and their lobe parameters
- *   cmd_eval.c    `eval`: one BRDF value
- *   args.c        strict number parsing, usage errors, the list of model names
- *   options.c     the options of `fit` and `demo`, and their help text
- *   material.c    what a fit report is about: a material's name from its path
- *   kernel_note.c on a terminal, a line while a model's kernels are compiled
- *   hints.c       what an input of the wrong kind was probably meant to be
- *   report.c      the paper-style table of the fits
- *   fit_record.c  the fit record: its JSON (fit --json, the batch journal,
- *                 params.json) and TSV (fits.tsv, params.tsv) (fit_record.h)
- *   fit_pipeline.c  the one loop that reads a table, samples it and fits it
- *                 (fit, demo, batch, render/plot's fits; fit_pipeline.h)
- *   json.c        JSON text: escaped strings, round-tripping numbers
- *   text.c        text for the terminal: control characters made harmless
- *   demo_material.c  the embedded synthetic material (demo, batch --demo)
- *   cmd_batch.c, cmd_report.c, cmd_score.c and their support files: batch.h
- *   cmd_render.c, cmd_plot.c and draw.c, material_fits.c: draw.h; the files
- *   they write: render_files.h; image files: image_io.h; SVG/HTML text: svg.h
+ *   commands/     one cmd_NAME.c per subcommand: fit and demo, models, eval,
+ *                 batch, report, render, plot, score
+ *   usage/        the command line: strict number parsing and usage errors
+ *                 (args.c), the options of fit and demo (options.c), the help
+ *                 text (usage.c) and the manual page (man.c) from one table,
+ *                 hints for an input of the wrong kind (hints.c), the line
+ *                 shown while kernels compile (kernel_note.c)
+ *   text/         text for the terminal (text.c), UTF-8 (utf8.c), JSON text
+ *                 (json.c)
+ *   pipeline/     the one loop that reads a table, samples it and fits it
+ *                 (fit_pipeline.c), the next table read meanwhile
+ *                 (prefetch.c), a material's name (material.c), the fits a
+ *                 render or plot needs (material_fits.c), the embedded demo
+ *                 material, published fits (published.c)
+ *   record/       the fit record: its schema, JSON and TSV (fit_record.c),
+ *                 the batch journal (journal.c, jsonread.c), files written
+ *                 whole or not at all (outfile.c), the tests' fault points
+ *                 (fault.c); batch.h is what the batch's files share
+ *   report/       the paper-style table (report.c), the HTML report
+ *                 (html_report.c, report_data.c), a material's files (assets.c)
+ *   images/       renders and plots (draw.c, render_files.c), image files
+ *                 (exr_io.c, png_io.c, partial.c, tonemap.c), SVG/XML text
+ *                 (svg.c, plot_svg.c)
+ * Each folder's headers are included by name (the Makefile's CLI_INC).
  *
  * The library never prints or exits; this program does both. */
 #ifndef BRDFFIT_CLI_H

@@ -80,22 +80,32 @@ BF_FN BF_REAL bf_he_u(BF_REAL c, BF_REAL s, double tau, double sigma0)
     return fmin(fmax(u, BF_R(1e-300)), BF_R(1e10));
 }
 
+/* What S and sigma take of one direction: u, erfc(u) and e^(-u^2)
+ * (bf_he_erfc2: both 0 for u >= 6). */
+typedef struct bf_he_side {
+    BF_REAL u, ec, ex;
+} bf_he_side;
+
+BF_FN bf_he_side bf_he_side_make(BF_REAL c, BF_REAL s, double tau, double sigma0)
+{
+    bf_he_side d;
+    d.u = bf_he_u(c, s, tau, sigma0);
+    bf_he_erfc2(d.u, &d.ec, &d.ex);
+    return d;
+}
+
 /* Eq. 25: Lambda(u) = (e^(-u^2) / (sqrt(pi) u) - erfc(u)) / 2 >= 0 (the paper
  * prints it without e^(-u^2); its errata and independent implementations put
  * it back: docs/he-model.md). */
-BF_FN BF_REAL bf_he_lambda(BF_REAL u)
+BF_FN BF_REAL bf_he_lambda(bf_he_side d)
 {
-    BF_REAL ec, ex;
-    bf_he_erfc2(u, &ec, &ex);
-    return 0.5 * (ex / (BF_SQRT_PI * u) - ec);
+    return 0.5 * (d.ex / (BF_SQRT_PI * d.u) - d.ec);
 }
 
 /* Eq. 24: S(theta) = (1 - erfc(u) / 2) / (1 + Lambda(u)) of one direction. */
-BF_FN BF_REAL bf_he_shadow(BF_REAL u)
+BF_FN BF_REAL bf_he_shadow(bf_he_side d)
 {
-    BF_REAL ec, ex;
-    bf_he_erfc2(u, &ec, &ex);
-    return (1.0 - 0.5 * ec) / (1.0 + bf_he_lambda(u));
+    return (1.0 - 0.5 * d.ec) / (1.0 + bf_he_lambda(d));
 }
 
 /* Eq. 24: S = S(theta_i) S(theta_o) of a direction pair. */
@@ -103,8 +113,8 @@ BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
 {
     bf_he_angles d;
     bf_he_angles_make(g, &d);
-    return bf_he_shadow(bf_he_u(d.ci, d.si, tau, sigma0))
-         * bf_he_shadow(bf_he_u(d.co, d.so, tau, sigma0));
+    return bf_he_shadow(bf_he_side_make(d.ci, d.si, tau, sigma0))
+         * bf_he_shadow(bf_he_side_make(d.co, d.so, tau, sigma0));
 }
 
 /* ---- G: the geometrical factor (Eq. 76), (v.v / v_z)^2.  He's vector form
@@ -193,11 +203,9 @@ BF_FN BF_REAL bf_he_g(BF_REAL sigma, double lam, BF_REAL vz)
  * with x e^(x^2/2) = (K(ti) + K(to)) / sqrt(8 pi). */
 
 /* Eqs. 82-83: K(theta) = tan theta erfc(u) of one direction. */
-BF_FN BF_REAL bf_he_K_theta(BF_REAL c, BF_REAL s, BF_REAL u)
+BF_FN BF_REAL bf_he_K_theta(BF_REAL c, BF_REAL s, bf_he_side d)
 {
-    BF_REAL ec, ex;
-    bf_he_erfc2(u, &ec, &ex);
-    return (s / c) * ec;
+    return (s / c) * d.ec;
 }
 
 /* The root x >= 0 of x e^(x^2/2) = r >= 0 (r floored at BF_TINY: x = r
@@ -229,8 +237,9 @@ BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
 {
     bf_he_angles d;
     bf_he_angles_make(g, &d);
-    return bf_he_sigma_of(bf_he_K_theta(d.ci, d.si, bf_he_u(d.ci, d.si, tau, sigma0)),
-                          bf_he_K_theta(d.co, d.so, bf_he_u(d.co, d.so, tau, sigma0)), sigma0);
+    return bf_he_sigma_of(bf_he_K_theta(d.ci, d.si, bf_he_side_make(d.ci, d.si, tau, sigma0)),
+                          bf_he_K_theta(d.co, d.so, bf_he_side_make(d.co, d.so, tau, sigma0)),
+                          sigma0);
 }
 
 /* Eq. 84: a = pi^2 (tau / lam)^2 |v_xy|^2, v_xy the tangential part of v. */
@@ -248,12 +257,13 @@ BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n, const do
 {
     bf_he_angles d;
     bf_he_angles_make(g, &d);
-    BF_REAL ui = bf_he_u(d.ci, d.si, tau, sigma0), uo = bf_he_u(d.co, d.so, tau, sigma0);
+    bf_he_side side_i = bf_he_side_make(d.ci, d.si, tau, sigma0);
+    bf_he_side side_o = bf_he_side_make(d.co, d.so, tau, sigma0);
     BF_REAL F = bf_he_fresnel(bf_he_cos_b(&d), n);
-    BF_REAL FS = F * (bf_he_shadow(ui) / d.ci) * (bf_he_shadow(uo) / d.co);
+    BF_REAL FS = F * (bf_he_shadow(side_i) / d.ci) * (bf_he_shadow(side_o) / d.co);
     BF_REAL G = bf_he_geometry_v(d.vxy2, d.vz);
-    BF_REAL sigma = bf_he_sigma_of(bf_he_K_theta(d.ci, d.si, ui), bf_he_K_theta(d.co, d.so, uo),
-                                   sigma0);
+    BF_REAL sigma = bf_he_sigma_of(bf_he_K_theta(d.ci, d.si, side_i),
+                                   bf_he_K_theta(d.co, d.so, side_o), sigma0);
     for (int ch = 0; ch < 3; ch++) {
         BF_REAL D = bf_he_D(bf_he_g(sigma, lam[ch], d.vz), bf_he_a(tau, lam[ch], d.vxy2), tau,
                             lam[ch]);

@@ -22,7 +22,7 @@
  * if any): they take the memo's lpk, sum and partials and carry them to
  * their own g, a to first order in ln V, as bf_he_fd carries its neighbours
  * (the remainder is below (m* 1e-12)^2 ~ 1e-19 relative; the carry itself is
- * ~1e-13).  Values then agree with bf_he to ~1e-13 relative, and depend on
+ * ~1e-13).  Values then agree with bf_he_pass_value to ~1e-13 relative, and depend on
  * where a work-item's run of samples starts only at that level.  A channel
  * whose last lane sums its series leaves that lane in the memo; a memo whose
  * lane was dead (too small to sum) serves only lanes dead as well.  (A vector

@@ -46,8 +46,9 @@
 
 /* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
  * p[j] = (tau, sigma0, n), a small step from p[0]) for one data pass:
- * K0[c] = bf_he(p[0]) to rounding (~1e-13; tests/test_he.c, model_equals_pass),
- * Kj[j-1][c] = bf_he(p[j]) to second order in the step.
+ * K0[c] = bf_he_pass_value(p[0]) bit for bit without a memo (to ~1e-12 with one), and
+ * bf_he(p[0]) (the model) to ~1e-12 (tests/test_he.c, model_equals_pass),
+ * Kj[j-1][c] = bf_he_pass_value(p[j]) to second order in the step.
  *
  * All the transcendental work is done once, at p[0]: the series (most of
  * it) with the partials of its log in g and a, the shadowing and sigma with

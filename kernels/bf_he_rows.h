@@ -320,7 +320,7 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
  * K at normal incidence (wi = wo = N) at p0, per channel: pc->ldead =
  * max(BF_HE_LN_DEAD, ln K_normal - BF_HE_ROW_FLOOR) (BF_HE_LN_DEAD where
  * K_normal is 0), and a live lane's sum leaves out its terms below e^ldead
- * (bf_he_series_x).  A served K then differs from bf_he's by less than
+ * (bf_he_series_x).  A served K then differs from bf_he_pass_value's by less than
  * BF_HE_MMAX e^-BF_HE_ROW_FLOOR K_normal ~ 2.8e-10 K_normal (at most
  * BF_HE_MMAX terms left out, each below e^ldead; tests/test_he.c,
  * pass_memo), in practice by a few e^-28 K_normal ~ 1e-12 K_normal, where

@@ -12,7 +12,7 @@
 #endif
 
 /* ---- K in stages: the direction pair, then (tau, sigma0), then n, then the
- * per-channel arguments of D.  bf_he runs them in order; bf_he_fd (a value
+ * per-channel arguments of D.  bf_he_pass_value runs them in order; bf_he_fd (a value
  * and its forward-difference neighbours) reuses what a parameter step leaves
  * unchanged. */
 
@@ -325,7 +325,7 @@ BF_FN void bf_he_fd_base_dir(const bf_he_dir *d, const double *p0, const double 
     bf_he_fd_scale(p0, lam, pc, b);
 }
 
-/* K(p0) of channel ch (wavelength lam um): bf_he's operations, with the
+/* K(p0) of channel ch (wavelength lam um): bf_he_pass_value's operations, with the
  * partials of the series and what the neighbours need kept in b. */
 BF_FN BF_REAL bf_he_fd_channel(bf_he_base *b, double tau, double lam, int ch,
                                const bf_he_pconst *pc, bf_he_memo *memo)

@@ -113,7 +113,7 @@ BF_FN_INLINE BF_REAL bf_lobe_vdk(int model, const bf_geom *g, const double *p, B
  * order in its log, and with a state (NULL: none) reuses the previous
  * vector's series where g and a are unchanged, and with the pass's bin rows
  * (bf_lobe_rows) takes a flat vector's whole value from them (bf_he_fd; K0
- * is then bf_he's to ~1e-12). */
+ * is then bf_he_pass_value's to ~1e-12, and the model's bf_he to ~1e-12). */
 BF_FN_INLINE void bf_lobe_fd(int model, const bf_geom *g, const double (*p)[3], int np,
                              const double *lam, BF_REAL *K0, BF_REAL (*Kj)[3], bf_lobe_state *st)
 {

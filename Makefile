@@ -78,9 +78,10 @@ LIB_OBJ  = $(LIB_SRC:src/lib/%.c=$(BUILD)/lib/%.o) $(BUILD)/lib/kernel_source.o
 # clCreateProgramWithSource (each after what it uses).  The one place that
 # order is written.
 KERNEL_SOURCES = kernels/bf_common.h kernels/bf_exp.h kernels/bf_models.h \
-                 kernels/bf_he_const.h kernels/bf_he_surface.h kernels/bf_he_series.h \
-                 kernels/bf_he_tab.h kernels/bf_he_memo.h kernels/bf_he_stages.h kernels/bf_he_rows.h \
-                 kernels/bf_he.h kernels/bf_lobe.h \
+                 kernels/bf_he_const.h kernels/bf_he_num.h kernels/bf_he_model.h kernels/bf_lobe.h \
+                 kernels/bf_he_surface.h kernels/bf_he_series.h kernels/bf_he_tab.h \
+                 kernels/bf_he_memo.h kernels/bf_he_stages.h kernels/bf_he_rows.h \
+                 kernels/bf_he_pass.h kernels/bf_lobe_pass.h \
                  kernels/bf_layout.h kernels/bf_pass.h kernels/bf_pass.cl
 CLI_SRC  = $(wildcard src/cli/*.c src/cli/*/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
@@ -173,7 +174,7 @@ $(BUILD)/brdffit-faults: $(filter-out $(FAULT_SRC:src/cli/%.c=$(BUILD)/cli/%.o),
 
 # The manual page: the program's help text as roff (src/cli/usage/man.c).
 $(BUILD)/brdffit.1: $(BUILD)/brdffit
-	./$(BUILD)/brdffit help --man > $@.tmp && mv $@.tmp $@
+	$(abspath $<) help --man > $@.tmp && mv $@.tmp $@
 
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) $(TEST_INC) $(CLI_CFLAGS) $(CHECK_CFLAGS) $(CFLAGS) -c -o $@ $<

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* bf_he_const.h -- the constants of the He lobe's numerics, shared by its
- * parts (bf_he.h says what each part does and why these values). */
+ * parts (bf_he_model.h and bf_he_pass.h say what each part does and why
+ * these values). */
 #ifndef BF_HE_CONST_H
 #define BF_HE_CONST_H
 

@@ -22,7 +22,7 @@
  * if any): they take the memo's lpk, sum and partials and carry them to
  * their own g, a to first order in ln V, as bf_he_fd carries its neighbours
  * (the remainder is below (m* 1e-12)^2 ~ 1e-19 relative; the carry itself is
- * ~1e-13).  Values then agree with bf_he to ~1e-13 relative, and depend on
+ * ~1e-13).  Values then agree with bf_he_pass_value to ~1e-13 relative, and depend on
  * where a work-item's run of samples starts only at that level.  A channel
  * whose last lane sums its series leaves that lane in the memo; a memo whose
  * lane was dead (too small to sum) serves only lanes dead as well.  (A vector
@@ -30,6 +30,16 @@
  * both.) */
 #define BF_HE_FD_MARGIN 1.001
 #define BF_HE_MEMO_TOL 1e-12
+
+/* The memo's hit counters (hits, thits, bhits, nhits, bsure) say which
+ * machinery served a pass's lanes; only tests read them, so they count only
+ * where BF_HE_COUNT_HITS is defined before this file is included (the
+ * fields are there either way). */
+#ifdef BF_HE_COUNT_HITS
+#define BF_HE_HIT(counter) ((counter) += 1.0)
+#else
+#define BF_HE_HIT(counter) ((void)0)
+#endif
 
 /* The logs of the constants of a pass's point that bf_he_fd_base and
  * bf_he_fd_channel use (scalar logs cost as much as the vector work of a
@@ -208,7 +218,7 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
             va = BF_SEL(va, xva, sx > 0.0);
             ser = BF_SEL(ser, xser, sx > 0.0);
         } else if (memo) {
-            memo->thits += 1.0;
+            BF_HE_HIT(memo->thits);
         }
         if (memo && BF_LAST(need) > 0.0) {
             memo->ok[ch] = 1.0;
@@ -220,7 +230,7 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
             memo->va[ch] = BF_LAST(va);
         }
     } else if (memo && BF_ANY(act > 0.0)) {
-        memo->hits += 1.0;
+        BF_HE_HIT(memo->hits);
     }
     if (BF_ANY(hl > 0.0)) {
         ser = BF_SEL(ser, hser, hl > 0.0);
@@ -235,8 +245,8 @@ BF_FN BF_REAL bf_he_series_memo(BF_REAL gs, BF_REAL lngs, BF_REAL aa, BF_REAL la
 /* e^lk D / (pi tau / (2 lam))^2 of one channel from g > 0 with lng = ln g and
  * a >= 0 with la ~ ln a: the series below g = 18, the rough limit lim (the
  * caller's e^(lk - a/g) / g, used where g > 18) above 19, linear in g in
- * between: the one place the two are blended (bf_he_D and bf_he_fd both
- * come here).  The series is summed, at min(g, 19), where g < 19 margin:
+ * between: the one place the two are blended (bf_he_D_pass and bf_he_fd
+ * both come here).  The series is summed, at min(g, 19), where g < 19 margin:
  * margin 1 for a value alone, BF_HE_FD_MARGIN when bf_he_fd will carry
  * neighbours from it.  *V gets the series; memo, ch, deriv, *vg, *va: see
  * bf_he_series_memo.  Finite wherever e^lk D is (lanes on one side never see
@@ -263,8 +273,9 @@ BF_FN BF_REAL bf_he_dscaled(BF_REAL g, BF_REAL lng, BF_REAL a, BF_REAL la, BF_RE
                         &vg, &va);
 }
 
-/* The distribution D(g, a) of one wavelength lam (um) for tau (um), g > 0, a >= 0. */
-BF_FN BF_REAL bf_he_D(BF_REAL g, BF_REAL a, double tau, double lam)
+/* The distribution D(g, a) of one wavelength lam (um) for tau (um), g > 0,
+ * a >= 0, as a pass computes it (bf_he_D in bf_he_model.h: the model's). */
+BF_FN BF_REAL bf_he_D_pass(BF_REAL g, BF_REAL a, double tau, double lam)
 {
     double k = BF_PI * tau / (2.0 * lam);
     BF_REAL gs = fmax(g, BF_TINY), as = fmax(a, 0.0);

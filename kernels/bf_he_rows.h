@@ -211,7 +211,7 @@ BF_FN void bf_he_fd_rest(bf_he_base *b, const double (*p)[3], int np, const doub
 }
 
 /* K at p[0] and at p[1..np] of the lanes of g, every step of bf_he_fd
- * (bf_he.h) but the rows; with flat, every lane flat (bf_he_rough_make). */
+ * (bf_he_pass.h) but the rows; with flat, every lane flat (bf_he_rough_make). */
 BF_FN void bf_he_fd_lanes(const bf_geom *g, const double (*p)[3], int np, const double *lam,
                           const bf_he_pconst *pc, int flat, BF_REAL *K0, BF_REAL (*Kj)[3],
                           bf_he_memo *memo)
@@ -308,7 +308,7 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
         for (int c = 0; c < 3; c++)
             Kj[j][c] *= carry ? sj * bf_he_row_carry_exp(G, H, c, lsj) : sj;
     }
-    m->nhits += 1.0;
+    BF_HE_HIT(m->nhits);
     return 1;
 }
 
@@ -320,7 +320,7 @@ BF_FN int bf_he_near_serve(bf_he_memo *m, const bf_he_base *b, const double (*p)
  * K at normal incidence (wi = wo = N) at p0, per channel: pc->ldead =
  * max(BF_HE_LN_DEAD, ln K_normal - BF_HE_ROW_FLOOR) (BF_HE_LN_DEAD where
  * K_normal is 0), and a live lane's sum leaves out its terms below e^ldead
- * (bf_he_series_x).  A served K then differs from bf_he's by less than
+ * (bf_he_series_x).  A served K then differs from bf_he_pass_value's by less than
  * BF_HE_MMAX e^-BF_HE_ROW_FLOOR K_normal ~ 2.8e-10 K_normal (at most
  * BF_HE_MMAX terms left out, each below e^ldead; tests/test_he.c,
  * pass_memo), in practice by a few e^-28 K_normal ~ 1e-12 K_normal, where

@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* bf_he_stages.h -- the He lobe's K in stages (the direction pair, then tau and
- * sigma0, then n, then each channel) and its forward-difference neighbours
- * carried from the value point's stages to first order. */
+/* bf_he_stages.h -- a data pass's He K in stages (the direction pair, then
+ * tau and sigma0, then n, then each channel) and its forward-difference
+ * neighbours carried from the value point's stages to first order: the
+ * terms of bf_he_model.h (F, G as ln G, S, sigma, g, a, D) shared between
+ * the points of a pass. */
 #ifndef BF_HE_STAGES_H
 #define BF_HE_STAGES_H
 
@@ -10,7 +12,7 @@
 #endif
 
 /* ---- K in stages: the direction pair, then (tau, sigma0), then n, then the
- * per-channel arguments of D.  bf_he runs them in order; bf_he_fd (a value
+ * per-channel arguments of D.  bf_he_pass_value runs them in order; bf_he_fd (a value
  * and its forward-difference neighbours) reuses what a parameter step leaves
  * unchanged. */
 
@@ -74,15 +76,6 @@ BF_FN void bf_he_dir_make(const bf_geom *g, bf_he_dir *d)
 {
     bf_he_dir_cos(g, sqrt(g->ix * g->ix + g->iy * g->iy), sqrt(g->ox * g->ox + g->oy * g->oy), d);
     bf_he_dir_logs(d);
-}
-
-/* The geometrical factor G = (v.v / v_z)^2, v = wi + wo (see the header
- * comment), as K uses it: e^(ln G) of bf_he_dir_make. */
-BF_FN BF_REAL bf_he_geometry(const bf_geom *g)
-{
-    bf_he_dir d;
-    bf_he_dir_make(g, &d);
-    return exp(d.lg2);
 }
 
 /* What depends on (tau, sigma0) too: S(ti), S(to), S(ti) / cos ti, S(to) / cos to
@@ -194,26 +187,6 @@ BF_FN void bf_he_rough_make(const bf_he_dir *d, double tau, double sigma0, int d
     BF_REAL ui, uo;
     bf_he_u2(d->ci, d->si, d->co, d->so, tau, sigma0, &ui, &uo);
     bf_he_rough_make_u(d, ui, uo, sigma0, deriv, flat, r);
-}
-
-/* The shadowing S = S(theta_i) S(theta_o) of a direction pair, as K uses it. */
-BF_FN BF_REAL bf_he_shadowing(const bf_geom *g, double tau, double sigma0)
-{
-    bf_he_dir d;
-    bf_he_rough r;
-    bf_he_dir_make(g, &d);
-    bf_he_rough_make(&d, tau, sigma0, 0, 0, &r);
-    return r.Si * r.So;
-}
-
-/* The effective roughness sigma of a direction pair, as K uses it. */
-BF_FN BF_REAL bf_he_sigma(const bf_geom *g, double tau, double sigma0)
-{
-    bf_he_dir d;
-    bf_he_rough r;
-    bf_he_dir_make(g, &d);
-    bf_he_rough_make(&d, tau, sigma0, 0, 0, &r);
-    return r.sigma;
 }
 
 /* r0 (made with deriv at (tau0, sigma00)) carried to (tau, sigma0) nearby,
@@ -352,7 +325,7 @@ BF_FN void bf_he_fd_base_dir(const bf_he_dir *d, const double *p0, const double 
     bf_he_fd_scale(p0, lam, pc, b);
 }
 
-/* K(p0) of channel ch (wavelength lam um): bf_he's operations, with the
+/* K(p0) of channel ch (wavelength lam um): bf_he_pass_value's operations, with the
  * partials of the series and what the neighbours need kept in b. */
 BF_FN BF_REAL bf_he_fd_channel(bf_he_base *b, double tau, double lam, int ch,
                                const bf_he_pconst *pc, bf_he_memo *memo)

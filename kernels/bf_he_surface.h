@@ -1,38 +1,16 @@
 /* SPDX-License-Identifier: MIT */
-/* bf_he_surface.h -- the He lobe's terms of one direction (pair) at the
- * surface: Fresnel's F, u = tau cot(theta) / (2 sigma0), erfc(u) (Cody's
- * approximation), the shadowing S(u) and its derivative, and the root x of
- * the effective roughness sigma (bf_he.h: the model). */
+/* bf_he_surface.h -- a data pass's terms of one direction pair at the
+ * surface (the first of the pass machinery, bf_he_pass.h): both directions'
+ * u = tau cot(theta) / (2 sigma0) from one division, the shadowing S(u)
+ * (Eq. 24) as h u / lu and its derivative, and the root x of the effective
+ * roughness sigma (Eq. 80) with one Newton step from a rational start.  The
+ * same terms as bf_he_model.h's, to rounding (tests/test_he.c). */
 #ifndef BF_HE_SURFACE_H
 #define BF_HE_SURFACE_H
 
 #ifndef __OPENCL_VERSION__
-#include "bf_he_const.h"
+#include "bf_he_model.h"
 #endif
-
-/* Fresnel reflectance, unpolarised, real index n >= 1, at c = cos theta_b in
- * [BF_HE_COS_MIN, 1]: F = q^2 (1 + r^2) / 2 with A = g' + c, q = (g' - c) / A
- * = e / A^2 (g' - c = e / A, e = n^2 - 1: no cancellation for n ~ 1) and
- * r = (c A - 1) / (c (g' - c) + 1) = (c A - 1) A / (c e + A).  Both
- * denominators come from one division: A^2 (c e + A) >= 8e-300 (A >= 2c).
- * Not contracted to fused multiply-adds in the kernel, so that it rounds as
- * the host's C does: a full pass's neighbour in n takes F again at n + dn,
- * and its difference quotient multiplies F's rounding by 1 / h ~ 1e7 (with
- * c e + A and c A - 1 fused in the kernel alone, its sums and the C loop's
- * parted by 1.1e-9 relative: tests/test_pass.c). */
-BF_FN BF_REAL bf_he_fresnel(BF_REAL c, double n)
-{
-#ifdef __OPENCL_VERSION__
-#pragma OPENCL FP_CONTRACT OFF
-#endif
-    double e = (n - 1.0) * (n + 1.0);
-    BF_REAL A = sqrt(e + c * c) + c, A2 = A * A;
-    BF_REAL B = c * e + A;
-    BF_REAL inv = 1.0 / (A2 * B);
-    BF_REAL q = (e * B) * inv;
-    BF_REAL r = ((c * A - 1.0) * A) * (A2 * inv);
-    return 0.5 * (q * q) * (1.0 + r * r);
-}
 
 /* u = tau cot(theta) / (2 sigma0) of both directions from their cosines and
  * sines, each kept in [1e-300, 1e10] (u = 1e10 is the normal: every use
@@ -47,105 +25,6 @@ BF_FN void bf_he_u2(BF_REAL ci, BF_REAL si, BF_REAL co, BF_REAL so, double tau, 
     bf_rcp2(fmax(si, BF_R(1e-150)), fmax(so, BF_R(1e-150)), &rsi, &rso);
     *ui = fmin(fmax((k * ci) * rsi, BF_R(1e-300)), BF_R(1e10));
     *uo = fmin(fmax((k * co) * rso, BF_R(1e-300)), BF_R(1e10));
-}
-
-/* erfc(u) for u in [0, BF_HE_U_FLAT], given ex = e^(-u^2): W. J. Cody's
- * rational Chebyshev approximations (Math. Comp. 23, 631-637, 1969; the
- * coefficients of netlib's specfun CALERF): 1 - u A(u^2) / B(u^2) on
- * [0, 0.46875], ex C(u) / D(u) on (0.46875, 4], ex (1/sqrt(pi) - z P(z) / Q(z)) / u,
- * z = 1/u^2, above; each piece only when some lane needs it.  Against glibc's
- * erfc over [0, 6] in steps of 1e-6 (tests/test_he.c, erfc_cody): within
- * 2.3e-15 relative up to u = 5 and 4e-15 up to 6 (where erfc < 2e-12: the
- * rounding of u^2 in ex).  It replaced the OpenCL library's erfc, which cost
- * as much as the rest of a rough sample's shadowing. */
-BF_HE_CONSTANT double bf_he_cody_a[5] = {
-    3.16112374387056560e00, 1.13864154151050156e02, 3.77485237685302021e02,
-    3.20937758913846947e03, 1.85777706184603153e-1
-};
-BF_HE_CONSTANT double bf_he_cody_b[4] = {
-    2.36012909523441209e01, 2.44024637934444173e02, 1.28261652607737228e03,
-    2.84423683343917062e03
-};
-BF_HE_CONSTANT double bf_he_cody_c[9] = {
-    5.64188496988670089e-1, 8.88314979438837594e00, 6.61191906371416295e01,
-    2.98635138197400131e02, 8.81952221241769090e02, 1.71204761263407058e03,
-    2.05107837782607147e03, 1.23033935479799725e03, 2.15311535474403846e-8
-};
-BF_HE_CONSTANT double bf_he_cody_d[8] = {
-    1.57449261107098347e01, 1.17693950891312499e02, 5.37181101862009858e02,
-    1.62138957456669019e03, 3.29079923573345963e03, 4.36261909014324716e03,
-    3.43936767414372164e03, 1.23033935480374942e03
-};
-BF_HE_CONSTANT double bf_he_cody_p[6] = {
-    3.05326634961232344e-1, 3.60344899949804439e-1, 1.25781726111229246e-1,
-    1.60837851487422766e-2, 6.58749161529837803e-4, 1.63153871373020978e-2
-};
-BF_HE_CONSTANT double bf_he_cody_q[5] = {
-    2.56852019228982242e00, 1.87295284992346725e00, 5.27905102951428412e-1,
-    6.05183413124413191e-2, 2.33520497626869185e-3
-};
-
-BF_FN BF_REAL bf_he_erfc_cody(BF_REAL u, BF_REAL ex)
-{
-    /* each piece's quotient num / den, then one division for the pieces
-     * the lanes need (at He's typical start most vectors of grazing lanes
-     * take the two upper ones): each lane's value that of its piece alone,
-     * to the bit */
-    BF_REAL num = BF_R(0.0), den = BF_R(1.0);
-    if (BF_ANY(u <= 0.46875)) {
-        BF_REAL z = u * u, n = bf_he_cody_a[4] * z, d = z;
-        for (int i = 0; i < 3; i++) {
-            n = (n + bf_he_cody_a[i]) * z;
-            d = (d + bf_he_cody_b[i]) * z;
-        }
-        num = BF_SEL(num, u * (n + bf_he_cody_a[3]), u <= 0.46875);
-        den = BF_SEL(den, d + bf_he_cody_b[3], u <= 0.46875);
-    }
-    if (BF_ANY((u > 0.46875) && (u <= 4.0))) {
-        BF_REAL n = bf_he_cody_c[8] * u, d = u;
-        for (int i = 0; i < 7; i++) {
-            n = (n + bf_he_cody_c[i]) * u;
-            d = (d + bf_he_cody_d[i]) * u;
-        }
-        num = BF_SEL(num, ex * (n + bf_he_cody_c[7]), (u > 0.46875) && (u <= 4.0));
-        den = BF_SEL(den, d + bf_he_cody_d[7], (u > 0.46875) && (u <= 4.0));
-    }
-    if (BF_ANY(u > 4.0)) {
-        /* z P(z) / Q(z) with z = 1 / w, w = u^2, is P~(w) / (w Q~(w)) with
-         * the coefficients reversed (P~(w) = w^5 P(1 / w), w <= 36 here):
-         * one quotient for the piece instead of three */
-        BF_REAL uc = fmax(u, BF_R(4.0)), w = uc * uc;
-        BF_REAL n = bf_he_cody_p[4] * w, d = bf_he_cody_q[4] * w;
-        for (int i = 3; i >= 0; i--) {
-            n = (n + bf_he_cody_p[i]) * w;
-            d = (d + bf_he_cody_q[i]) * w;
-        }
-        n += bf_he_cody_p[5];
-        d += 1.0;
-        BF_REAL wd = w * d;
-        num = BF_SEL(num, ex * (0.56418958354775628695 * wd - n), u > 4.0);
-        den = BF_SEL(den, wd * uc, u > 4.0);
-    }
-    BF_REAL r = num / den;
-    return BF_SEL(r, 1.0 - r, u <= 0.46875);
-}
-
-/* erfc(u) and e^(-u^2) of the shadowing, for u in [1e-300, 1e10], as 0 for
- * u >= BF_HE_U_FLAT = 6 (erfc(6) = 2.2e-17, e^-36 = 2.3e-16): there S(t)
- * rounds to 1 and sigma's r gains less than 1e-14 (sigma: relative 1e-14),
- * so the rule changes no value measurably, and a vector with every u >= 6 (a
- * smooth surface away from grazing) skips both. */
-BF_FN void bf_he_erfc2(BF_REAL u, BF_REAL *ec, BF_REAL *ex)
-{
-    *ec = BF_R(0.0);
-    *ex = BF_R(0.0);
-    if (BF_ANY(u < BF_HE_U_FLAT)) {
-        BF_REAL flat = BF_SEL(BF_R(0.0), BF_R(1.0), u >= BF_HE_U_FLAT);
-        BF_REAL us = fmin(u, BF_R(BF_HE_U_FLAT));
-        BF_REAL e = exp(-us * us);
-        *ec = BF_SEL(bf_he_erfc_cody(us, e), BF_R(0.0), flat > 0.0);
-        *ex = BF_SEL(e, BF_R(0.0), flat > 0.0);
-    }
 }
 
 /* One direction's shadowing is S(theta) = (1 - erfc(u) / 2) / (1 + L(u)),

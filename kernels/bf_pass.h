@@ -22,7 +22,7 @@
 
 #ifndef __OPENCL_VERSION__
 #include "bf_layout.h"
-#include "bf_lobe.h"
+#include "bf_lobe_pass.h"
 #endif
 
 /* The sums of a run of factored vectors (bf_lobe_fd_factored: K_c(p_j) =

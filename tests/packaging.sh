@@ -19,7 +19,8 @@
 #              pkg-config in C and C++, shared and static (the static ones
 #              need no libbrdffit.so), run on a synthetic table: it fits the
 #              generating Cook-Torrance parameters back
-#   drop-in    <brdffit/bf_lobe.h> compiles in C and C++ and equals brdffit_eval
+#   drop-in    <brdffit/bf_lobe.h> compiles in C and C++ and equals brdffit_eval;
+#              no header of the data pass's machinery is installed
 #   no data    without ../shared the suite says so in one line, runs the
 #              tests that need no data, and fails
 #   deps       `make -n`, `make clean` and `make install` never call apt-get
@@ -81,6 +82,17 @@ expect "make install DESTDIR=$D" $MAKE -s install DESTDIR="$D" PREFIX=$P BUILD="
 for f in include/brdffit.h include/brdffit/bf_lobe.h include/brdffit/bf_common.h \
          lib/libbrdffit.a "lib/libbrdffit.so.$VERSION" lib/pkgconfig/brdffit.pc bin/brdffit; do
     if [ -f "$D$P/$f" ]; then pass; else fail "make install did not install $P/$f"; fi
+done
+# the drop-in headers hold the lobes' values (the closed-form lobes, He's
+# model) and none of a data pass's machinery
+for f in bf_he_model.h bf_models.h; do
+    if [ -f "$D$P/include/brdffit/$f" ]; then pass; else fail "make install did not install $P/include/brdffit/$f"; fi
+done
+for f in bf_lobe_pass.h bf_pass.h bf_layout.h bf_he_pass.h bf_he_rows.h bf_he_stages.h \
+         bf_he_memo.h bf_he_tab.h bf_he_series.h bf_he_surface.h; do
+    if [ -e "$D$P/include/brdffit/$f" ]; then
+        fail "make install installed the data pass's $P/include/brdffit/$f"
+    else pass; fi
 done
 if [ "$(readlink "$D$P/lib/libbrdffit.so.1")" = "libbrdffit.so.$VERSION" ] &&
    [ "$(readlink "$D$P/lib/libbrdffit.so")" = "libbrdffit.so.1" ]; then pass; else

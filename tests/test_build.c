@@ -74,13 +74,21 @@ START_TEST(header_change_rebuilds_its_includers)
 {
     would_run(NULL, "libbrdffit.a", base, sizeof base);
 
-    /* the He maths: only the two library files that include the kernel maths */
-    would_run("kernels/bf_he.h", "libbrdffit.a", out, sizeof out);
+    /* the He model: the evaluators and the pass, which include it */
+    would_run("kernels/bf_he_model.h", "libbrdffit.a", out, sizeof out);
     REBUILDS("src/lib/models.c");
+    REBUILDS("src/lib/render.c");
     REBUILDS("src/lib/pass_host.c");
     KEEPS("src/lib/status.c");
     KEEPS("src/lib/fit/problem.c");
     KEEPS("src/lib/merl_file.c");
+
+    /* He's pass machinery: the pass, not the evaluators (which do not include it) */
+    would_run("kernels/bf_he_rows.h", "libbrdffit.a", out, sizeof out);
+    REBUILDS("src/lib/pass_host.c");
+    KEEPS("src/lib/models.c");
+    KEEPS("src/lib/render.c");
+    KEEPS("src/lib/status.c");
 
     /* the grid header: the table files, not the pass */
     would_run("src/lib/grid.h", "libbrdffit.a", out, sizeof out);

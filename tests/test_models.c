@@ -6,7 +6,7 @@
  * take; the registry itself and the ABI values it pins. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
-#include "bf_lobe.h"
+#include "bf_lobe_pass.h"
 
 #include <check.h>
 #include <float.h>

@@ -2,7 +2,7 @@
 /* fc_shim.c -- the Ceres fitter's residuals, Jacobian and start, from the
  * library's samples and the kernel headers' lobes (see fc_shim.h).  No model
  * formula is written here: K and its partials in p are bf_lobe / bf_lobe_vdk
- * (kernels/bf_lobe.h, compiled as C with BF_REAL = double), f = d / pi + s K
+ * (kernels/bf_lobe.h, bf_lobe_pass.h, compiled as C with BF_REAL = double), f = d / pi + s K
  * is the library's form of every model, and d p / d theta is the registry's
  * parameter map. */
 #define _DEFAULT_SOURCE /* M_PI, M_SQRT1_2, M_SQRT2 */
@@ -14,7 +14,7 @@
 #include "samples.h"
 #include "subsets.h"
 
-#include "bf_lobe.h"
+#include "bf_lobe_pass.h"
 
 #include <math.h>
 #include <stdio.h>

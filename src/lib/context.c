@@ -21,7 +21,7 @@
 
 #include "pocl_cache.h"
 
-#include "bf_lobe.h" /* bf_lobe_has_own_fd: a kernel's BF_ROWS */
+#include "bf_lobe_pass.h" /* bf_lobe_has_own_fd: a kernel's BF_ROWS */
 
 extern const char *const bf_kernel_sources[];
 extern const size_t bf_kernel_source_count;

@@ -7,7 +7,7 @@
 #include "registry.h"
 #include "samples.h"
 
-#include "bf_lobe.h"
+#include "bf_lobe_pass.h"
 
 #include <math.h>
 #include <stdint.h>

@@ -8,7 +8,7 @@
 #include "grid.h"
 #include "samples.h"
 
-#include "bf_lobe.h"
+#include "bf_lobe_pass.h"
 
 #include <math.h>
 #include <stdlib.h>

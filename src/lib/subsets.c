@@ -9,7 +9,7 @@
 #include "samples.h"
 #include "subsets.h"
 
-#include "bf_lobe.h"
+#include "bf_lobe_pass.h"
 
 brdffit_status bf_screen_subsets(const brdffit_samples *s, brdffit_model model,
                                  const brdffit_samples **every, const brdffit_samples **bins,

@@ -1,34 +1,16 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * bf_he.h -- the He et al. 1991 directional-diffuse lobe as Ngan et al. fitted
- * it: p0 = tau (autocorrelation length, um), p1 = sigma0 (rms roughness, um),
- * p2 = n (real refractive index), K per channel at wavelengths lam[0..2] (um).
- * Written once for the C library and the OpenCL kernel (see bf_common.h).
+ * bf_he_pass.h -- He's lobe in a data pass: K at a pass's point and its
+ * forward-difference neighbours (bf_he_fd), the same K as the model's
+ * bf_he (bf_he_model.h: the equations) computed with the pass machinery.
+ * Only the data pass includes it (through bf_lobe_pass.h); brdffit_eval and
+ * the renders do not.
  *
- * With wi toward the light, wo toward the viewer, v = wi + wo, N = z:
- *
- *   K = F G S D / (pi cos ti cos to)
- *   F  Fresnel, unpolarised, real n, at c = cos theta_b = |v| / 2
- *   G  = (v.v / v_z)^2.  He et al.'s vector form
- *        (v.v / v_z)^2 [(s_r.k_i)^2 + (p_r.k_i)^2] [(s_i.k_r)^2 + (p_i.k_r)^2] / |k_r x k_i|^4
- *      is exactly this: (s_r, p_r, k_r) is an orthonormal basis, so
- *      (s_r.k_i)^2 + (p_r.k_i)^2 = 1 - (k_r.k_i)^2 = |k_r x k_i|^2, and likewise
- *      for the other bracket.  The closed form has no 0/0 at wi = wo (where it
- *      is 4 / cos^2 theta) nor at normal incidence (where s is arbitrary).
- *   S  = S(ti) S(to), S(t) = (1 - erfc(u)/2) / (1 + L(u)), u = tau cot t / (2 sigma0),
- *      L(u) = (exp(-u^2) / (sqrt(pi) u) - erfc(u)) / 2
- *   sigma = sigma0 / sqrt(1 + x^2),  x e^(x^2/2) = (K(ti) + K(to)) / sqrt(8 pi),
- *      K(t) = tan t erfc(u)
- *   g  = ((2 pi sigma / lam)(cos ti + cos to))^2,  a = pi^2 (tau/lam)^2 |v_xy|^2
- *   D  = (pi tau / (2 lam))^2 sum_{m>=1} g^m e^-g / (m! m) e^(-a/m)   (g <= 18)
- *      ~ (pi tau / (2 lam))^2 e^(-a/g) / g                             (g >= 19)
- *      blended linearly in g over [18, 19].
- *
- * Numerics.  The terms T_m of the series are log-concave in m (their log
- * ratios decrease), so per lane the peak m* is found exactly (a Newton
- * estimate, then a step or two on the sign of the log ratio, from a table
- * of ln(m m!): bf_he_dlog).  K is computed
- * as e^(ln T_m* + ln(pref F G S / (pi cos cos))) sum_m T_m / T_m*, so nothing
+ * Numerics.  The terms T_m of the series D (Eq. 78) are log-concave in m
+ * (their log ratios decrease), so per lane the peak m* is found exactly (a
+ * Newton estimate, then a step or two on the sign of the log ratio, from a
+ * table of ln(m m!): bf_he_dlog).  K is computed as
+ * e^(ln T_m* + ln(pref F G S / (pi cos cos))) sum_m T_m / T_m*, so nothing
  * underflows unless K does: a lane whose peak term puts less than e^-760 into
  * K is 0 without summing (in a pass's bin rows, a higher floor:
  * bf_he_row_floor); the sum starts where the terms are within e^-40
@@ -39,25 +21,24 @@
  * beyond it, and the scale factor is below e^45 for directions up to 89.9 deg
  * (and far beyond), so no later term reaches the double range.  The peak can
  * lie far beyond the ~80 terms a = 0 needs (m* = 166 at g = 16.3, a = 6.4e4,
- * K = 2e-269: a row of he-reference.tsv).  Cosines are floored at 1e-100, so
- * every lane stays finite for any direction strictly above the horizon.  A
- * data pass takes the series of most lanes from a table of its terms made
- * once per (theta_h, theta_d) bin (bf_he_tab), to the same accuracy.
+ * K = 2e-269: a row of he-reference.tsv).  A data pass takes the series of
+ * most lanes from a table of its terms made once per (theta_h, theta_d) bin
+ * (bf_he_tab), to the same accuracy.
  *
- * The parts, each including the one before (the kernel concatenates them in
- * this order: the Makefile's KERNEL_SOURCES):
- *   bf_he_const.h    the constants of the numerics below
- *   bf_he_surface.h  F, u, erfc, the shadowing S and sigma's root
+ * The machinery, each file including the one before (the kernel
+ * concatenates them in this order, after bf_he_model.h and bf_lobe.h: the
+ * Makefile's KERNEL_SOURCES):
+ *   bf_he_surface.h  both directions' u, the shadowing S and sigma's root
  *   bf_he_series.h   the series D around its peak, and the rough limit
  *   bf_he_tab.h      a bin's series as a polynomial in g, a point's series
  *   bf_he_memo.h     what a pass keeps from vector to vector; a lane's series
  *   bf_he_stages.h   K in stages, and the neighbours of a forward difference
  *   bf_he_rows.h     the bin rows of a pass where the shadowing is flat
- *   bf_he.h          (this file) K and its neighbours for a pass: rows or
- *                    stages (bf_he_fd), and bf_he, bf_lobe_he
+ *   bf_he_pass.h     (this file) K and its neighbours for a pass: rows or
+ *                    stages (bf_he_fd)
  */
-#ifndef BF_HE_H
-#define BF_HE_H
+#ifndef BF_HE_PASS_H
+#define BF_HE_PASS_H
 
 #ifndef __OPENCL_VERSION__
 #include "bf_he_rows.h"
@@ -65,8 +46,9 @@
 
 /* K at p[0] and at the np <= 3 forward-difference neighbours p[1..np] (each
  * p[j] = (tau, sigma0, n), a small step from p[0]) for one data pass:
- * K0[c] = bf_he(p[0]) bit for bit without a memo (to ~1e-12 with one),
- * Kj[j-1][c] = bf_he(p[j]) to second order in the step.
+ * K0[c] = bf_he_pass_value(p[0]) bit for bit without a memo (to ~1e-12 with one), and
+ * bf_he(p[0]) (the model) to ~1e-12 (tests/test_he.c, model_equals_pass),
+ * Kj[j-1][c] = bf_he_pass_value(p[j]) to second order in the step.
  *
  * All the transcendental work is done once, at p[0]: the series (most of
  * it) with the partials of its log in g and a, the shadowing and sigma with
@@ -89,7 +71,7 @@
  * series is also summed for g in [19, 19 m) and the limit made for g in
  * (18 / m, 18], m = BF_HE_FD_MARGIN, where the value does not use them, so
  * that a step across 19 or 18 is covered; a step of 1e-3 relative in g
- * would not be.  np = 0 with no memo is bf_he.  The memos: see bf_he_memo
+ * would not be.  np = 0 with no memo is bf_he_pass_value.  The memos: see bf_he_memo
  * (the series) and bf_he_flat (the bin rows).
  *
  * In steps: with a memo that has rows, a vector whose lanes are all flat
@@ -119,13 +101,13 @@ BF_FN int bf_he_fd_factored(const bf_geom *g, const double (*p)[3], int np, cons
     if (memo && memo->rows) {
         bf_he_flat fl;
         if (bf_he_flat_sure(g, memo->bins, memo->vhd, memo->cot_sure, &fl))
-            memo->bsure += 1.0;
+            BF_HE_HIT(memo->bsure);
         else
             bf_he_flat_make(g, p[0][0], p[0][1], &fl);
         if (!BF_ANY(fl.lanes <= 0.0)) {
             BF_REAL qv = bf_he_bin_q(&fl);
             const double hd = BF_LAST(memo->vhd);
-            memo->bhits += 1.0;
+            BF_HE_HIT(memo->bhits);
             if (BF_ANY(memo->vhd != hd)) {
                 bf_he_bin_gather(memo, qv, np, K0, Kj);
                 return 0;
@@ -159,20 +141,13 @@ BF_FN void bf_he_fd(const bf_geom *g, const double (*p)[3], int np, const double
     bf_he_fd_factored(g, p, np, lam, K0, Kj, memo, (BF_REAL *)0);
 }
 
-/* K per channel into K[0..2] at wavelengths lam[0..2]: bf_he_fd's value. */
-BF_FN void bf_he(const bf_geom *g, double tau, double sigma0, double n, const double *lam,
-                 BF_REAL *K)
+/* K per channel into K[0..2] at wavelengths lam[0..2] as a pass without
+ * neighbours or memo computes it: bf_he_fd's value (bf_he is the model's). */
+BF_FN void bf_he_pass_value(const bf_geom *g, double tau, double sigma0, double n,
+                            const double *lam, BF_REAL *K)
 {
     const double p[1][3] = { { tau, sigma0, n } };
     bf_he_fd(g, p, 0, lam, K, (BF_REAL(*)[3])0, (bf_he_memo *)0);
 }
 
-/* The He model's entry point (the shape of bf_models.h's bf_lobe_<model>);
- * its forward differences are bf_he_fd (bf_lobe_fd_he in bf_lobe.h hands it
- * the pass state). */
-BF_FN void bf_lobe_he(const bf_geom *g, const double *p, const double *lam, BF_REAL *K)
-{
-    bf_he(g, p[0], p[1], p[2], lam, K);
-}
-
-#endif /* BF_HE_H */
+#endif /* BF_HE_PASS_H */

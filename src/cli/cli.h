@@ -17,12 +17,14 @@
  *                 (prefetch.c), a material's name (material.c), the fits a
  *                 render or plot needs (material_fits.c), the embedded demo
  *                 material, published fits (published.c)
- *   record/       the fit record: its schema, JSON and TSV (fit_record.c),
+ *   record/       the fit record: its schema (fit_record.c), JSON
+ *                 (fit_record_json.c) and TSV (fit_record_tsv.c),
  *                 the batch journal (journal.c, jsonread.c), files written
  *                 whole or not at all (outfile.c), the tests' fault points
  *                 (fault.c); batch.h is what the batch's files share
  *   report/       the paper-style table (report.c), the HTML report
- *                 (html_report.c, report_data.c), a material's files (assets.c)
+ *                 (html_report.c, html_material.c, html_index.c,
+ *                 report_data.c), a material's files (assets.c)
  *   images/       renders and plots (draw.c, render_files.c), image files
  *                 (exr_io.c, png_io.c, partial.c, tonemap.c), SVG/XML text
  *                 (svg.c, plot_svg.c)
@@ -120,7 +122,7 @@ int cmd_score(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 /* Their blocks of options (each beside the command's parser). */
-const cli_help_block *cli_batch_help(void);  /* cmd_batch.c                      */
+const cli_help_block *cli_batch_help(void);  /* batch_options.c                  */
 const cli_help_block *cli_draw_help(void);   /* cmd_render.c: render and plot    */
 const cli_help_block *cli_render_help(void); /* cmd_render.c                     */
 const cli_help_block *cli_plot_help(void);   /* cmd_plot.c                       */

@@ -7,9 +7,14 @@
  *   jsonread.c     a small reader for the JSON objects the journal holds
  *   published.c    the published-fits TSV (material, model, d, s, p0..p2)
  *   outfile.c      files of the report written whole (temporary + rename), errors kept
- *   html_report.c  per material params.tsv, params.json, index.html; DIR/index.html,
- *                  DIR/fits.tsv and the headline figure (SVG)
- *   cmd_batch.c    `brdffit batch`: inputs, shards, fits, resume, signals, progress
+ *   html_report.c  the report's pages: the pieces they share (html_report.h);
+ *                  html_material.c per material params.tsv, params.json,
+ *                  index.html; html_index.c DIR/index.html, DIR/fits.tsv and
+ *                  the headline figure (SVG)
+ *   cmd_batch.c    `brdffit batch`: fits, resume; beside it (batch_run.h)
+ *                  batch_options.c, batch_inputs.c (inputs, shards),
+ *                  batch_signals.c, batch_progress.c, batch_plan.c (what is
+ *                  left to do), batch_render.c, batch_report.c
  *   prefetch.c     the next material's identity, table and sample set, read in a
  *                  thread while the current one is fitted (prefetch.h; `fit` too)
  *   cmd_report.c   `brdffit report DIR...`: shard journals merged into one report

@@ -5,8 +5,10 @@
  * line), the batch journal DIR/journal.jsonl, the report's params.json,
  * params.tsv and fits.tsv.  docs/fit-record.md describes every field.
  *
- *   fit_record.c  the JSON writer and reader, the TSV writer, the retry
- *                 decision of a resumed batch, the names of the at_bound bits
+ *   fit_record.c       filling a record, the retry decision of a resumed
+ *                      batch, the names of the at_bound bits
+ *   fit_record_json.c  the JSON writer and reader
+ *   fit_record_tsv.c   the TSV writer
  */
 #ifndef BRDFFIT_FIT_RECORD_H
 #define BRDFFIT_FIT_RECORD_H

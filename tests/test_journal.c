@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_journal.c -- the fit record's JSON reader and writer (src/cli/record/fit_record.c
+/* test_journal.c -- the fit record's JSON reader and writer (src/cli/record/fit_record_json.c
  * over src/cli/record/jsonread.c), as the batch journal uses them: what the writer
  * writes reads back the same, a journal line of the earlier form (before
  * fit_record.h: "ok", a "status" text, "on_bound", "file" {path, size, hash})

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* fuzz_journal.c -- libFuzzer target: the batch journal's line reader
- * (fr_read_json of src/cli/record/fit_record.c, over the program's JSON reader jr_parse), the input
+ * (fr_read_json of src/cli/record/fit_record_json.c, over the program's JSON reader jr_parse), the input
  * being one journal line as a damaged or hostile journal.jsonl may hold.
  *
  * A line that parses must write back (fr_write_json) as a line that parses

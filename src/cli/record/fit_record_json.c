@@ -344,9 +344,10 @@ int fr_read_json(const char *line, fit_record *r, fr_need need)
             goto done;
     }
     if (!r->has_params) {
+        /* no parameters kept: their count is the model's, as the writer
+         * gives it (none for a model this version does not know) */
         memset(&r->params, 0, sizeof r->params);
-        if (known)
-            r->nparams = brdffit_model_get(model)->nparams;
+        r->nparams = known ? brdffit_model_get(model)->nparams : 0;
     }
     if (get_num(&o, NULL, "error", &r->error, 0) != 0)
         goto done;

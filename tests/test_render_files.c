@@ -9,6 +9,7 @@
 #include "render_files.h"
 
 #include <check.h>
+#include <dirent.h>
 #include <math.h>
 #include <openexr.h>
 #include <png.h>
@@ -321,18 +322,28 @@ START_TEST(unwritable_directory)
         ck_assert_int_eq(rf_write_material(path, "m", t, NULL, 0, &s, NULL, &err), -1);
         ck_assert_ptr_nonnull(strstr(err.message, path));
     }
-    /* a full device (through a symlink, so that a bug could only remove the
-     * link): nothing can be written, and the device stays */
+    /* a link to a device at a file's name: never followed, never renamed
+     * over; the device stays and no temporary is left */
     snprintf(path, sizeof path, "%s/full", dir);
     if (access("/dev/full", W_OK) == 0 && symlink("/dev/full", path) == 0) {
-        ck_assert_int_eq(exr_write_rgba(path, (float[4]){ 0, 0, 0, 1 }, 1, 1, 0, &err), -1);
+        out_dir d;
+        ck_assert_int_eq(od_open(&d, dir, 0, &err), 0);
+        ck_assert_int_eq(exr_write_rgba(&d, "full", (float[4]){ 0, 0, 0, 1 }, 1, 1, 0, &err), -1);
         ck_assert_int_eq(err.status, BRDFFIT_E_FILE_WRITE);
-        ck_assert_ptr_nonnull(strstr(err.message, "No space left"));
-        ck_assert_int_eq(png_write_rgb8(path, (unsigned char[3]){ 0, 0, 0 }, 1, 1, &err), -1);
+        ck_assert_msg(strstr(err.message, "symbolic link (not followed)"), "%s", err.message);
+        ck_assert_int_eq(png_write_rgb8(&d, "full", (unsigned char[3]){ 0, 0, 0 }, 1, 1, &err), -1);
         ck_assert_int_eq(err.status, BRDFFIT_E_FILE_WRITE);
+        od_close(&d);
         struct stat st;
-        ck_assert_int_eq(stat(path, &st), 0); /* a failed write removes no device */
+        ck_assert_int_eq(stat(path, &st), 0);
         ck_assert(S_ISCHR(st.st_mode));
+        ck_assert_int_eq(lstat(path, &st), 0);
+        ck_assert(S_ISLNK(st.st_mode));
+        DIR *dd = opendir(dir);
+        struct dirent *e;
+        while ((e = readdir(dd)) != NULL)
+            ck_assert_msg(!strstr(e->d_name, ".tmp"), "a temporary is left: %s", e->d_name);
+        closedir(dd);
     }
     brdffit_table_free(t);
     rm_tree(dir);

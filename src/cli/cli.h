@@ -19,14 +19,16 @@
  *                 material, published fits (published.c)
  *   record/       the fit record: its schema (fit_record.c), JSON
  *                 (fit_record_json.c) and TSV (fit_record_tsv.c),
- *                 the batch journal (journal.c, jsonread.c), files written
- *                 whole or not at all (outfile.c), the tests' fault points
+ *                 the batch journal (journal.c, jsonread.c), the output
+ *                 directory, its lock and files written whole or not at all
+ *                 without following links (outdir.h: outdir.c, outfile.c),
+ *                 the tests' fault points
  *                 (fault.c); batch.h is what the batch's files share
  *   report/       the paper-style table (report.c), the HTML report
  *                 (html_report.c, html_material.c, html_index.c,
  *                 report_data.c), a material's files (assets.c)
  *   images/       renders and plots (draw.c, render_files.c), image files
- *                 (exr_io.c, png_io.c, partial.c, tonemap.c), SVG/XML text
+ *                 (exr_io.c, png_io.c, tonemap.c), SVG/XML text
  *                 (svg.c, plot_svg.c)
  * Each folder's headers are included by name (the Makefile's CLI_INC).
  *

@@ -14,7 +14,7 @@ static void *render_main(void *arg)
     for (int i = 0; i < J->nfits; i++)
         fits[i] = &J->fits[i];
     double t0 = batch_now();
-    J->rc = batch_assets(J->dir, J->rec.material, J->table, &J->sample, fits, J->nfits, J->render,
+    J->rc = batch_assets(&J->dir, J->rec.material, J->table, &J->sample, fits, J->nfits, J->render,
                          J->plot, J->rec.assets, sizeof J->rec.assets, &J->err);
     J->seconds = batch_now() - t0;
     return NULL;
@@ -31,6 +31,7 @@ void batch_render_collect(batch_run *R, render_job *J)
     R->seconds_render += J->seconds;
     brdffit_table_free(J->table);
     free(J->fits);
+    od_close(&J->dir);
     J->table = NULL;
     J->fits = NULL;
     if (J->rc != 0) {
@@ -64,8 +65,8 @@ void batch_render_start(batch_run *R, render_job *J, const batch_material *m, br
     J->fits = malloc((size_t)(o->nmodels > 0 ? o->nmodels : 1) * sizeof *J->fits);
     batch_fill_key(&J->rec, FR_ASSETS, m, &R->settings);
     batch_assets_key(R, J->rec.assets_key, sizeof J->rec.assets_key);
-    if (!J->fits || out_join(J->dir, sizeof J->dir, R->b->out, m->name) != 0 ||
-        out_mkdir(J->dir, &R->out_err) != 0) {
+    J->dir.fd = -1;
+    if (!J->fits || od_sub(&J->dir, &R->out, m->name, &R->out_err) != 0) {
         if (!J->fits)
             snprintf(R->out_err.message, sizeof R->out_err.message, "out of memory");
         R->out_failed = 1;
@@ -75,6 +76,7 @@ void batch_render_start(batch_run *R, render_job *J, const batch_material *m, br
         J->table = NULL;
         return;
     }
+    od_sweep(&J->dir);
     for (int i = 0; i < o->nmodels; i++) {
         const fit_record *f = batch_find(R, FR_FIT, m, brdffit_model_get(o->models[i])->name);
         if (f && fr_ok(f))

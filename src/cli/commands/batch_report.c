@@ -33,7 +33,7 @@ int batch_write_report(batch_run *R, const material_list *L)
         if (L->m[i].identified || L->m[i].id.size < 0)
             rc = rp_add(&rep, L->m[i].name, &L->m[i].id, &R->all, dirs, 1);
     if (rc == 0)
-        rc = rp_write(&rep, R->b->out, &R->out_err);
+        rc = rp_write(&rep, &R->out, &R->out_err);
     else
         snprintf(R->out_err.message, sizeof R->out_err.message, "out of memory");
     rp_free(&rep);

@@ -48,6 +48,8 @@ typedef struct progress {
 typedef struct batch_run {
     const batch_options *b;
     bj_settings settings;
+    out_dir out;             /* --out, open; its lock held for the run        */
+    od_lock lock;
     bj_journal journal;
     bj_records all;          /* the journal's records, then this run's       */
     pub_table pub;
@@ -81,7 +83,7 @@ typedef struct render_job {
     pthread_t thread;
     int running;                   /* a job to collect               */
     int threaded;                  /* in its own thread (to join)    */
-    char dir[BJ_PATH_MAX];
+    out_dir dir;                   /* the material's, inside --out  */
     brdffit_table *table;          /* owned: freed when collected   */
     brdffit_sample_options sample;
     fit_record *fits;               /* copies (the records array may move) */

@@ -295,23 +295,24 @@ static void note_other_settings(const batch_run *R)
                   R->journal.path, other, other == 1 ? " was" : "s were", diff);
 }
 
+/* --out opened (made), locked for this run, the temporaries a killed run
+ * left removed, the journal opened (its torn line cut) and read. */
 static int open_out(batch_run *R)
 {
-    const char *out = R->b->out;
     brdffit_error *err = &R->out_err;
-    if (out_mkdir(out, err) != 0)
+    int torn = 0, torn2 = 0, bad = 0;
+    if (od_open(&R->out, R->b->out, 1, err) != 0 ||
+        od_lock_take(&R->lock, &R->out, 0, "batch", err) != 0)
         return -1;
-    char path[BJ_PATH_MAX];
-    int bad = 0, torn = 0;
-    if (out_join(path, sizeof path, out, "journal.jsonl") != 0 ||
-        bj_journal_load(path, &R->all, &bad, &torn, err) != 0)
+    od_sweep(&R->out);
+    if (bj_journal_open(&R->journal, &R->out, &torn2, err) != 0)
+        return -1;
+    const char *path = R->journal.path;
+    if (bj_journal_load(path, &R->all, &bad, &torn, err) != 0)
         return -1;
     if (bad)
         cli_error("%s: %d line%s that are not journal records ignored", path, bad,
                   bad == 1 ? "" : "s");
-    int torn2 = 0;
-    if (bj_journal_open(&R->journal, out, &torn2, err) != 0)
-        return -1;
     if (torn || torn2)
         cli_error("%s: its last line was cut short (a run killed while writing "
                   "it): ignored, that fit is done again", path);
@@ -400,6 +401,7 @@ int cmd_batch(int argc, char **argv)
         R.job = &job;
         R.pre = &pre;
         R.journal.fd = -1;
+        R.out.fd = R.lock.fd = -1;
         bj_settings_make(&R.settings, &b.common.sample, &b.common.fit);
         R.fit_job.models = b.common.models;
         R.fit_job.nmodels = b.common.nmodels;
@@ -413,6 +415,8 @@ int cmd_batch(int argc, char **argv)
         R.P.t0 = batch_now();
         rc = run_batch(&R, &L);
         bj_journal_close(&R.journal);
+        od_lock_release(&R.lock);
+        od_close(&R.out);
         bj_records_free(&R.all);
         pub_free(&R.pub);
         brdffit_context_free(R.ctx);

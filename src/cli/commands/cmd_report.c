@@ -103,6 +103,69 @@ static int build(rp_report *rep, const bj_records *rs, char **dirs, int ndirs)
     return rc;
 }
 
+/* Every record's material must name a directory of the report: one path
+ * component.  0, or -1 with the journal and line of the first that cannot. */
+static int check_names(const bj_records *rs, char **dirs)
+{
+    for (int i = 0; i < rs->n; i++) {
+        const char *bad = od_name_problem(rs->r[i].material);
+        if (bad) {
+            cli_error("%s/journal.jsonl line %d: the material name '%s' cannot name a directory "
+                      "of the report (%s); not merged",
+                      dirs[rs->r[i].origin], rs->r[i].line, rs->r[i].material, bad);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Read the journal of shard d (its lock shared while it is read) into rs. */
+static int load_shard(char **dirs, int d, bj_records *rs)
+{
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    out_dir sd;
+    od_lock lock = { -1 };
+    char path[BJ_PATH_MAX];
+    int bad = 0, torn = 0, before = rs->n, rc = 0;
+    if (od_open(&sd, dirs[d], 0, &err) != 0 || od_lock_take(&lock, &sd, 1, "report", &err) != 0 ||
+        out_join(path, sizeof path, dirs[d], "journal.jsonl") != 0 ||
+        bj_journal_load(path, rs, &bad, &torn, &err) != 0) {
+        cli_error("%s", err.message[0] ? err.message : dirs[d]);
+        rc = -1;
+    }
+    od_lock_release(&lock);
+    od_close(&sd);
+    for (int i = before; i < rs->n; i++)
+        rs->r[i].origin = d;
+    if (rc == 0 && (bad || torn))
+        cli_error("%s: %d damaged line%s ignored%s", path, bad, bad == 1 ? "" : "s",
+                  torn ? " and a torn last line" : "");
+    return rc;
+}
+
+/* The report's pages into out (made, locked while they are written). */
+static int write_out(const rp_report *rep, const char *out)
+{
+    brdffit_error err;
+    memset(&err, 0, sizeof err);
+    out_dir d;
+    od_lock lock = { -1 };
+    int rc = od_open(&d, out, 1, &err) != 0 || od_lock_take(&lock, &d, 0, "report", &err) != 0
+                 ? CLI_FAILED : CLI_OK;
+    if (rc == CLI_OK) {
+        od_sweep(&d);
+        rc = rp_write(rep, &d, &err) != 0 ? CLI_FAILED : CLI_OK;
+    }
+    if (rc != CLI_OK)
+        cli_error("%s", err.message);
+    else
+        printf("%s/index.html\n", out);
+    od_lock_release(&lock);
+    od_close(&d);
+    return rc;
+}
+
 int cmd_report(int argc, char **argv)
 {
     const char *out = NULL;
@@ -125,23 +188,11 @@ int cmd_report(int argc, char **argv)
     if (rc == CLI_OK && (!out || !*out || ndirs == 0))
         rc = cli_usage_error("report needs batch directories and --out DIR");
     bj_records rs = { NULL, 0, 0 };
-    brdffit_error err;
-    memset(&err, 0, sizeof err);
-    for (int d = 0; d < ndirs && rc == CLI_OK; d++) {
-        char path[BJ_PATH_MAX];
-        int bad = 0, torn = 0, before = rs.n;
-        if (out_join(path, sizeof path, dirs[d], "journal.jsonl") != 0 ||
-            bj_journal_load(path, &rs, &bad, &torn, &err) != 0) {
-            cli_error("%s", err.message[0] ? err.message : path);
+    for (int d = 0; d < ndirs && rc == CLI_OK; d++)
+        if (load_shard(dirs, d, &rs) != 0)
             rc = CLI_FAILED;
-            break;
-        }
-        for (int i = before; i < rs.n; i++)
-            rs.r[i].origin = d;
-        if (bad || torn)
-            cli_error("%s: %d damaged line%s ignored%s", path, bad, bad == 1 ? "" : "s",
-                      torn ? " and a torn last line" : "");
-    }
+    if (rc == CLI_OK && check_names(&rs, dirs) != 0)
+        rc = CLI_FAILED;
     rp_report rep;
     memset(&rep, 0, sizeof rep);
     if (rc == CLI_OK && pick_settings(&rs, dirs, ndirs, &rep.settings) != 0)
@@ -159,12 +210,7 @@ int cmd_report(int argc, char **argv)
             snprintf(rep.backend, sizeof rep.backend, "(not recorded)");
         if (rep.have_published)
             snprintf(rep.published_path, sizeof rep.published_path, "(from the journals)");
-        if (out_mkdir(out, &err) != 0 || rp_write(&rep, out, &err) != 0) {
-            cli_error("%s", err.message);
-            rc = CLI_FAILED;
-        } else {
-            printf("%s/index.html\n", out);
-        }
+        rc = write_out(&rep, out);
     }
     rp_free(&rep);
     bj_records_free(&rs);

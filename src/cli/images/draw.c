@@ -156,6 +156,8 @@ static void print_summary(const draw_job *j, const char *material, const rf_fit 
     }
 }
 
+static int draw_files(draw_job *j, const out_dir *d);
+
 int draw_run(draw_job *j, const char *command)
 {
     int rc = cli_parse_options(j->nrest, j->rest, &j->o);
@@ -167,10 +169,21 @@ int draw_run(draw_job *j, const char *command)
         return cli_usage_error("%s needs --out DIR", command);
     j->s.render_opt.scale = j->s.curve_opt.scale = j->o.sample.scale;
     brdffit_error err;
-    if (rf_prepare_dir(j->out, &err) != 0) {
-        cli_error("--out %s", err.message);
+    out_dir d;
+    if (od_open(&d, j->out, 1, &err) != 0) {
+        cli_error("--out: %s", err.message);
         return CLI_FAILED;
     }
+    rc = draw_files(j, &d);
+    od_close(&d);
+    return rc;
+}
+
+/* The table read, its fits got or made, the files written into d. */
+static int draw_files(draw_job *j, const out_dir *d)
+{
+    int rc;
+    brdffit_error err;
     if (j->env && (rc = read_env(j)) != CLI_OK)
         return rc;
     brdffit_table *t = NULL;
@@ -186,7 +199,7 @@ int draw_run(draw_job *j, const char *command)
     rc = get_fits(j, t, material, fits, &nfits);
     if (nfits > 0 || j->fits == NULL) {
         rf_result *r = malloc(sizeof *r);
-        if (!r || rf_write_material(j->out, material, t, fits, nfits, &j->s, r, &err) != 0) {
+        if (!r || rf_write_material_at(d, material, t, fits, nfits, &j->s, r, &err) != 0) {
             cli_error("%s", r ? err.message : "out of memory");
             rc = CLI_FAILED;
         } else {

@@ -49,9 +49,9 @@ static int fail(brdffit_error *err, brdffit_status st, const char *path, const c
 
 /* ------------------------------------------------------------------ writing */
 
-/* The file is opened here and written through write_fn, so that OpenEXR never
- * creates, replaces or unlinks the path itself (its default stream unlinks
- * the path of a failed write, whatever the path names). */
+/* The file (a temporary of outdir.h) is opened here and written through
+ * write_fn, so that OpenEXR never creates, replaces or unlinks a path itself
+ * (its default stream unlinks the path of a failed write, whatever it names). */
 static int64_t write_at(exr_const_context_t ctxt, void *user, const void *buf, uint64_t sz,
                         uint64_t offset, exr_stream_error_func_ptr_t error_cb)
 {
@@ -137,36 +137,30 @@ static exr_result_t write_pixels(exr_context_t f, int part, const float *rgba, i
     return rv;
 }
 
-int exr_write_rgba(const char *path, const float *rgba, int width, int height, size_t stride,
-                   brdffit_error *err)
+int exr_write_rgba(const out_dir *dir, const char *name, const float *rgba, int width, int height,
+                   size_t stride, brdffit_error *err)
 {
     if (stride == 0)
         stride = 4 * (size_t)width;
+    out_file o;
+    if (out_open(&o, dir, name, err) != 0)
+        return -1;
+    const char *path = o.path;
     exr_context_initializer_t init = initializer();
     exr_context_t f = NULL;
-    int part = 0, rc = -1;
-    const char *what = "cannot create the file";
-    exr_result_t rv = EXR_ERR_SUCCESS;
-    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) {
-        snprintf(exr_message, sizeof exr_message, "%s", strerror(errno));
-        rv = EXR_ERR_FILE_ACCESS;
-        goto done;
-    }
+    int part = 0, rc = -1, fd = fileno(o.f); /* written with pwrite alone, never through o.f */
+    const char *what = "cannot write the header";
     init.user_data = &fd;
     init.write_fn = write_at;
-    rv = exr_start_write(&f, path, EXR_WRITE_FILE_DIRECTLY, &init);
-    if (rv != EXR_ERR_SUCCESS)
-        goto done;
-    what = "cannot write the header";
-    rv = write_header(f, width, height, &part);
-    if (rv != EXR_ERR_SUCCESS)
-        goto done;
-    what = "cannot write the pixels";
-    rv = write_pixels(f, part, rgba, height, stride);
+    exr_result_t rv = exr_start_write(&f, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rv == EXR_ERR_SUCCESS)
+        rv = write_header(f, width, height, &part);
+    if (rv == EXR_ERR_SUCCESS) {
+        what = "cannot write the pixels";
+        rv = write_pixels(f, part, rgba, height, stride);
+    }
     if (rv == EXR_ERR_SUCCESS)
         rc = 0;
-done:
     if (f) {
         exr_result_t fr = exr_finish(&f);
         if (rc == 0 && fr != EXR_ERR_SUCCESS) {
@@ -174,16 +168,12 @@ done:
             what = "cannot finish the file";
         }
     }
-    if (fd >= 0 && close(fd) != 0 && rc == 0) {
-        snprintf(exr_message, sizeof exr_message, "%s", strerror(errno));
-        rc = -1, rv = EXR_ERR_WRITE_IO;
-        what = "cannot finish the file";
-    }
     if (rc != 0) {
-        io_remove_partial(path);
-        return fail(err, BRDFFIT_E_FILE_WRITE, path, what, rv);
+        fail(err, BRDFFIT_E_FILE_WRITE, path, what, rv);
+        out_abandon(&o);
+        return -1;
     }
-    return 0;
+    return out_commit(&o, err);
 }
 
 /* ------------------------------------------------------------------ reading */

@@ -5,30 +5,26 @@
  *   exr_io.c    linear RGBA float EXR out; RGB (half, float or uint) EXR in
  *   png_io.c    8-bit RGB PNG out
  *   tonemap.c   exposure, the sRGB transfer curve, the difference false colour
- *   partial.c   removing a file a failed write left behind
  *
+ * Files are written whole into an open directory (outdir.h: a temporary
+ * renamed over the name; no link followed).
  * Failures fill a brdffit_error (status BRDFFIT_E_FILE_*) with the path and
  * the reason, and return -1; nothing is printed. */
 #ifndef BRDFFIT_IMAGE_IO_H
 #define BRDFFIT_IMAGE_IO_H
 
 #include "brdffit.h"
+#include "outdir.h"
 
 #include <stddef.h>
-
-/* ---- partial.c ---- */
-
-/* Remove path after a failed write when it is a regular file (never a device
- * node, FIFO or directory the path names). */
-void io_remove_partial(const char *path);
 
 /* ---- exr_io.c ---- */
 
 /* Write width x height RGBA float pixels (stride floats from one row to the
  * next, 0: 4 width; row 0 at the top) as a scanline OpenEXR file with
- * channels R, G, B, A (32-bit float, ZIP compression).  0 or -1. */
-int exr_write_rgba(const char *path, const float *rgba, int width, int height, size_t stride,
-                   brdffit_error *err);
+ * channels R, G, B, A (32-bit float, RLE compression), name in dir.  0 or -1. */
+int exr_write_rgba(const out_dir *dir, const char *name, const float *rgba, int width, int height,
+                   size_t stride, brdffit_error *err);
 
 /* Read an OpenEXR file's R, G, B channels (half, float or uint; one part,
  * scanline or tiled, any size; a file with only Y is read as grey) into a new
@@ -41,9 +37,10 @@ int exr_read_rgb(const char *path, float **rgb, float **alpha, int *width, int *
 
 /* ---- png_io.c ---- */
 
-/* Write width x height 8-bit RGB pixels (3 width bytes a row, row 0 at the top). */
-int png_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
-                   brdffit_error *err);
+/* Write width x height 8-bit RGB pixels (3 width bytes a row, row 0 at the
+ * top), name in dir. */
+int png_write_rgb8(const out_dir *dir, const char *name, const unsigned char *rgb, int width,
+                   int height, brdffit_error *err);
 
 /* ---- tonemap.c ---- */
 

@@ -149,7 +149,7 @@ static void draw_legend(xml_writer *w, const brdffit_curve_options *o, int with_
     }
 }
 
-int plot_write_svg(const char *path, const char *title, const brdffit_curve_options *o,
+int plot_write_svg(const out_dir *dir, const char *name, const char *title, const brdffit_curve_options *o,
                    const double *theta_o, const double *measured, const double *model,
                    size_t stride, brdffit_error *err)
 {
@@ -162,14 +162,10 @@ int plot_write_svg(const char *path, const char *title, const brdffit_curve_opti
      * squashing the measured curves: the axis ends at 1.5x the measured top */
     double top = mmax > 0 ? fmax(mmax, fmin(fmax_, 1.5 * mmax)) : fmax_;
     axes ax = { top > 0 ? 1.08 * top : 1.0 };
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        if (err) {
-            err->status = BRDFFIT_E_FILE_WRITE;
-            snprintf(err->message, sizeof err->message, "%s: %s", path, strerror(errno));
-        }
+    out_file of;
+    if (out_open(&of, dir, name, err) != 0)
         return -1;
-    }
+    FILE *f = of.f;
     xml_writer w;
     svg_begin(&w, f, PW, PH);
     xml_element_text(&w, "title", title);
@@ -190,15 +186,11 @@ int plot_write_svg(const char *path, const char *title, const brdffit_curve_opti
     }
     xml_close(&w);
     draw_legend(&w, o, model != NULL);
-    int rc = svg_end(&w);
-    if (fclose(f) != 0)
-        rc = -1;
-    if (rc != 0) {
-        io_remove_partial(path);
-        if (err) {
-            err->status = BRDFFIT_E_FILE_WRITE;
-            snprintf(err->message, sizeof err->message, "%s: cannot write the SVG plot", path);
-        }
+    if (svg_end(&w) != 0 && !ferror(f)) {
+        out_abandon(&of);
+        err->status = BRDFFIT_E_FILE_WRITE;
+        snprintf(err->message, sizeof err->message, "%.1800s: cannot write the SVG plot", of.path);
+        return -1;
     }
-    return rc;
+    return out_commit(&of, err);
 }

@@ -4,7 +4,6 @@
 
 #include <png.h>
 
-#include <errno.h>
 #include <setjmp.h>
 #include <stdio.h>
 #include <string.h>
@@ -50,41 +49,29 @@ static int write_rows(png_job *job, const unsigned char *rgb, int width, int hei
     return 0;
 }
 
-int png_write_rgb8(const char *path, const unsigned char *rgb, int width, int height,
-                   brdffit_error *err)
+int png_write_rgb8(const out_dir *dir, const char *name, const unsigned char *rgb, int width,
+                   int height, brdffit_error *err)
 {
     png_failure pf = { "" };
-    png_job job = { NULL, NULL, NULL };
+    out_file o;
+    if (out_open(&o, dir, name, err) != 0)
+        return -1;
+    png_job job = { o.f, NULL, NULL };
     int rc = -1;
-    job.f = fopen(path, "wb");
-    if (!job.f) {
-        snprintf(pf.message, sizeof pf.message, "%s", strerror(errno));
-        goto done;
-    }
     job.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &pf, on_png_error, on_png_warning);
     job.info = job.png ? png_create_info_struct(job.png) : NULL;
-    if (!job.png || !job.info) {
+    if (!job.png || !job.info)
         snprintf(pf.message, sizeof pf.message, "out of memory");
-        goto done;
-    }
-    rc = write_rows(&job, rgb, width, height);
-done:
+    else
+        rc = write_rows(&job, rgb, width, height);
     if (job.png)
         png_destroy_write_struct(&job.png, &job.info);
-    if (job.f) {
-        if (fclose(job.f) != 0 && rc == 0) {
-            snprintf(pf.message, sizeof pf.message, "%s", strerror(errno));
-            rc = -1;
-        }
-    }
     if (rc != 0) {
-        if (job.f)
-            io_remove_partial(path);
-        if (err) {
-            err->status = BRDFFIT_E_FILE_WRITE;
-            snprintf(err->message, sizeof err->message, "%s: cannot write the PNG: %s", path,
-                     pf.message[0] ? pf.message : "write error");
-        }
+        out_abandon(&o);
+        err->status = BRDFFIT_E_FILE_WRITE;
+        snprintf(err->message, sizeof err->message, "%.1800s: cannot write the PNG: %s", o.path,
+                 pf.message[0] ? pf.message : "write error");
+        return -1;
     }
-    return rc;
+    return out_commit(&o, err);
 }

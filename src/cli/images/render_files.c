@@ -14,8 +14,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 void rf_settings_default(rf_settings *s, brdffit_scale scale)
 {
@@ -54,30 +52,6 @@ static void copy_text(char *buf, size_t len, const char *s)
     buf[n] = '\0';
 }
 
-static int join(char *buf, size_t len, const char *dir, const char *name, brdffit_error *err)
-{
-    int n = snprintf(buf, len, "%s/%s", dir, name);
-    if (n < 0 || (size_t)n >= len)
-        return failf(err, BRDFFIT_E_FILE_WRITE, "%s/%s: path too long", dir, name);
-    return 0;
-}
-
-int rf_prepare_dir(const char *dir, brdffit_error *err)
-{
-    struct stat st;
-    if (stat(dir, &st) != 0) {
-        if (errno != ENOENT || mkdir(dir, 0777) != 0)
-            return failf(err, BRDFFIT_E_FILE_WRITE, "%s: cannot make the directory: %s", dir,
-                         strerror(errno));
-    } else if (!S_ISDIR(st.st_mode)) {
-        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: not a directory", dir);
-    }
-    if (access(dir, W_OK | X_OK) != 0)
-        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: cannot write into the directory: %s", dir,
-                     strerror(errno));
-    return 0;
-}
-
 static void add_file(rf_result *r, const char *file, const char *caption, rf_kind kind, int fit)
 {
     if (r->nfiles >= RF_MAX_FILES)
@@ -111,7 +85,7 @@ static void caption_of(const rf_fit *f, char *buf, size_t len)
 /* ------------------------------------------------------------------ renders */
 
 typedef struct render_job {
-    const char *dir;
+    const out_dir *dir;
     int n;                   /* image width = height */
     float *ref, *img;        /* RGBA, 4 n^2 floats each */
     unsigned char *rgb8;     /* 3 n^2 */
@@ -123,16 +97,14 @@ typedef struct render_job {
 static int write_pair(render_job *j, const float *rgba, const char *stem, const char *caption,
                       int fit)
 {
-    char name[160], path[4096];
+    char name[160];
     snprintf(name, sizeof name, "%s.exr", stem);
-    if (join(path, sizeof path, j->dir, name, j->err) != 0 ||
-        exr_write_rgba(path, rgba, j->n, j->n, 0, j->err) != 0)
+    if (exr_write_rgba(j->dir, name, rgba, j->n, j->n, 0, j->err) != 0)
         return -1;
     add_file(j->r, name, caption, RF_DATA, fit);
     tm_to_srgb8(rgba, j->n, j->n, 0, j->r->exposure, j->rgb8);
     snprintf(name, sizeof name, "%s.png", stem);
-    if (join(path, sizeof path, j->dir, name, j->err) != 0 ||
-        png_write_rgb8(path, j->rgb8, j->n, j->n, j->err) != 0)
+    if (png_write_rgb8(j->dir, name, j->rgb8, j->n, j->n, j->err) != 0)
         return -1;
     add_file(j->r, name, caption, RF_IMAGE, fit);
     return 0;
@@ -140,7 +112,7 @@ static int write_pair(render_job *j, const float *rgba, const char *stem, const 
 
 static int write_model(render_job *j, const rf_fit *f, int k, const rf_settings *s)
 {
-    char caption[256], name[160], path[4096];
+    char caption[256], name[160];
     brdffit_error lerr;
     if (brdffit_render_model(f->model, &f->params, &s->render_opt, j->img, 0, &lerr) != BRDFFIT_OK)
         return failf(j->err, lerr.status, "render %s: %s", stem_of(f), lerr.message);
@@ -152,8 +124,7 @@ static int write_model(render_job *j, const rf_fit *f, int k, const rf_settings 
                                    BRDFFIT_OK ? e : NAN;
     tm_difference8(j->ref, j->img, j->n, j->n, 0, j->r->diff_scale, j->rgb8);
     snprintf(name, sizeof name, "%s-diff.png", stem_of(f));
-    if (join(path, sizeof path, j->dir, name, j->err) != 0 ||
-        png_write_rgb8(path, j->rgb8, j->n, j->n, j->err) != 0)
+    if (png_write_rgb8(j->dir, name, j->rgb8, j->n, j->n, j->err) != 0)
         return -1;
     snprintf(caption, sizeof caption, "%s |model - reference|, image error %.3g (white = %.3g)",
              label_of(f), j->r->image_error[k], j->r->diff_scale);
@@ -196,7 +167,7 @@ static int write_models(render_job *j, const rf_fit *fits, int nfits, const rf_s
 {
     size_t px = (size_t)j->n * (size_t)j->n;
     model_writer *w = calloc(RF_WRITERS, sizeof *w);
-    int rc = w ? 0 : failf(j->err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", j->dir);
+    int rc = w ? 0 : failf(j->err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", j->dir->path);
     for (int i = 0; rc == 0 && i < RF_WRITERS; i++) {
         w[i] = (model_writer){ .j = *j, .fits = fits, .s = s, .first = i, .nfits = nfits,
                                .failed = nfits };
@@ -207,7 +178,7 @@ static int write_models(render_job *j, const rf_fit *fits, int nfits, const rf_s
         w[i].j.img = malloc(16 * px);
         w[i].j.rgb8 = malloc(3 * px);
         if (!w[i].j.img || !w[i].j.rgb8)
-            rc = failf(j->err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", j->dir);
+            rc = failf(j->err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", j->dir->path);
     }
     for (int i = 1; rc == 0 && i < RF_WRITERS; i++) /* writer 0 in this thread */
         w[i].threaded = pthread_create(&w[i].thread, NULL, writer_main, &w[i]) == 0;
@@ -238,7 +209,7 @@ static int write_models(render_job *j, const rf_fit *fits, int nfits, const rf_s
     return rc;
 }
 
-static int write_renders(const char *dir, const brdffit_table *table, const rf_fit *fits,
+static int write_renders(const out_dir *dir, const brdffit_table *table, const rf_fit *fits,
                          int nfits, const rf_settings *s, rf_result *r, brdffit_error *err)
 {
     int n = s->render_opt.width, rc = -1;
@@ -246,7 +217,7 @@ static int write_renders(const char *dir, const brdffit_table *table, const rf_f
     render_job j = { dir, n, malloc(16 * px), malloc(16 * px), malloc(3 * px), r, err };
     brdffit_error lerr;
     if (!j.ref || !j.img || !j.rgb8) {
-        failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", dir);
+        failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", dir->path);
         goto done;
     }
     if (brdffit_render_table(table, &s->render_opt, j.ref, 0, &lerr) != BRDFFIT_OK) {
@@ -329,28 +300,22 @@ static void json_body(FILE *f, const char *material, const rf_fit *fits, int nfi
     fputs("]}\n", f);
 }
 
-static int write_json(const char *dir, const char *material, const rf_fit *fits, int nfits,
+static int write_json(const out_dir *dir, const char *material, const rf_fit *fits, int nfits,
                       const rf_settings *s, rf_result *r, brdffit_error *err)
 {
-    char path[4096];
-    if (join(path, sizeof path, dir, "renders.json", err) != 0)
+    out_file o;
+    if (out_open(&o, dir, "renders.json", err) != 0)
         return -1;
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: %s", path, strerror(errno));
-    json_body(f, material, fits, nfits, s, r);
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad) {
-        io_remove_partial(path);
-        return failf(err, BRDFFIT_E_FILE_WRITE, "%s: write error", path);
-    }
+    json_body(o.f, material, fits, nfits, s, r);
+    if (out_commit(&o, err) != 0)
+        return -1;
     add_file(r, "renders.json", "render settings and image errors", RF_DATA, -1);
     return 0;
 }
 
 /* ------------------------------------------------------------------ plots */
 
-static int write_plots(const char *dir, const char *material, const brdffit_table *table,
+static int write_plots(const out_dir *dir, const char *material, const brdffit_table *table,
                        const rf_fit *fits, int nfits, const rf_settings *s, rf_result *r,
                        brdffit_error *err)
 {
@@ -361,9 +326,9 @@ static int write_plots(const char *dir, const char *material, const brdffit_tabl
     double *th = malloc(sizeof(double) * (size_t)o->npoints);
     double *meas = malloc(sizeof(double) * row * (size_t)o->ntheta_i);
     double *mod = malloc(sizeof(double) * row * (size_t)o->ntheta_i);
-    char path[4096], name[160], title[512], caption[256];
+    char name[160], title[512], caption[256];
     if (!th || !meas || !mod) {
-        failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the curves", dir);
+        failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the curves", dir->path);
         goto done;
     }
     if (brdffit_curve_theta_o(o, th, &lerr) != BRDFFIT_OK ||
@@ -372,8 +337,7 @@ static int write_plots(const char *dir, const char *material, const brdffit_tabl
         goto done;
     }
     snprintf(title, sizeof title, "%s: measured (incidence plane, cube root)", material);
-    if (join(path, sizeof path, dir, "plot-measured.svg", err) != 0 ||
-        plot_write_svg(path, title, o, th, meas, NULL, 0, err) != 0)
+    if (plot_write_svg(dir, "plot-measured.svg", title, o, th, meas, NULL, 0, err) != 0)
         goto done;
     add_file(r, "plot-measured.svg", "Measured (incidence plane, cube root)", RF_PLOT, -1);
     for (int k = 0; k < nfits; k++) {
@@ -388,8 +352,7 @@ static int write_plots(const char *dir, const char *material, const brdffit_tabl
         else
             snprintf(title, sizeof title, "%s \xe2\x80\x94 %s", label_of(&fits[k]), material);
         snprintf(name, sizeof name, "plot-%s.svg", stem_of(&fits[k]));
-        if (join(path, sizeof path, dir, name, err) != 0 ||
-            plot_write_svg(path, title, o, th, meas, mod, 0, err) != 0)
+        if (plot_write_svg(dir, name, title, o, th, meas, mod, 0, err) != 0)
             goto done;
         add_file(r, name, caption, RF_PLOT, k);
     }
@@ -403,9 +366,9 @@ done:
 
 /* ------------------------------------------------------------------ the material */
 
-int rf_write_material(const char *dir, const char *material, const brdffit_table *table,
-                      const rf_fit *fits, int nfits, const rf_settings *s, rf_result *out,
-                      brdffit_error *err)
+int rf_write_material_at(const out_dir *dir, const char *material, const brdffit_table *table,
+                         const rf_fit *fits, int nfits, const rf_settings *s, rf_result *out,
+                         brdffit_error *err)
 {
     rf_result scratch;
     rf_result *r = out ? out : &scratch;
@@ -418,8 +381,6 @@ int rf_write_material(const char *dir, const char *material, const brdffit_table
     for (int k = 0; k < nfits; k++)
         if (!brdffit_model_get(fits[k].model))
             return failf(err, BRDFFIT_E_UNKNOWN_MODEL, "%s: unknown model", material);
-    if (rf_prepare_dir(dir, err) != 0)
-        return -1;
     double t0 = brdffit_seconds();
     if (s->render && (write_renders(dir, table, fits, nfits, s, r, err) != 0 ||
                       write_json(dir, material, fits, nfits, s, r, err) != 0))
@@ -430,4 +391,18 @@ int rf_write_material(const char *dir, const char *material, const brdffit_table
     r->seconds_render = t1 - t0;
     r->seconds_plot = brdffit_seconds() - t1;
     return 0;
+}
+
+int rf_write_material(const char *dir, const char *material, const brdffit_table *table,
+                      const rf_fit *fits, int nfits, const rf_settings *s, rf_result *out,
+                      brdffit_error *err)
+{
+    out_dir d;
+    if (!dir)
+        return failf(err, BRDFFIT_E_INVALID_ARGUMENT, "rf_write_material: bad arguments");
+    if (od_open(&d, dir, 1, err) != 0)
+        return -1;
+    int rc = rf_write_material_at(&d, material, table, fits, nfits, s, out, err);
+    od_close(&d);
+    return rc;
 }

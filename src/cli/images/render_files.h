@@ -27,6 +27,7 @@
 #define BRDFFIT_RENDER_FILES_H
 
 #include "brdffit.h"
+#include "outdir.h"
 
 #include <stddef.h>
 
@@ -73,17 +74,18 @@ typedef struct rf_result {
 } rf_result;
 
 /* Write the renders (s->render) and plots (s->plot) of a material's table and
- * its nfits (0..RF_MAX_FITS) fits into dir (made when missing: its parent
- * must exist).  out may be NULL.  0, or -1 with err naming the file and why
+ * its nfits (0..RF_MAX_FITS) fits into the directory dir (made when missing:
+ * its parent must exist; od_open).  out may be NULL.  0, or -1 with err naming the file and why
  * (BRDFFIT_E_FILE_WRITE for a directory or file that cannot be written, the
  * library's status for bad parameters or options). */
 int rf_write_material(const char *dir, const char *material, const brdffit_table *table,
                       const rf_fit *fits, int nfits, const rf_settings *s, rf_result *out,
                       brdffit_error *err);
 
-/* dir is a directory the program can write into (made when missing: its
- * parent must exist).  0, or -1 with err (BRDFFIT_E_FILE_WRITE, the path and why). */
-int rf_prepare_dir(const char *dir, brdffit_error *err);
+/* The same into a directory already open (outdir.h), written with out_file. */
+int rf_write_material_at(const out_dir *dir, const char *material, const brdffit_table *table,
+                         const rf_fit *fits, int nfits, const rf_settings *s, rf_result *out,
+                         brdffit_error *err);
 
 /* ---- plot_svg.c ---- */
 
@@ -91,10 +93,10 @@ int rf_prepare_dir(const char *dir, brdffit_error *err);
  * channel is masked (negative), so the point is left out. */
 double plot_value(const double rgb[3]);
 
-/* One plot: the curves of o (theta_o from brdffit_curve_theta_o), measured
- * solid and, when model is not NULL, the model dashed; title at the top and
- * in <title>.  0 or -1 with err. */
-int plot_write_svg(const char *path, const char *title, const brdffit_curve_options *o,
+/* One plot, the file name in dir (written whole): the curves of o (theta_o
+ * from brdffit_curve_theta_o), measured solid and, when model is not NULL,
+ * the model dashed; title at the top and in <title>.  0 or -1 with err. */
+int plot_write_svg(const out_dir *dir, const char *name, const char *title, const brdffit_curve_options *o,
                    const double *theta_o, const double *measured, const double *model,
                    size_t stride, brdffit_error *err);
 

@@ -6,7 +6,8 @@
  *                  records of fit_record.h
  *   jsonread.c     a small reader for the JSON objects the journal holds
  *   published.c    the published-fits TSV (material, model, d, s, p0..p2)
- *   outfile.c      files of the report written whole (temporary + rename), errors kept
+ *   outdir.c       the output directory, its lock, names checked (outdir.h);
+ *                  outfile.c files written whole (temporary + rename)
  *   html_report.c  the report's pages: the pieces they share (html_report.h);
  *                  html_material.c per material params.tsv, params.json,
  *                  index.html; html_index.c DIR/index.html, DIR/fits.tsv and
@@ -27,6 +28,7 @@
 
 #include "brdffit.h"
 #include "fit_record.h"
+#include "outdir.h"
 
 #include <stdio.h>
 
@@ -59,9 +61,10 @@ typedef struct bj_journal {
     char path[BJ_PATH_MAX];
 } bj_journal;
 
-/* Open (create) DIR/journal.jsonl for appending.  A torn last line (a kill in
- * the middle of a write) is cut off first; *torn says so.  0 or -1 (err). */
-int bj_journal_open(bj_journal *j, const char *dir, int *torn, brdffit_error *err);
+/* Open (create) journal.jsonl in dir for appending (a link there is refused).
+ * A torn last line (a kill in the middle of a write) is cut off first; *torn
+ * says so.  0 or -1 (err). */
+int bj_journal_open(bj_journal *j, const out_dir *dir, int *torn, brdffit_error *err);
 /* Append one record as one line, then fsync: 0, or -1 with err filled. */
 int bj_journal_append(bj_journal *j, const fit_record *r, brdffit_error *err);
 void bj_journal_close(bj_journal *j);
@@ -125,31 +128,6 @@ void pub_free(pub_table *t);
 /* The row of material and model, or NULL. */
 const pub_row *pub_find(const pub_table *t, const char *material, brdffit_model model);
 
-/* ---- outfile.c ---- */
-
-/* A file of the report: written to PATH.tmp, then renamed over PATH by
- * out_commit, so that a page is never seen half-written. */
-typedef struct out_file {
-    FILE *f;
-    char path[BJ_PATH_MAX];
-    char tmp[BJ_PATH_MAX + 8];
-} out_file;
-
-/* 0, or -1 with err ("cannot write PATH: reason"). */
-int out_open(out_file *o, const char *path, brdffit_error *err);
-/* Flush, check, fsync? no: close and rename.  0, or -1 with err. */
-int out_commit(out_file *o, brdffit_error *err);
-/* Close and remove the temporary (after a failure). */
-void out_abandon(out_file *o);
-/* mkdir -p of one level (the parent must exist): 0 or -1 with err. */
-int out_mkdir(const char *path, brdffit_error *err);
-/* fsync the directory itself (new entries made durable): 0 or -1 with err. */
-int out_sync_dir(const char *path, brdffit_error *err);
-/* Copy a file (report: assets of a shard directory): 0 or -1 with err. */
-int out_copy(const char *from, const char *to, brdffit_error *err);
-/* Join dir and name into buf ("dir/name"); -1 when it does not fit. */
-int out_join(char *buf, size_t len, const char *dir, const char *name);
-
 /* ---- fault.c: fault injection for the tests (BRDFFIT_FAULT=POINT:N) ----
  * Only in the test build of the program (build/brdffit-faults, compiled
  * -DBRDFFIT_FAULTS); in the program that is installed the hooks are no-ops
@@ -175,10 +153,10 @@ static inline void cli_fault_point(const char *point)
 /* ---- assets.c ---- */
 
 /* Write the renders and plots of a material (its table, the fits that
- * succeeded) into dir; list the files written as lines
+ * succeeded) into dir (open: outdir.h); list the files written as lines
  * "kind<TAB>file<TAB>caption" (kind: image, plot, data) into list.
  * 0, or -1 with err (BRDFFIT_E_FILE_WRITE when dir could not be written). */
-int batch_assets(const char *dir, const char *material, const brdffit_table *table,
+int batch_assets(const out_dir *dir, const char *material, const brdffit_table *table,
                  const brdffit_sample_options *sample, const fit_record *const *fits, int nfits,
                  int render, int plot, char *list, size_t len, brdffit_error *err);
 
@@ -221,10 +199,10 @@ int rp_add(rp_report *rep, const char *name, const bj_identity *id, const bj_rec
            const char *const *origin_dirs, int ndirs);
 void rp_free(rp_report *rep);
 
-/* Write every page of the report into dir: DIR/<material>/params.tsv,
+/* Write every page of the report into dir (open): DIR/<material>/params.tsv,
  * params.json, index.html; DIR/index.html, DIR/fits.tsv, DIR/headline.svg.
  * 0, or -1 with err (the path that could not be written and why). */
-int rp_write(const rp_report *rep, const char *dir, brdffit_error *err);
+int rp_write(const rp_report *rep, const out_dir *dir, brdffit_error *err);
 
 /* The slot of material i's best fit (lowest Error), or -1. */
 int rp_best(const rp_report *rep, int i);

@@ -74,6 +74,7 @@ typedef struct fit_record {
     char assets_key[BJ_MSG_MAX];    /* FR_ASSETS: what was drawn ("rf1:render=1,plot=1:ward,he") */
     char assets[BJ_ASSETS_MAX];     /* FR_ASSETS: lines "kind<TAB>file<TAB>caption"   */
     int origin;                     /* not written: which journal it came from        */
+    int line;                       /* not written: its line in that journal (1..)    */
 } fit_record;
 
 /* An empty record of this kind: numbers NAN, counts unknown, status OK. */
@@ -130,6 +131,10 @@ int fr_read_json(const char *line, fit_record *r, fr_need need);
  * and model (columns published_error, ratio). */
 void fr_write_tsv_header(FILE *f);
 void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub);
+/* A text field of the TSV, escaped so that it reads back exactly: "\\" for a
+ * backslash, "\t", "\n", "\r" for tab, line feed, carriage return; "-" for
+ * an empty (or no) text and "\-" for the text "-". */
+void fr_write_tsv_text(FILE *f, const char *s);
 /* error / published error, or NAN. */
 double fr_ratio(const fit_record *fit, const fit_record *pub);
 

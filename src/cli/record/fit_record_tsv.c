@@ -8,17 +8,28 @@
 #include "cli.h"
 
 #include <math.h>
+#include <string.h>
 
 /* ------------------------------------------------------------------ TSV */
 
-static void tsv_text(FILE *f, const char *s)
+void fr_write_tsv_text(FILE *f, const char *s)
 {
     if (!s || !s[0]) {
         putc('-', f);
         return;
     }
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++)
-        putc(*p == '\t' || *p == '\n' || *p == '\r' ? ' ' : *p, f);
+    if (strcmp(s, "-") == 0) {
+        fputs("\\-", f);
+        return;
+    }
+    for (const char *p = s; *p; p++) {
+        const char *e = *p == '\\' ? "\\\\" : *p == '\t' ? "\\t" : *p == '\n' ? "\\n"
+                      : *p == '\r' ? "\\r" : NULL;
+        if (e)
+            fputs(e, f);
+        else
+            putc(*p, f);
+    }
 }
 
 static void tsv_num(FILE *f, const char *fmt, double x)
@@ -47,9 +58,9 @@ void fr_write_tsv_header(FILE *f)
 
 void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub)
 {
-    tsv_text(f, r->material);
+    fr_write_tsv_text(f, r->material);
     putc('\t', f);
-    tsv_text(f, r->model);
+    fr_write_tsv_text(f, r->model);
     for (int c = 0; c < 3; c++)
         tsv_num(f, "%.10g", r->has_params ? r->params.d[c] : NAN);
     for (int c = 0; c < 3; c++)
@@ -83,18 +94,18 @@ void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub)
         fputs("-\t-", f);
     }
     putc('\t', f);
-    tsv_text(f, r->backend);
+    fr_write_tsv_text(f, r->backend);
     tsv_num(f, "%.10g", pub && fr_ok(pub) ? pub->error : NAN);
     tsv_num(f, "%.6g", fr_ratio(r, pub));
     putc('\t', f);
-    tsv_text(f, r->id.path);
+    fr_write_tsv_text(f, r->id.path);
     if (r->id.size >= 0)
         fprintf(f, "\t%lld\t", r->id.size);
     else
         fputs("\t-\t", f);
-    tsv_text(f, r->id.hash);
+    fr_write_tsv_text(f, r->id.hash);
     putc('\t', f);
     if (r->message[0]) /* "" when the record did not fail */
-        tsv_text(f, r->message);
+        fr_write_tsv_text(f, r->message);
     putc('\n', f);
 }

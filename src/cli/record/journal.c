@@ -192,15 +192,15 @@ static int io_fail(brdffit_error *err, const char *what, const char *path, int e
     return -1;
 }
 
-int bj_journal_open(bj_journal *j, const char *dir, int *torn, brdffit_error *err)
+int bj_journal_open(bj_journal *j, const out_dir *dir, int *torn, brdffit_error *err)
 {
     *torn = 0;
     j->fd = -1;
-    if (out_join(j->path, sizeof j->path, dir, "journal.jsonl") != 0)
-        return io_fail(err, "open", dir, ENAMETOOLONG);
-    int fd = open(j->path, O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (out_join(j->path, sizeof j->path, dir->path, "journal.jsonl") != 0)
+        return io_fail(err, "open", dir->path, ENAMETOOLONG);
+    int fd = od_open_append(dir, "journal.jsonl", err);
     if (fd < 0)
-        return io_fail(err, "open", j->path, errno);
+        return -1;
     /* cut a torn last line off: find the last newline */
     off_t size = lseek(fd, 0, SEEK_END);
     if (size > 0) {
@@ -233,7 +233,7 @@ int bj_journal_open(bj_journal *j, const char *dir, int *torn, brdffit_error *er
         }
     }
     j->fd = fd;
-    return out_sync_dir(dir, err);
+    return od_sync(dir, err);
 }
 
 int bj_journal_append(bj_journal *j, const fit_record *r, brdffit_error *err)
@@ -314,7 +314,9 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
         snprintf(err->message, sizeof err->message, "out of memory reading %.1800s", path);
         return -1;
     }
+    int lineno = 0;
     while ((n = getline(&line, &cap, f)) > 0) {
+        lineno++;
         if (line[n - 1] != '\n') { /* the last line, without its newline: torn */
             *torn = 1;
             break;
@@ -324,6 +326,7 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
             (*bad)++;
             continue;
         }
+        r->line = lineno;
         if (bj_records_push(rs, r) != 0) {
             err->status = BRDFFIT_E_NO_MEMORY;
             snprintf(err->message, sizeof err->message, "out of memory reading %.1800s", path);

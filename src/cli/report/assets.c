@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int assets_write(const char *dir, const char *material, const brdffit_table *table,
+static int assets_write(const out_dir *dir, const char *material, const brdffit_table *table,
                         const rf_fit *rf, int n, const rf_settings *s, rf_result *res, char *list,
                         size_t len, brdffit_error *err)
 {
-    if (rf_write_material(dir, material, table, rf, n, s, res, err) != 0)
+    if (rf_write_material_at(dir, material, table, rf, n, s, res, err) != 0)
         return -1;
     size_t used = 0;
     list[0] = '\0';
@@ -33,7 +33,7 @@ static int assets_write(const char *dir, const char *material, const brdffit_tab
     return 0;
 }
 
-int batch_assets(const char *dir, const char *material, const brdffit_table *table,
+int batch_assets(const out_dir *dir, const char *material, const brdffit_table *table,
                  const brdffit_sample_options *sample, const fit_record *const *fits, int nfits,
                  int render, int plot, char *list, size_t len, brdffit_error *err)
 {

@@ -164,10 +164,10 @@ static void headline_series(xml_writer *w, const rp_report *rep, const order_ite
     free(y);
 }
 
-int rp_write_headline(const rp_report *rep, const char *dir, int sort_k, brdffit_error *err)
+int rp_write_headline(const rp_report *rep, const out_dir *dir, int sort_k, brdffit_error *err)
 {
     out_file o;
-    if (rp_open_in(&o, dir, "headline.svg", err) != 0)
+    if (out_open(&o, dir, "headline.svg", err) != 0)
         return -1;
     order_item *ord = malloc((size_t)(rep->n > 0 ? rep->n : 1) * sizeof *ord);
     if (!ord) {
@@ -224,10 +224,10 @@ int rp_write_headline(const rp_report *rep, const char *dir, int sort_k, brdffit
 
 /* ------------------------------------------------------------------ fits.tsv */
 
-int rp_write_fits_tsv(const rp_report *rep, const char *dir, brdffit_error *err)
+int rp_write_fits_tsv(const rp_report *rep, const out_dir *dir, brdffit_error *err)
 {
     out_file o;
-    if (rp_open_in(&o, dir, "fits.tsv", err) != 0)
+    if (out_open(&o, dir, "fits.tsv", err) != 0)
         return -1;
     fprintf(o.f, "# every fit of the report: metric %s, cutoff %g deg, scale %s, starts %d, "
                  "brdffit %s; ratio = error / published_error; the columns: docs/fit-record.md\n",
@@ -300,10 +300,10 @@ static void error_matrix(xml_writer *w, const rp_report *rep)
     xml_close(w);
 }
 
-int rp_write_index(const rp_report *rep, const char *dir, int sort_k, brdffit_error *err)
+int rp_write_index(const rp_report *rep, const out_dir *dir, int sort_k, brdffit_error *err)
 {
     out_file o;
-    if (rp_open_in(&o, dir, "index.html", err) != 0)
+    if (out_open(&o, dir, "index.html", err) != 0)
         return -1;
     xml_writer w;
     int failed = 0;

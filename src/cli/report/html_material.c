@@ -14,16 +14,18 @@ static const char *param_label(brdffit_model model, int k)
 
 /* ------------------------------------------------------------------ params.tsv, params.json */
 
-int rp_write_params_tsv(const rp_report *rep, const rp_material *m, const char *dir,
+int rp_write_params_tsv(const rp_report *rep, const rp_material *m, const out_dir *dir,
                             brdffit_error *err)
 {
     out_file o;
-    if (rp_open_in(&o, dir, "params.tsv", err) != 0)
+    if (out_open(&o, dir, "params.tsv", err) != 0)
         return -1;
-    fprintf(o.f, "# %s: metric %s, cutoff %g deg, scale %s, starts %d, brdffit %s; "
+    fputs("# ", o.f);
+    fr_write_tsv_text(o.f, m->name); /* escaped: a line break cannot end the comment */
+    fprintf(o.f, ": metric %s, cutoff %g deg, scale %s, starts %d, brdffit %s; "
                  "ratio = error / published_error; p0..p2 per model: brdffit models; "
                  "the columns: docs/fit-record.md\n",
-            m->name, brdffit_metric_name(), rep->settings.cutoff_deg, rep->settings.scale,
+            brdffit_metric_name(), rep->settings.cutoff_deg, rep->settings.scale,
             rep->settings.starts, rep->settings.version);
     fr_write_tsv_header(o.f);
     rp_tsv_material(o.f, rep, m);
@@ -32,11 +34,11 @@ int rp_write_params_tsv(const rp_report *rep, const rp_material *m, const char *
 
 /* params.json: the material, its failure record (or null), its fit records
  * and the records of its published parameters (fit_record.h). */
-int rp_write_params_json(const rp_report *rep, const rp_material *m, const char *dir,
+int rp_write_params_json(const rp_report *rep, const rp_material *m, const out_dir *dir,
                              brdffit_error *err)
 {
     out_file o;
-    if (rp_open_in(&o, dir, "params.json", err) != 0)
+    if (out_open(&o, dir, "params.json", err) != 0)
         return -1;
     FILE *f = o.f;
     fputs("{\"material\":", f);
@@ -169,10 +171,10 @@ static void figures(xml_writer *w, const rp_material *m, const char *kind, const
 }
 
 int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
-                               const char *dir, brdffit_error *err)
+                               const out_dir *dir, brdffit_error *err)
 {
     out_file o;
-    if (rp_open_in(&o, dir, "index.html", err) != 0)
+    if (out_open(&o, dir, "index.html", err) != 0)
         return -1;
     xml_writer w;
     rp_html_begin(&w, o.f, m->name);

@@ -6,7 +6,6 @@
  * DIR/headline.svg (html_index.c).  Here: the pieces they share and rp_write.
  * HTML and SVG go through the escaping writer of svg.h. */
 #define _POSIX_C_SOURCE 200809L
-#define _POSIX_C_SOURCE 200809L
 #include "html_report.h"
 
 #include <math.h>
@@ -42,18 +41,6 @@ const char *rp_url_segment(char *buf, size_t len, const char *s)
     }
     buf[n] = '\0';
     return buf;
-}
-
-int rp_open_in(out_file *o, const char *dir, const char *name, brdffit_error *err)
-{
-    char path[BJ_PATH_MAX];
-    if (out_join(path, sizeof path, dir, name) != 0) {
-        err->status = BRDFFIT_E_FILE_WRITE;
-        snprintf(err->message, sizeof err->message, "cannot write %.1800s/%s: name too long", dir,
-                 name);
-        return -1;
-    }
-    return out_open(o, path, err);
 }
 
 /* Finish a page written with the XML writer: commit it, or report the failure. */
@@ -138,38 +125,57 @@ void rp_cell(xml_writer *w, const char *tag, const char *cls, const char *text)
 
 /* ------------------------------------------------------------------ all of it */
 
-/* Copy the asset files of a material kept in another directory (a shard). */
-static int copy_assets(const rp_material *m, const char *mdir, brdffit_error *err)
+/* Copy the asset files of a material kept in another directory (a shard);
+ * a file name from its record must be one path component. */
+static int copy_assets(const rp_material *m, const out_dir *mdir, brdffit_error *err)
 {
-    if (!m->assets || !m->asset_dir[0] || strcmp(m->asset_dir, mdir) == 0)
+    if (!m->assets || !m->asset_dir[0] || strcmp(m->asset_dir, mdir->path) == 0)
         return 0;
     const char *p = m->assets->assets;
     while (*p) {
         const char *end = strchr(p, '\n');
         size_t n = end ? (size_t)(end - p) : strlen(p);
-        char line[1024], from[BJ_PATH_MAX], to[BJ_PATH_MAX];
+        char line[1024], from[BJ_PATH_MAX];
         snprintf(line, sizeof line, "%.*s", (int)(n < sizeof line - 1 ? n : sizeof line - 1), p);
         p += n + (end ? 1 : 0);
         char *t1 = strchr(line, '\t'), *t2 = t1 ? strchr(t1 + 1, '\t') : NULL;
         if (!t2)
             continue;
         *t2 = '\0';
-        if (strchr(t1 + 1, '/') || out_join(from, sizeof from, m->asset_dir, t1 + 1) != 0 ||
-            out_join(to, sizeof to, mdir, t1 + 1) != 0 || out_copy(from, to, err) != 0)
+        const char *bad = od_name_problem(t1 + 1);
+        if (bad) {
+            err->status = BRDFFIT_E_FILE_READ;
+            snprintf(err->message, sizeof err->message, "%.1200s: the file '%.300s' its record "
+                     "lists cannot be copied: %s", m->asset_dir, t1 + 1, bad);
+            return -1;
+        }
+        if (out_join(from, sizeof from, m->asset_dir, t1 + 1) != 0 ||
+            out_copy(from, mdir, t1 + 1, err) != 0)
             return -1;
     }
     return 0;
 }
 
-int rp_write(const rp_report *rep, const char *dir, brdffit_error *err)
+/* A material's directory and files. */
+static int write_material(const rp_report *rep, int i, const out_dir *dir, brdffit_error *err)
+{
+    const rp_material *m = &rep->m[i];
+    out_dir mdir;
+    if (od_sub(&mdir, dir, m->name, err) != 0)
+        return -1;
+    od_sweep(&mdir);
+    int rc = copy_assets(m, &mdir, err) != 0 || rp_write_params_tsv(rep, m, &mdir, err) != 0 ||
+                     rp_write_params_json(rep, m, &mdir, err) != 0 ||
+                     rp_write_material_page(rep, m, rp_best(rep, i), &mdir, err) != 0
+                 ? -1 : 0;
+    od_close(&mdir);
+    return rc;
+}
+
+int rp_write(const rp_report *rep, const out_dir *dir, brdffit_error *err)
 {
     for (int i = 0; i < rep->n; i++) {
-        const rp_material *m = &rep->m[i];
-        char mdir[BJ_PATH_MAX];
-        if (out_join(mdir, sizeof mdir, dir, m->name) != 0 || out_mkdir(mdir, err) != 0 ||
-            copy_assets(m, mdir, err) != 0 || rp_write_params_tsv(rep, m, mdir, err) != 0 ||
-            rp_write_params_json(rep, m, mdir, err) != 0 ||
-            rp_write_material_page(rep, m, rp_best(rep, i), mdir, err) != 0)
+        if (write_material(rep, i, dir, err) != 0)
             return -1;
         cli_fault_point("page");
     }

@@ -13,8 +13,6 @@
 const char *rp_num(char *buf, size_t len, const char *fmt, double x);
 /* A path segment of a relative URL: every byte but [A-Za-z0-9._~-] percent-encoded. */
 const char *rp_url_segment(char *buf, size_t len, const char *s);
-/* Open dir/name to be written whole or not at all. */
-int rp_open_in(out_file *o, const char *dir, const char *name, brdffit_error *err);
 /* Finish a page written with the XML writer: commit it, or report the failure. */
 int rp_finish(out_file *o, xml_writer *w, brdffit_error *err);
 /* The rows of a material in the TSV of fits (fit_record.h): its failure, or its fits. */
@@ -26,17 +24,17 @@ void rp_cell(xml_writer *w, const char *tag, const char *cls, const char *text);
 
 /* ---- html_material.c: DIR/<material>/ ---- */
 
-int rp_write_params_tsv(const rp_report *rep, const rp_material *m, const char *dir,
+int rp_write_params_tsv(const rp_report *rep, const rp_material *m, const out_dir *dir,
                         brdffit_error *err);
-int rp_write_params_json(const rp_report *rep, const rp_material *m, const char *dir,
+int rp_write_params_json(const rp_report *rep, const rp_material *m, const out_dir *dir,
                          brdffit_error *err);
 int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
-                           const char *dir, brdffit_error *err);
+                           const out_dir *dir, brdffit_error *err);
 
 /* ---- html_index.c: DIR/ ---- */
 
-int rp_write_headline(const rp_report *rep, const char *dir, int sort_k, brdffit_error *err);
-int rp_write_fits_tsv(const rp_report *rep, const char *dir, brdffit_error *err);
-int rp_write_index(const rp_report *rep, const char *dir, int sort_k, brdffit_error *err);
+int rp_write_headline(const rp_report *rep, const out_dir *dir, int sort_k, brdffit_error *err);
+int rp_write_fits_tsv(const rp_report *rep, const out_dir *dir, brdffit_error *err);
+int rp_write_index(const rp_report *rep, const out_dir *dir, int sort_k, brdffit_error *err);
 
 #endif

@@ -133,7 +133,8 @@ static tu_run_out demo_batch(const char *out)
 }
 
 /* The names the temporaries had (NAME.tmp) linked to the victim: every file
- * is written, the victim is not. */
+ * is written, the victim is not.  Temporaries a killed run left (regular
+ * files .NAME.XXXXXXXXXXXX.tmp) are removed; other files stay. */
 START_TEST(old_temporary_names_linked)
 {
     char dir[512], v[1024], out[1024], mdir[1200];
@@ -152,10 +153,20 @@ START_TEST(old_temporary_names_linked)
         snprintf(name, sizeof name, "%s.tmp", material_names[i]);
         plant(v, mdir, name);
     }
+    char left[2][1400], kept[1400];
+    snprintf(left[0], sizeof left[0], "%s/.index.html.aB3dE5gH7jK9.tmp", out);
+    snprintf(left[1], sizeof left[1], "%s/.ward.png.Zz0Yy1Xx2Ww3.tmp", mdir);
+    snprintf(kept, sizeof kept, "%s/.notes.tmp", out);
+    for (int k = 0; k < 2; k++)
+        ck_assert_int_eq(tu_write_bytes(left[k], "x", 1), 0);
+    ck_assert_int_eq(tu_write_bytes(kept, "x", 1), 0);
     tu_run_out r = demo_batch(out);
     expect_exit(r, 0, "batch with links at NAME.tmp");
     tu_run_free(&r);
     victim_intact(v);
+    for (int k = 0; k < 2; k++)
+        ck_assert_msg(access(left[k], F_OK) != 0, "%s is left", left[k]);
+    ck_assert_int_eq(access(kept, F_OK), 0);
     tu_remove_tree(dir);
 }
 END_TEST

@@ -179,8 +179,7 @@ typedef enum brdffit_status {
     BRDFFIT_E_FIT_FAILED = 18,    /* the optimiser could not produce a result  */
     BRDFFIT_E_CACHE_DIR = 19,    /* PoCL's kernel cache directory is unusable (which, why) */
     BRDFFIT_E_TOO_FEW_SAMPLES = 20, /* fewer distinct sample geometries than the model's unknowns */
-    BRDFFIT_E_VALUE_RANGE = 21,  /* a finite value too large: a stored one to fit, a render's
-                                  * input or pixel (which, value named) */
+    BRDFFIT_E_VALUE_RANGE = 21,  /* a finite value too large: stored, or a render's (named) */
     BRDFFIT_E_OPTIONS_SIZE = 22, /* a sized struct's `size` the library cannot take (ABI CONVENTIONS) */
     BRDFFIT_STATUS_COUNT = 23       /* one more than the last status */
 } brdffit_status;

@@ -215,7 +215,7 @@ $(BUILD)/fuzz/make_seeds: tests/fuzz/make_seeds.c | $(BUILD)/fuzz
 RUN_ENV = POCL_CACHE_DIR="$${POCL_CACHE_DIR:-$(CURDIR)/$(BUILD)/pocl-cache}"
 
 demo: all
-	@mkdir -p $(BUILD)/pocl-cache
+	@mkdir -p -m 700 $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/brdffit batch --demo --out $(BUILD)/demo
 
 # The Check suite, the Python package's tests, then tests/packaging.sh
@@ -223,7 +223,7 @@ demo: all
 # pkg-config, README's example built and run in C and C++, shared and
 # static).  All always run; any failing fails the goal.
 test: $(BUILD)/test_brdffit all $(BUILD)/brdffit-faults
-	@mkdir -p $(BUILD)/pocl-cache
+	@mkdir -p -m 700 $(BUILD)/pocl-cache
 	@rc=0; $(RUN_ENV) BRDFFIT_CLI=./$(BUILD)/brdffit BRDFFIT_CLI_FAULTS=./$(BUILD)/brdffit-faults \
 	    ./$(BUILD)/test_brdffit || rc=1; \
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
@@ -246,7 +246,7 @@ test: $(BUILD)/test_brdffit all $(BUILD)/brdffit-faults
 sanitize:
 	$(MAKE) BUILD=build-san OPT=-O1 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	    build-san/test_brdffit build-san/brdffit build-san/brdffit-faults build-san/brdffit.1
-	@mkdir -p build-san/pocl-cache
+	@mkdir -p -m 700 build-san/pocl-cache
 	POCL_CACHE_DIR="$(CURDIR)/build-san/pocl-cache" BRDFFIT_CLI=./build-san/brdffit \
 	BRDFFIT_CLI_FAULTS=./build-san/brdffit-faults \
 	CK_TIMEOUT_MULTIPLIER=$${CK_TIMEOUT_MULTIPLIER:-4} \
@@ -263,7 +263,7 @@ tsan:
 	sh .ci/install-deps clang
 	$(MAKE) BUILD=build-tsan CC=clang OPT=-O1 SAN="-fsanitize=thread -fno-omit-frame-pointer" \
 	    build-tsan/test_brdffit
-	@mkdir -p build-tsan/pocl-cache
+	@mkdir -p -m 700 build-tsan/pocl-cache
 	for suite in threads alloc; do \
 	    POCL_CACHE_DIR="$(CURDIR)/build-tsan/pocl-cache" CK_RUN_SUITE=$$suite \
 	    TSAN_OPTIONS=halt_on_error=1:suppressions=$(CURDIR)/tests/tsan.supp \
@@ -297,7 +297,7 @@ fuzz:
 BENCH_RECORD ?= $(CURDIR)/bench/record
 BENCH_RECORD_ARG = $(if $(BENCH_RECORD),--record $(BENCH_RECORD))
 bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
-	@mkdir -p $(BUILD)/pocl-cache
+	@mkdir -p -m 700 $(BUILD)/pocl-cache
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit $(BENCH_RECORD_ARG) $(BENCH_ARGS)
 
 # The whole database (bench/bench_database.c): brdffit fit over the 100 tables
@@ -305,7 +305,7 @@ bench: $(BUILD)/bench_brdffit $(BUILD)/brdffit bench-python
 # against the stored run bench/baseline-errors.tsv (docs/performance.md).  A few minutes.
 BENCH_ROUNDS ?= 3
 bench-database: $(BUILD)/bench_brdffit $(BUILD)/brdffit
-	@mkdir -p $(BUILD)/pocl-cache
+	@mkdir -p -m 700 $(BUILD)/pocl-cache
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit --database \
 	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv $(BENCH_RECORD_ARG)
 
@@ -341,7 +341,7 @@ $(BUILD)/bench_ceres: $(BUILD)/bench-ceres/fit_ceres.o $(BUILD)/bench-ceres/fc_s
 bench-ceres:
 	sh .ci/install-deps ceres
 	$(MAKE) $(BUILD)/bench_ceres
-	@mkdir -p $(BUILD)/pocl-cache
+	@mkdir -p -m 700 $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/bench_ceres --record bench/record $(CERES_ARGS)
 
 # ---- install / uninstall ----
@@ -369,7 +369,7 @@ $(BUILD)/bench_fidelity: $(BUILD)/bench/fidelity.o $(BUILD)/libbrdffit-internal.
 # Every published material x every model, against the published parameters
 # and the stored run bench/baseline-errors.tsv (docs/fidelity.md).
 fidelity: $(BUILD)/bench_fidelity
-	@mkdir -p $(BUILD)/pocl-cache
+	@mkdir -p -m 700 $(BUILD)/pocl-cache
 	$(RUN_ENV) ./$(BUILD)/bench_fidelity --baseline bench/baseline-errors.tsv $(FIDELITY_ARGS)
 
 # The same on ten of those materials (bench/fidelity.c: QUICK_MATERIALS), a few minutes.

@@ -179,7 +179,7 @@ typedef enum brdffit_status {
     BRDFFIT_E_FIT_FAILED = 18,    /* the optimiser could not produce a result  */
     BRDFFIT_E_CACHE_DIR = 19,    /* PoCL's kernel cache directory is unusable (which, why) */
     BRDFFIT_E_TOO_FEW_SAMPLES = 20, /* fewer distinct sample geometries than the model's unknowns */
-    BRDFFIT_E_VALUE_RANGE = 21,  /* a finite stored value too large to fit (bin, value named) */
+    BRDFFIT_E_VALUE_RANGE = 21,  /* a finite value too large: stored, or a render's (named) */
     BRDFFIT_E_OPTIONS_SIZE = 22, /* a sized struct's `size` the library cannot take (ABI CONVENTIONS) */
     BRDFFIT_STATUS_COUNT = 23       /* one more than the last status */
 } brdffit_status;
@@ -698,6 +698,14 @@ size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member);
  *   light or environment sample hit a masked bin (brdffit_table_lookup's -1
  *   in some channel): the masked channels of that contribution count 0, so RGB
  *   there is a lower bound.  Model renders have no masked pixels.
+ *   Limits.  A render refuses, never clamps, what it cannot represent, with
+ *   BRDFFIT_E_VALUE_RANGE and a message naming it: a light irradiance or an
+ *   environment texel above BRDFFIT_RADIANCE_MAX (1e20; with a table, whose
+ *   values are at most BRDFFIT_VALUE_MAX, no pixel can then overflow), and a
+ *   pixel whose value is not finite (a model whose d or s makes the BRDF
+ *   infinite) or beyond the largest float (FLT_MAX): the first such pixel in
+ *   row order is named and rgba is set to 0.  No accepted render has an inf
+ *   or NaN pixel.
  *   Image error (brdffit_image_error): over the pixels whose reference A is
  *   1, sqrt(sum_pixels sum_c (img - ref)^2 / sum_pixels sum_c ref^2), i.e.
  *   the RMS difference relative to the reference's RMS.
@@ -705,10 +713,11 @@ size_t brdffit_struct_offset(brdffit_struct_kind kind, const char *member);
 
 typedef struct brdffit_light {
     double dir[3];   /* toward the light, camera frame; finite, non-zero (normalised) */
-    double rgb[3];   /* irradiance E per channel, finite, >= 0                       */
+    double rgb[3];   /* irradiance E per channel, in 0..BRDFFIT_RADIANCE_MAX          */
 } brdffit_light;
 
 #define BRDFFIT_RENDER_MAX_LIGHTS 16
+#define BRDFFIT_RADIANCE_MAX 1e20 /* the largest light irradiance or environment texel */
 #define BRDFFIT_RENDER_DEFAULT_LIGHTS (-1) /* nlights: use the two default lights */
 #define BRDFFIT_COVERAGE_MASKED 0.5f
 
@@ -720,7 +729,7 @@ typedef struct brdffit_render_options {
     int width;              /* N: the image is N x N; default 256, in 1..16384          */
     int nlights;            /* BRDFFIT_RENDER_DEFAULT_LIGHTS (default), or 0..16: lights[] */
     brdffit_light lights[BRDFFIT_RENDER_MAX_LIGHTS];
-    const float *env;       /* lat-long RGB radiance (finite, >= 0), or NULL (default)  */
+    const float *env;       /* lat-long RGB radiance (0..BRDFFIT_RADIANCE_MAX), or NULL (default) */
     int env_width, env_height; /* texels, >= 1 each when env is set                     */
     size_t env_stride;      /* floats from one env row to the next; 0: 3 env_width      */
     int env_samples;        /* quadrature directions per pixel; default 256, 1..65536   */

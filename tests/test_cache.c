@@ -2,8 +2,9 @@
 /* test_cache.c -- PoCL's kernel cache directory: a directory the library
  * chooses is private (made 0700, or existing and owned by the user, not a
  * symbolic link, not group- or world-writable, in a parent nobody else can
- * replace it in) or is not used; an unusable POCL_CACHE_DIR is named with
- * why; under AUTO the context falls back to the host and says so.  The
+ * replace it in) or is not used; so is a directory POCL_CACHE_DIR names,
+ * and an unusable one is named with why; nothing is made in or under a
+ * directory refused; under AUTO the context falls back to the host and says so.  The
  * choice is made once per process, so every case runs in a fresh child. */
 #define _XOPEN_SOURCE 700
 #include "testutil.h"
@@ -260,7 +261,10 @@ START_TEST(given_unwritable_named)
     cache_env e = { "/tmp", "/dev/null", "/dev/null", "/proc" };
     cache_seen r = run_case(&e);
     ck_assert_int_eq(r.st_opencl, BRDFFIT_E_CACHE_DIR);
-    ck_assert_msg(strstr(r.msg_opencl, "POCL_CACHE_DIR=/proc is not writable (creating a file in it: "),
+    /* root owns /proc, so only root gets as far as trying to write there */
+    ck_assert_msg(strstr(r.msg_opencl, geteuid() == 0 ? "POCL_CACHE_DIR=/proc is not writable (creating a "
+                                                        "file in it: "
+                                                      : "POCL_CACHE_DIR=/proc is owned by uid 0"),
                   "%s", r.msg_opencl);
     ck_assert_int_eq(r.backend_auto, BRDFFIT_BACKEND_HOST);
     ck_assert_int_eq(r.st_fallback, BRDFFIT_E_CACHE_DIR);
@@ -275,8 +279,8 @@ START_TEST(given_uncreatable_named)
     cache_env e = { "/tmp", "/dev/null", "/dev/null", "/dev/null/kcache" };
     cache_seen r = run_case(&e);
     ck_assert_int_eq(r.st_opencl, BRDFFIT_E_CACHE_DIR);
-    ck_assert_msg(strstr(r.msg_opencl, "POCL_CACHE_DIR=/dev/null/kcache cannot be created (mkdir "
-                                       "/dev/null/kcache: Not a directory)"),
+    ck_assert_msg(strstr(r.msg_opencl, "POCL_CACHE_DIR=/dev/null/kcache cannot be created (/dev/null: "
+                                       "Not a directory)"),
                   "%s", r.msg_opencl);
     cache_env f = { "/tmp", "/dev/null", "/dev/null", "/dev/null" };
     r = run_case(&f);
@@ -300,6 +304,142 @@ START_TEST(given_missing_made)
     struct stat st;
     ck_assert_int_eq(stat(dir, &st), 0);
     ck_assert(S_ISDIR(st.st_mode));
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+    ck_assert_int_eq(system(cmd), 0);
+}
+END_TEST
+
+/* A POCL_CACHE_DIR others could plant kernels in is refused as the
+ * library's own choice would be: why, and what to do; PoCL is not touched
+ * (under AUTO: the host) and the variable is left as set. */
+static void expect_given_refused(const char *dir, const char *why)
+{
+    cache_env e = { "/tmp", "/dev/null", "/dev/null", dir };
+    cache_seen r = run_case(&e);
+    char want[700];
+    snprintf(want, sizeof want, "POCL_CACHE_DIR=%s %s", dir, why);
+    expect_refused(&r, dir, want);
+    ck_assert_ptr_nonnull(strstr(r.msg_opencl, "only you can write to"));
+    ck_assert_ptr_nonnull(strstr(r.msg_opencl, "unset POCL_CACHE_DIR"));
+    ck_assert_int_eq(r.st_build, -1);
+    ck_assert_str_eq(r.pocl_cache_dir, dir);
+}
+
+START_TEST(given_world_writable_refused)
+{
+    char tmp[256], dir[512];
+    tmp_dir(tmp, sizeof tmp);
+    snprintf(dir, sizeof dir, "%s/kcache", tmp);
+    ck_assert_int_eq(mkdir(dir, 0700), 0);
+    ck_assert_int_eq(chmod(dir, 0777), 0);
+    expect_given_refused(dir, "is world-writable (mode 0777)");
+    chmod(dir, 0770);
+    expect_given_refused(dir, "is group-writable (mode 0770)");
+    /* nothing was made in it: no probe file, no kernels */
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "test -z \"$(ls -A '%s')\"", dir);
+    ck_assert_int_eq(system(cmd), 0);
+    rmdir(dir);
+    rmdir(tmp);
+}
+END_TEST
+
+START_TEST(given_symlink_refused)
+{
+    char tmp[256], dir[512], target[512];
+    tmp_dir(tmp, sizeof tmp);
+    snprintf(target, sizeof target, "%s/elsewhere", tmp);
+    snprintf(dir, sizeof dir, "%s/kcache", tmp);
+    ck_assert_int_eq(mkdir(target, 0700), 0);
+    ck_assert_int_eq(symlink(target, dir), 0);
+    expect_given_refused(dir, "is a symbolic link");
+    unlink(dir);
+    rmdir(target);
+    rmdir(tmp);
+}
+END_TEST
+
+/* Owned by another user (needs root to chown to nobody, 65534: as another
+ * user this case checks nothing and says so on stderr). */
+START_TEST(given_other_owner_refused)
+{
+    if (geteuid() != 0) {
+        fprintf(stderr, "test_cache: given_other_owner_refused not run: needs root to chown\n");
+        return;
+    }
+    char tmp[256], dir[512];
+    tmp_dir(tmp, sizeof tmp);
+    snprintf(dir, sizeof dir, "%s/kcache", tmp);
+    ck_assert_int_eq(mkdir(dir, 0700), 0);
+    ck_assert_int_eq(chown(dir, 65534, 65534), 0);
+    expect_given_refused(dir, "is owned by uid 65534, not by this user");
+    /* a missing directory under another user's: refused, and not made */
+    char under[600];
+    snprintf(under, sizeof under, "%s/a/kcache", dir);
+    expect_given_refused(under, "is inside");
+    struct stat st;
+    snprintf(under, sizeof under, "%s/a", dir);
+    ck_assert_int_ne(lstat(under, &st), 0);
+    rmdir(dir);
+    rmdir(tmp);
+}
+END_TEST
+
+/* Private itself, but under a directory anyone may write to without the
+ * sticky bit (another user could rename it away and put theirs in its
+ * place); nothing is made under such a directory either. */
+START_TEST(given_replaceable_parent_refused)
+{
+    char tmp[256], open_dir[512], dir[600], missing[600];
+    tmp_dir(tmp, sizeof tmp);
+    snprintf(open_dir, sizeof open_dir, "%s/shared", tmp);
+    ck_assert_int_eq(mkdir(open_dir, 0700), 0);
+    ck_assert_int_eq(chmod(open_dir, 0777), 0);
+    snprintf(dir, sizeof dir, "%s/kcache", open_dir);
+    ck_assert_int_eq(mkdir(dir, 0700), 0);
+    expect_given_refused(dir, "is inside");
+    cache_env e = { "/tmp", "/dev/null", "/dev/null", dir };
+    cache_seen r = run_case(&e);
+    ck_assert_ptr_nonnull(strstr(r.msg_opencl, "which others can write to (mode 0777, not sticky"));
+    snprintf(missing, sizeof missing, "%s/new/kcache", open_dir);
+    expect_given_refused(missing, "is inside");
+    snprintf(missing, sizeof missing, "%s/new", open_dir);
+    struct stat st;
+    ck_assert_int_ne(lstat(missing, &st), 0);
+    rmdir(dir);
+    rmdir(open_dir);
+    rmdir(tmp);
+}
+END_TEST
+
+/* XDG_CACHE_HOME another user owns: refused without brdffit/pocl being
+ * made in it; the next candidate (TMPDIR's) is taken. */
+START_TEST(other_users_xdg_left_alone)
+{
+    if (geteuid() != 0) {
+        fprintf(stderr, "test_cache: other_users_xdg_left_alone not run: needs root to chown\n");
+        return;
+    }
+    char tmp[256], xdg[512], made[600];
+    tmp_dir(tmp, sizeof tmp);
+    snprintf(xdg, sizeof xdg, "%s/xdg", tmp);
+    ck_assert_int_eq(mkdir(xdg, 0755), 0);
+    ck_assert_int_eq(chown(xdg, 65534, 65534), 0);
+    cache_env e = { tmp, "/dev/null", xdg, NULL };
+    cache_seen r = run_case(&e);
+    ck_assert_msg(r.st_opencl == BRDFFIT_OK, "%s", r.msg_opencl);
+    planted(tmp, made, sizeof made);
+    ck_assert_str_eq(r.pocl_cache_dir, made);
+    snprintf(made, sizeof made, "%s/brdffit", xdg);
+    struct stat st;
+    ck_assert_int_ne(lstat(made, &st), 0);
+    /* and with no other candidate, the refusal names it with why */
+    cache_env f = { "/dev/null", "/dev/null", xdg, NULL };
+    r = run_case(&f);
+    ck_assert_int_eq(r.st_opencl, BRDFFIT_E_CACHE_DIR);
+    ck_assert_msg(strstr(r.msg_opencl, "owned by uid 65534"), "%s", r.msg_opencl);
+    ck_assert_int_ne(lstat(made, &st), 0);
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
     ck_assert_int_eq(system(cmd), 0);
@@ -337,6 +477,11 @@ Suite *cache_suite(void)
     tcase_add_test(tc, given_unwritable_named);
     tcase_add_test(tc, given_uncreatable_named);
     tcase_add_test(tc, given_missing_made);
+    tcase_add_test(tc, given_world_writable_refused);
+    tcase_add_test(tc, given_symlink_refused);
+    tcase_add_test(tc, given_other_owner_refused);
+    tcase_add_test(tc, given_replaceable_parent_refused);
+    tcase_add_test(tc, other_users_xdg_left_alone);
     tcase_add_test(tc, path_brief_keeps_ends);
     suite_add_tcase(s, tc);
     return s;

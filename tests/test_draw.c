@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* test_draw.c -- `brdffit render` and `brdffit plot` ($BRDFFIT_CLI): files
  * from a FITS.jsonl, the image errors printed, SVG parsed; bad light specs,
- * an unwritable --out and a malformed --env EXR get a message and a status. */
+ * an unwritable --out, a malformed --env EXR and one too bright to render
+ * get a message and a status. */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
+#include "image_io.h"
 
 #include <check.h>
 #include <stdio.h>
@@ -155,6 +157,19 @@ START_TEST(bad_inputs_are_reported)
     snprintf(args, sizeof args, "render '%s' --fits '%s' --out '%s/e' --env '%s/none.exr'", table, fits, dir, dir);
     ck_assert_int_eq(run(args, &out, &err), 1);
     ck_assert_ptr_nonnull(strstr(err, "none.exr"));
+    free(out);
+    free(err);
+    /* a float EXR with a finite texel too bright to render (1e36): refused, named */
+    float px[4 * 4 * 2];
+    for (int i = 0; i < 4 * 4 * 2; i++)
+        px[i] = 1.0f;
+    px[4 * (1 * 4 + 2) + 1] = 1e36f;
+    brdffit_error xerr;
+    snprintf(path, sizeof path, "%s/bright.exr", dir);
+    ck_assert_msg(exr_write_rgba(path, px, 4, 2, 0, &xerr) == 0, "%s", xerr.message);
+    snprintf(args, sizeof args, "render '%s' --fits '%s' --out '%s/x' --env '%s'", table, fits, dir, path);
+    ck_assert_int_eq(run(args, &out, &err), 1);
+    ck_assert_msg(strstr(err, "texel (2, 1) channel 1 is 1e+36, above BRDFFIT_RADIANCE_MAX"), "%s", err);
     free(out);
     free(err);
     /* no --out; no fit of this material in the file; bad --theta-i */

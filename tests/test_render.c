@@ -451,6 +451,97 @@ START_TEST(curves_equal_eval_and_lookup)
 }
 END_TEST
 
+/* Every value of an N x N image is 0. */
+static void expect_cleared(const float *img, int n)
+{
+    for (int i = 0; i < 4 * n * n; i++)
+        ck_assert_msg(img[i] == 0.0f, "value %d is %g", i, (double)img[i]);
+}
+
+/* Every value of an N x N image is finite. */
+static void expect_finite(const float *img, int n)
+{
+    for (int i = 0; i < 4 * n * n; i++)
+        ck_assert_msg(isfinite(img[i]), "value %d is %g", i, (double)img[i]);
+}
+
+/* What a render cannot represent is refused with BRDFFIT_E_VALUE_RANGE naming
+ * it, the image cleared; the largest accepted inputs give finite pixels. */
+START_TEST(render_refuses_overflow)
+{
+    enum { N = 8, EW = 4, EH = 2 };
+    static float img[4 * N * N];
+    float env[3 * EW * EH];
+    for (int i = 0; i < 3 * EW * EH; i++)
+        env[i] = 1.0f;
+    const double d[3] = { 0.5, 0.5, 0.5 };
+    brdffit_params p = lambert_params(d);
+    brdffit_render_options o;
+    brdffit_render_options_default(&o);
+    o.width = N;
+    o.env = env;
+    o.env_width = EW;
+    o.env_height = EH;
+    o.env_samples = 8;
+    brdffit_error err;
+    /* a finite texel too bright (1e36: finite as a float) */
+    env[3 * (1 * EW + 2) + 1] = 1e36f;
+    ck_assert_int_eq(brdffit_render_model(BRDFFIT_WARD, &p, &o, img, 0, &err), BRDFFIT_E_VALUE_RANGE);
+    ck_assert_msg(strstr(err.message, "texel (2, 1) channel 1 is 1e+36, above BRDFFIT_RADIANCE_MAX (1e+20)"),
+                  "%s", err.message);
+    env[3 * (1 * EW + 2) + 1] = 1.0f;
+    /* a light too bright */
+    o.nlights = 1;
+    o.lights[0] = (brdffit_light){ { 0, 0, 1 }, { 1, 2e20, 1 } };
+    ck_assert_int_eq(brdffit_render_model(BRDFFIT_WARD, &p, &o, img, 0, &err), BRDFFIT_E_VALUE_RANGE);
+    ck_assert_msg(strstr(err.message, "light 0: irradiance (1, 2e+20, 1) is above BRDFFIT_RADIANCE_MAX"),
+                  "%s", err.message);
+    /* accepted inputs, but d so large that pixels go past the largest float */
+    o.lights[0].rgb[1] = 1;
+    p.d[2] = 1e300;
+    ck_assert_int_eq(brdffit_render_model(BRDFFIT_WARD, &p, &o, img, 0, &err), BRDFFIT_E_VALUE_RANGE);
+    ck_assert_msg(strstr(err.message, "channel B would be ") && strstr(err.message, "beyond the largest float"),
+                  "%s", err.message);
+    expect_cleared(img, N);
+    /* s so large that the BRDF itself is infinite */
+    p = rough_ct();
+    p.s[0] = 1.7e308;
+    ck_assert_int_eq(brdffit_render_model(BRDFFIT_COOK_TORRANCE, &p, &o, img, 0, &err),
+                     BRDFFIT_E_VALUE_RANGE);
+    ck_assert_msg(strstr(err.message, "the model's value in channel R is inf"), "%s", err.message);
+    expect_cleared(img, N);
+    /* the same pixel is named with any number of threads */
+    char first[BRDFFIT_MESSAGE_MAX];
+    snprintf(first, sizeof first, "%s", err.message);
+    o.threads = 3;
+    ck_assert_int_eq(brdffit_render_model(BRDFFIT_COOK_TORRANCE, &p, &o, img, 0, &err),
+                     BRDFFIT_E_VALUE_RANGE);
+    ck_assert_str_eq(err.message, first);
+    /* the largest table values, lights and texels accepted: every pixel finite */
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_create(&t, NULL), BRDFFIT_OK);
+    double *v = brdffit_table_values(t);
+    for (size_t b = 0; b < 3 * (size_t)BRDFFIT_MERL_BINS; b++)
+        v[b] = BRDFFIT_VALUE_MAX;
+    for (int i = 0; i < 3 * EW * EH; i++)
+        env[i] = (float)BRDFFIT_RADIANCE_MAX;
+    o.nlights = BRDFFIT_RENDER_MAX_LIGHTS;
+    for (int k = 0; k < o.nlights; k++)
+        o.lights[k] = (brdffit_light){ { 0, 0, 1 },
+                                       { BRDFFIT_RADIANCE_MAX, BRDFFIT_RADIANCE_MAX, BRDFFIT_RADIANCE_MAX } };
+    ck_assert_msg(brdffit_render_table(t, &o, img, 0, &err) == BRDFFIT_OK, "%s", err.message);
+    expect_finite(img, N);
+    ck_assert(img[4 * (N / 2 * N + N / 2)] > 1e37f);
+    /* a table set in memory beyond BRDFFIT_VALUE_MAX: refused at the pixel */
+    for (size_t b = 0; b < 3 * (size_t)BRDFFIT_MERL_BINS; b++)
+        v[b] = 1e30;
+    ck_assert_int_eq(brdffit_render_table(t, &o, img, 0, &err), BRDFFIT_E_VALUE_RANGE);
+    ck_assert_msg(strstr(err.message, "beyond the largest float"), "%s", err.message);
+    expect_cleared(img, N);
+    brdffit_table_free(t);
+}
+END_TEST
+
 Suite *render_suite(void)
 {
     Suite *s = suite_create("render");
@@ -462,6 +553,7 @@ Suite *render_suite(void)
     tcase_add_test(tc, renders_are_deterministic);
     tcase_add_test(tc, masked_bins_marked_in_coverage);
     tcase_add_test(tc, render_rejects_bad_options);
+    tcase_add_test(tc, render_refuses_overflow);
     tcase_add_test(tc, image_error_values);
     tcase_add_test(tc, curves_equal_eval_and_lookup);
     suite_add_tcase(s, tc);

@@ -24,7 +24,7 @@ import threading
 
 from . import _abi
 from ._version import LIBRARY_VERSION
-from .errors import LibraryError, make_error
+from .errors import InvalidArgumentError, LibraryError, Status, make_error
 
 SONAME = "libbrdffit.so.1"
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
@@ -40,6 +40,12 @@ class Library:
         self.cdll = cdll
         self.path = path
         self.version = version
+
+    def __reduce_ex__(self, protocol):
+        raise TypeError(
+            "a brdffit.Library cannot be pickled or copied: it is the C library loaded in "
+            "this process; call brdffit.load_library in each process"
+        )
 
     def __repr__(self):
         return f"<brdffit library {self.version} at {self.path}>"
@@ -149,6 +155,9 @@ def load_library(path=None):
     with _lock:
         if path is not None:
             where = [("the given path", os.fspath(path))]
+            if "\0" in os.fsdecode(where[0][1]):
+                raise InvalidArgumentError(
+                    Status.INVALID_ARGUMENT, f"load_library: {path!r} contains a NUL byte (no path can)")
         else:
             where = _candidates()
         tried = []

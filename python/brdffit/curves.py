@@ -14,7 +14,7 @@ import ctypes
 import numpy as np
 
 from . import _abi, _lib
-from ._arrays import c_int
+from ._arrays import c_int, real_array
 from ._source import shading_source
 from .errors import InvalidArgumentError, Status
 from .table import interp_id, scale_id
@@ -37,10 +37,7 @@ def incidence_curves(source, params=None, *, theta_i=(20, 40, 60, 75), points=18
     opt = _abi.CurveOptions()
     lib.brdffit_curve_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
     single = np.ndim(theta_i) == 0
-    try:
-        angles = np.array(theta_i, dtype=np.float64).reshape(-1)
-    except (TypeError, ValueError):
-        raise InvalidArgumentError(_BAD, "theta_i: not a number or a sequence of numbers") from None
+    angles = np.array(real_array("theta_i", theta_i), dtype=np.float64).reshape(-1)
     if angles.size > _abi.CURVE_MAX_THETA_I:
         raise InvalidArgumentError(
             _BAD, f"theta_i: {angles.size} angles, at most {_abi.CURVE_MAX_THETA_I}")

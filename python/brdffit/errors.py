@@ -143,7 +143,8 @@ class TooFewSamplesError(BrdffitError, ValueError):
 
 
 class ValueRangeError(BrdffitError, ValueError):
-    """A finite stored value above BRDFFIT_VALUE_MAX (bin and value in the message)."""
+    """A finite value too large: stored above BRDFFIT_VALUE_MAX (bin and value in the
+    message), or a render input or pixel beyond what a render can represent (named)."""
 
 
 class OptionsSizeError(BrdffitError, ValueError):

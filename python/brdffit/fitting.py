@@ -6,6 +6,7 @@ import enum
 import operator
 from dataclasses import dataclass
 
+import numpy as np
 
 from . import _abi, _arrays, _lib
 from .errors import InvalidArgumentError, Status
@@ -44,7 +45,7 @@ class Context:
         lib.brdffit_context_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
         opt.backend = _abi.BACKENDS[backend]
         if device is not None:
-            opt.device = str(device).encode("utf-8")
+            opt.device = _arrays.c_text("device", str(device))
         ptr = ctypes.c_void_p()
         _lib.call("brdffit_context_create", ctypes.byref(opt), ctypes.byref(ptr))
         self._h = _arrays.Handle(ptr.value, lib.brdffit_context_free)
@@ -73,6 +74,9 @@ class Context:
 
     def __exit__(self, *exc):
         self.close()
+
+    def __reduce_ex__(self, protocol):
+        raise _arrays.not_picklable(self, "make a Context in each process")
 
     def __repr__(self):
         if not self._h.ptr:
@@ -145,14 +149,16 @@ def fit_options(**options):
         ctype = dict(_abi.FitOptions._fields_)[name]
         try:
             if issubclass(ctype, ctypes.Array):
-                vals = [float(v) for v in value]
+                vals = _arrays.real_array(f"fit option {name}", value).reshape(-1)
                 if len(vals) != ctype._length_:
                     raise ValueError
                 setattr(opt, name, ctype(*vals))
             elif ctype in (ctypes.c_int, ctypes.c_size_t, _abi.c_enum):
+                if isinstance(value, (bool, np.bool_)):
+                    raise TypeError
                 setattr(opt, name, operator.index(value))
             else:
-                setattr(opt, name, float(value))
+                setattr(opt, name, _arrays.real_number(f"fit option {name}", value))
         except (TypeError, ValueError):
             raise InvalidArgumentError(_BAD, f"fit option {name}: bad value {value!r}") from None
     return opt

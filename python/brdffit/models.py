@@ -7,7 +7,7 @@ from typing import Tuple
 
 import numpy as np
 
-from . import _abi, _lib
+from . import _abi, _arrays, _lib
 from .errors import InvalidArgumentError, Status, UnknownModelError
 
 _BAD = Status.INVALID_ARGUMENT
@@ -105,7 +105,7 @@ def model(which):
         raise UnknownModelError(Status.UNKNOWN_MODEL, f"no model with id {int(which)}")
     if isinstance(which, str):
         out = _abi.c_enum()
-        _lib.call("brdffit_model_from_name", which.encode("utf-8"), ctypes.byref(out))
+        _lib.call("brdffit_model_from_name", _arrays.c_text("model", which), ctypes.byref(out))
         if not 0 <= out.value < len(all_models):
             raise UnknownModelError(Status.UNKNOWN_MODEL,
                                     f"model '{which}' has id {out.value}, beyond the "
@@ -117,10 +117,7 @@ def model(which):
 def _vector3(name, value, default=None):
     if value is None:
         value = default
-    try:
-        arr = np.array(value, dtype=np.float64).reshape(-1)
-    except (TypeError, ValueError):
-        raise InvalidArgumentError(_BAD, f"{name}: not a sequence of 3 numbers") from None
+    arr = _arrays.real_array(name, value).reshape(-1)
     if arr.size == 1:
         arr = np.repeat(arr, 3)
     if arr.size != 3:
@@ -141,10 +138,7 @@ class Params:
     def __init__(self, d, s, p=(), lambda_um=None):
         self.d = _vector3("d", d)
         self.s = _vector3("s", s)
-        try:
-            self.p = np.array(p, dtype=np.float64).reshape(-1)
-        except (TypeError, ValueError):
-            raise InvalidArgumentError(_BAD, "p: not a sequence of numbers") from None
+        self.p = np.array(_arrays.real_array("p", p), dtype=np.float64).reshape(-1)
         if self.p.size > _abi.MAX_LOBE_PARAMS:
             raise InvalidArgumentError(
                 _BAD, f"p: {self.p.size} lobe parameters, at most {_abi.MAX_LOBE_PARAMS}"
@@ -154,10 +148,7 @@ class Params:
     @classmethod
     def from_vector(cls, values):
         """From d_r d_g d_b s_r s_g s_b p0 [p1 [p2]] (the program's order)."""
-        try:
-            v = np.array(values, dtype=np.float64).reshape(-1)
-        except (TypeError, ValueError):
-            raise InvalidArgumentError(_BAD, "params: not a sequence of numbers") from None
+        v = np.array(_arrays.real_array("params", values), dtype=np.float64).reshape(-1)
         if not 6 <= v.size <= 6 + _abi.MAX_LOBE_PARAMS:
             raise InvalidArgumentError(
                 _BAD, f"params: {v.size} numbers, expected d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]"

@@ -16,7 +16,7 @@ from typing import Tuple
 import numpy as np
 
 from . import _abi, _lib
-from ._arrays import c_int
+from ._arrays import c_int, real_array
 from ._source import shading_source
 from .errors import InvalidArgumentError, Status
 from .models import _vector3
@@ -82,7 +82,9 @@ def _set_env(opt, env, env_samples):
         arr = np.asarray(env)
     except (TypeError, ValueError):
         raise InvalidArgumentError(_BAD, "env: not an array of numbers") from None
-    if arr.ndim != 3 or arr.shape[2] != 3 or arr.dtype.kind not in "fiu":
+    if arr.dtype.kind not in "fiu":
+        real_array("env", arr)  # raises, naming what it holds
+    if arr.ndim != 3 or arr.shape[2] != 3:
         raise InvalidArgumentError(
             _BAD, f"env: shape {arr.shape} {arr.dtype}, expected (height, width, 3) RGB radiance")
     h, w = c_int("env height", arr.shape[0]), c_int("env width", arr.shape[1])
@@ -150,10 +152,7 @@ def render(source, params=None, *, size=256, lights=None, env=None, env_samples=
 
 
 def _image_in(name, img):
-    try:
-        arr = np.ascontiguousarray(img, dtype=np.float32)
-    except (TypeError, ValueError):
-        raise InvalidArgumentError(_BAD, f"{name}: not an array of numbers") from None
+    arr = np.ascontiguousarray(real_array(name, img, np.float32))
     if arr.ndim != 3 or arr.shape[2] != 4 or 0 in arr.shape:
         raise InvalidArgumentError(_BAD, f"{name}: shape {arr.shape}, expected (height, width, 4)")
     return arr

@@ -37,7 +37,7 @@ class Samples:
         opt = _abi.SampleOptions()
         lib.brdffit_sample_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
         if cutoff is not None:
-            opt.cutoff_deg = float(cutoff)
+            opt.cutoff_deg = _arrays.real_number("cutoff", cutoff)
         opt.scale = scale_id(scale)
         ptr = ctypes.c_void_p()
         _lib.call("brdffit_samples_create", table._h.ptr, ctypes.byref(opt), ctypes.byref(ptr))
@@ -101,6 +101,9 @@ class Samples:
         s = _abi.Sample()
         _lib.call("brdffit_samples_get", self._h.ptr, index, ctypes.byref(s))
         return Sample(tuple(s.wi), tuple(s.wo), tuple(s.rgb), s.weight, (s.i, s.j, s.k))
+
+    def __reduce_ex__(self, protocol):
+        raise _arrays.not_picklable(self, "make it again from its Table where it is needed")
 
     def __repr__(self):
         return (

@@ -2,7 +2,6 @@
 """MERL tables: read, write, make from NumPy or from a model, look up."""
 
 import ctypes
-import os
 
 import numpy as np
 
@@ -68,9 +67,9 @@ class Table:
     def read(cls, path):
         """Read and validate a MERL .binary file.  Raises a FileError subclass
         (FileOpenError, FileTruncatedError, FileDimsError, ...) naming the file
-        and the fault."""
+        and the fault; InvalidArgumentError for a NUL byte in path."""
         ptr = ctypes.c_void_p()
-        _lib.call("brdffit_table_read", os.fsencode(path), ctypes.byref(ptr))
+        _lib.call("brdffit_table_read", _arrays.c_path("path", path), ctypes.byref(ptr))
         return cls._wrap(ptr.value)
 
     @classmethod
@@ -83,12 +82,12 @@ class Table:
     @classmethod
     def from_array(cls, values):
         """A table holding values (shape (3, 90, 90, 180), or (3, 1458000),
-        any real dtype), copied once into the library's buffer.  NaN or inf is
-        refused (InvalidArgumentError naming the channel and bin), as reading
-        a file refuses them."""
+        any real dtype: not bool, complex, text or objects), copied once into
+        the library's buffer.  NaN or inf is refused (InvalidArgumentError
+        naming the channel and bin), as reading a file refuses them."""
         arr = np.asarray(values)
         if arr.dtype.kind not in "fiu":
-            raise InvalidArgumentError(_BAD, f"values: dtype {arr.dtype}, expected real numbers")
+            _arrays.real_array("values", arr)  # raises, naming what it holds
         if arr.shape not in (_abi.MERL_SHAPE, (3, _abi.MERL_BINS)):
             raise InvalidArgumentError(
                 _BAD, f"values: shape {arr.shape}, expected {_abi.MERL_SHAPE}"
@@ -127,8 +126,9 @@ class Table:
         return np.frombuffer(buf, dtype=np.float64).reshape(_abi.MERL_SHAPE)
 
     def write(self, path):
-        """Write the table in MERL .binary format (FileWriteError on failure)."""
-        _lib.call("brdffit_table_write", self._h.ptr, os.fsencode(path))
+        """Write the table in MERL .binary format (FileWriteError on failure;
+        InvalidArgumentError for a NUL byte in path)."""
+        _lib.call("brdffit_table_write", self._h.ptr, _arrays.c_path("path", path))
 
     def lookup(self, wi, wo, scale="standard", interp="nearest", out=None):
         """The table's BRDF value (stored x scale, 1/sr) at direction pairs
@@ -143,6 +143,10 @@ class Table:
         _lib.call("brdffit_table_lookup_batch", self._h.ptr, a.size // 3, a.ctypes.data,
                   b.ctypes.data, s, ip, rgb.ctypes.data)
         return rgb
+
+    def __reduce_ex__(self, protocol):
+        raise _arrays.not_picklable(
+            self, "write() and read() it, or pickle its values and use Table.from_array")
 
     def __repr__(self):
         return "<brdffit.Table 3x90x90x180>"

@@ -21,7 +21,7 @@ LIBRARY = os.path.abspath(os.environ["BRDFFIT_LIBRARY"])
 os.environ["BRDFFIT_LIBRARY"] = LIBRARY
 if not os.environ.get("POCL_CACHE_DIR"):
     os.environ["POCL_CACHE_DIR"] = os.path.join(REPO, "build", "pocl-cache")
-    os.makedirs(os.environ["POCL_CACHE_DIR"], exist_ok=True)
+    os.makedirs(os.environ["POCL_CACHE_DIR"], mode=0o700, exist_ok=True)  # private: see docs/opencl.md
 
 
 def _path_from_env(var, default):

@@ -7,20 +7,26 @@
 #include "internal.h"
 
 /* Decide PoCL's kernel cache directory, once per process (thread-safe; later
- * calls return the first call's answer).
- *   POCL_CACHE_DIR set: it must be a writable directory (made when missing).
+ * calls return the first call's answer).  The directory, whichever it is,
+ * must be private (bf_private_dir):
+ *   POCL_CACHE_DIR set: that directory, or BRDFFIT_E_CACHE_DIR saying why
+ *   not and what to do (the variable is left as it is).
  *   Unset: the first private directory among $XDG_CACHE_HOME/brdffit/pocl,
- *   $HOME/.cache/brdffit/pocl and ${TMPDIR:-/tmp}/brdffit-pocl-UID, made
- *   with mode 0700 or, when it exists, owned by this user, not a symbolic
- *   link, not group- or world-writable, in a parent others cannot replace it
- *   in; POCL_CACHE_DIR is then set to it (the library's only setenv).
- * BRDFFIT_OK, or BRDFFIT_E_CACHE_DIR with every directory tried and why it
- * was refused; the OpenCL platform must then not be touched (PoCL would fall
+ *   $HOME/.cache/brdffit/pocl and ${TMPDIR:-/tmp}/brdffit-pocl-UID;
+ *   POCL_CACHE_DIR is then set to it (the library's only setenv), or
+ *   BRDFFIT_E_CACHE_DIR lists every directory tried and why it was refused.
+ * When refused, the OpenCL platform must not be touched (PoCL would fall
  * back to a shared directory of its own). */
 brdffit_status bf_pocl_cache_ready(brdffit_error *err);
 
-/* 0 when dir is a private directory as above (made when missing), else -1
- * with the reason in why ("is a symbolic link", ...). */
+/* 0 when dir is a private directory, else -1 with the reason in why ("is a
+ * symbolic link", ...).  Private: owned by this user, a directory, not a
+ * symbolic link, not group- or world-writable, a file can be made in it,
+ * and every directory above it (and, above a symbolic link, above where it
+ * leads) owned by root or this user and, when others may write to it,
+ * sticky.  What is missing is made with mode 0700, walking down from the
+ * root, only below directories that passed: nothing is created in or under
+ * one that fails. */
 int bf_private_dir(const char *dir, char *why, size_t len);
 
 #endif /* BRDFFIT_POCL_CACHE_H */

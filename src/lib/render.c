@@ -7,6 +7,7 @@
 
 #include "bf_lobe.h"
 
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -142,15 +143,35 @@ static void to_local(const double t[3], const double b[3], const double n[3], co
     out[2] = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
 }
 
-/* One pixel: RGB radiance and coverage into px[0..3]. */
-static void render_pixel(const scene *sc, const shader *sh, int col, int row, float *px)
+/* A pixel a render cannot represent: where, which channel, what. */
+typedef struct overflow {
+    int row, col, c;  /* row -1: none */
+    int shading;      /* 1: the BRDF value there is not finite; 0: the radiance exceeds FLT_MAX */
+    double value;
+    double wi[3];     /* the direction of that value (shading 1) */
+} overflow;
+
+/* 0 when every channel of f is finite, else 1 with what into o. */
+static int shading_bad(const double f[3], const double wi[3], overflow *o)
+{
+    for (int c = 0; c < 3; c++)
+        if (!isfinite(f[c])) {
+            *o = (overflow){ 0, 0, c, 1, f[c], { wi[0], wi[1], wi[2] } };
+            return 1;
+        }
+    return 0;
+}
+
+/* One pixel: RGB radiance and coverage into px[0..3]; 0, or 1 with o set
+ * (but for row, col) when the pixel has no finite float value. */
+static int render_pixel(const scene *sc, const shader *sh, int col, int row, float *px, overflow *o)
 {
     int N = sc->n;
     double x = 2.0 * (col + 0.5) / N - 1.0, y = 1.0 - 2.0 * (row + 0.5) / N;
     double r2 = x * x + y * y;
     if (!(r2 < 1.0)) {
         px[0] = px[1] = px[2] = px[3] = 0.0f;
-        return;
+        return 0;
     }
     double n[3] = { x, y, sqrt(1.0 - r2) };
     double tl = sqrt(n[2] * n[2] + n[0] * n[0]); /* > 0: n_z > 0 */
@@ -168,6 +189,8 @@ static void render_pixel(const scene *sc, const shader *sh, int col, int row, fl
             continue;
         if (!shade(sh, wi, wo, f))
             masked = 1;
+        if (shading_bad(f, wi, o))
+            return 1;
         for (int c = 0; c < 3; c++)
             L[c] += f[c] * sc->lrgb[k][c] * wi[2];
     }
@@ -191,15 +214,23 @@ static void render_pixel(const scene *sc, const shader *sh, int col, int row, fl
             env_radiance(sc, d, Ls);
             if (!shade(sh, wi, wo, f))
                 masked = 1;
+            if (shading_bad(f, wi, o))
+                return 1;
             for (int c = 0; c < 3; c++)
                 Le[c] += f[c] * Ls[c];
         }
         for (int c = 0; c < 3; c++)
             L[c] += Le[c] * (BF_PI / sc->samples);
     }
-    for (int c = 0; c < 3; c++)
+    for (int c = 0; c < 3; c++) {
+        if (!(L[c] <= FLT_MAX)) { /* also NaN: inf * 0 */
+            *o = (overflow){ 0, 0, c, 0, L[c], { 0, 0, 0 } };
+            return 1;
+        }
         px[c] = (float)L[c];
+    }
     px[3] = masked ? BRDFFIT_COVERAGE_MASKED : 1.0f;
+    return 0;
 }
 
 /* ------------------------------------------------------------------ threads */
@@ -210,17 +241,50 @@ typedef struct job {
     float *rgba;
     size_t stride;
     int first, step; /* rows first, first + step, ... */
+    overflow bad;    /* the job's first pixel with no float value (it stops there) */
 } job;
 
 static void *render_rows(void *arg)
 {
-    const job *j = arg;
+    job *j = arg;
+    j->bad.row = -1;
     for (int row = j->first; row < j->sc->n; row += j->step) {
         float *line = j->rgba + (size_t)row * j->stride;
         for (int col = 0; col < j->sc->n; col++)
-            render_pixel(j->sc, j->sh, col, row, line + 4 * (size_t)col);
+            if (render_pixel(j->sc, j->sh, col, row, line + 4 * (size_t)col, &j->bad)) {
+                j->bad.row = row;
+                j->bad.col = col;
+                return NULL;
+            }
     }
     return NULL;
+}
+
+/* The first pixel (in row order) of any job with no float value: the image
+ * is cleared (no inf or NaN left in it) and the render refused. */
+static brdffit_status refuse_overflow(const scene *sc, const shader *sh, const job *jobs, int nt,
+                                      float *rgba, size_t stride, brdffit_error *err)
+{
+    const overflow *b = NULL;
+    for (int k = 0; k < nt; k++)
+        if (jobs[k].bad.row >= 0 && (!b || jobs[k].bad.row < b->row ||
+                                     (jobs[k].bad.row == b->row && jobs[k].bad.col < b->col)))
+            b = &jobs[k].bad;
+    if (!b)
+        return BRDFFIT_OK;
+    for (int row = 0; row < sc->n; row++)
+        memset(rgba + (size_t)row * stride, 0, 4 * (size_t)sc->n * sizeof *rgba);
+    static const char ch[3] = { 'R', 'G', 'B' };
+    if (b->shading)
+        return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
+                       "render: pixel (%d, %d): the %s's value in channel %c is %g at wi = "
+                       "(%.3g, %.3g, %.3g) (not finite: lower s or d)",
+                       b->col, b->row, sh->table ? "table" : "model", ch[b->c], b->value, b->wi[0],
+                       b->wi[1], b->wi[2]);
+    return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
+                   "render: pixel (%d, %d) channel %c would be %g, beyond the largest float (%g): "
+                   "lower the lights' irradiance, the environment's radiance or the BRDF's scale",
+                   b->col, b->row, ch[b->c], b->value, (double)FLT_MAX);
 }
 
 static int thread_count(int asked, int rows)
@@ -247,7 +311,7 @@ static brdffit_status run_jobs(const scene *sc, const shader *sh, int threads, f
     pthread_t tid[MAX_THREADS];
     int started = 0;
     for (int k = 0; k < nt; k++)
-        jobs[k] = (job){ sc, sh, rgba, stride, k, nt };
+        jobs[k] = (job){ sc, sh, rgba, stride, k, nt, { -1, 0, 0, 0, 0, { 0, 0, 0 } } };
     for (int k = 1; k < nt; k++) {
         if (pthread_create(&tid[k], NULL, render_rows, &jobs[k]) != 0)
             break;
@@ -259,8 +323,7 @@ static brdffit_status run_jobs(const scene *sc, const shader *sh, int threads, f
     /* rows of threads that could not start: done here */
     for (int k = started + 1; k < nt; k++)
         render_rows(&jobs[k]);
-    (void)err;
-    return BRDFFIT_OK;
+    return refuse_overflow(sc, sh, jobs, nt, rgba, stride, err);
 }
 
 /* ------------------------------------------------------------------ options */
@@ -302,6 +365,10 @@ static brdffit_status make_lights(const brdffit_render_options *o, scene *sc, br
             return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
                            "render: light %d: irradiance (%g, %g, %g) must be finite and >= 0", k,
                            e[0], e[1], e[2]);
+        if (e[0] > BRDFFIT_RADIANCE_MAX || e[1] > BRDFFIT_RADIANCE_MAX || e[2] > BRDFFIT_RADIANCE_MAX)
+            return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
+                           "render: light %d: irradiance (%g, %g, %g) is above BRDFFIT_RADIANCE_MAX "
+                           "(%g): scale the lights down", k, e[0], e[1], e[2], BRDFFIT_RADIANCE_MAX);
         for (int c = 0; c < 3; c++) {
             sc->ldir[k][c] = d[c] / len;
             sc->lrgb[k][c] = e[c];
@@ -335,6 +402,11 @@ static brdffit_status make_env(const brdffit_render_options *o, scene *sc, brdff
                                "render: environment texel (%d, %d) channel %d is %g (radiance "
                                "must be finite and >= 0)",
                                i / 3, j, i % 3, (double)r[i]);
+            else if (r[i] > (float)BRDFFIT_RADIANCE_MAX) /* the float nearest: 1e20f is above 1e20 */
+                return bf_fail(err, BRDFFIT_E_VALUE_RANGE,
+                               "render: environment texel (%d, %d) channel %d is %g, above "
+                               "BRDFFIT_RADIANCE_MAX (%g): scale the map down",
+                               i / 3, j, i % 3, (double)r[i], BRDFFIT_RADIANCE_MAX);
     }
     sc->hammersley = bf_alloc_aligned((size_t)o->env_samples * sizeof *sc->hammersley);
     if (!sc->hammersley)

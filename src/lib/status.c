@@ -41,7 +41,7 @@ static const char *const status_text[BRDFFIT_STATUS_COUNT] = {
     [BRDFFIT_E_FIT_FAILED] = "fit failed",
     [BRDFFIT_E_CACHE_DIR] = "PoCL kernel cache directory unusable",
     [BRDFFIT_E_TOO_FEW_SAMPLES] = "too few samples for the model",
-    [BRDFFIT_E_VALUE_RANGE] = "stored value too large",
+    [BRDFFIT_E_VALUE_RANGE] = "value too large",
     [BRDFFIT_E_OPTIONS_SIZE] = "invalid options struct size",
 };
 

@@ -138,9 +138,8 @@ int cmd_report(int argc, char **argv)
         }
         for (int i = before; i < rs.n; i++)
             rs.r[i].origin = d;
-        if (bad || torn)
-            cli_error("%s: %d damaged line%s ignored%s", path, bad, bad == 1 ? "" : "s",
-                      torn ? " and a torn last line" : "");
+        if (torn) /* the damaged lines were said one by one */
+            cli_error("%s: a torn last line ignored", path);
     }
     rp_report rep;
     memset(&rep, 0, sizeof rep);

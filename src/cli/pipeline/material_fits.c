@@ -77,12 +77,9 @@ static int read_jsonl(const char *path, const char *material, const brdffit_mode
                       int nmodels, brdffit_scale scale, rf_fit *fits, int *nfits,
                       brdffit_error *err)
 {
-    FILE *in = fopen(path, "r");
-    if (!in) {
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "%s: cannot open", path);
+    FILE *in = cli_fopen_regular(path, err);
+    if (!in)
         return -1;
-    }
     char *line = NULL;
     size_t cap = 0;
     long lineno = 0;

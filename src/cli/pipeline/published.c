@@ -79,13 +79,9 @@ int pub_read(const char *path, pub_table *t, brdffit_error *err)
 {
     memset(t, 0, sizeof *t);
     snprintf(t->path, sizeof t->path, "%s", path);
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "%.1800s: cannot open: %s", path,
-                 strerror(errno));
+    FILE *f = cli_fopen_regular(path, err);
+    if (!f)
         return -1;
-    }
     char *line = NULL, why[256];
     size_t cap = 0;
     int lineno = 0, header = 0, cap_rows = 0;

@@ -67,8 +67,13 @@ int bj_journal_append(bj_journal *j, const fit_record *r, brdffit_error *err);
 void bj_journal_close(bj_journal *j);
 
 /* Read the records of a journal file into rs (appended).  A missing file is
- * no record.  Lines that do not parse are skipped and counted in *bad (a torn
- * last line in *torn).  0, or -1 when the file cannot be read (err). */
+ * no record; a path that is not a regular file is refused (err).  A line
+ * that is not a record this program writes (it does not parse, or fr_check
+ * refuses its values) is skipped, said on stderr with its line number and
+ * why ("PATH: line N: WHY: ignored"; the first BJ_BAD_SHOWN of them, then
+ * how many more), and counted in *bad; a torn last line sets *torn.  0, or -1
+ * when the file cannot be read (err). */
+#define BJ_BAD_SHOWN 10
 int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdffit_error *err);
 
 /* ---- jsonread.c ---- */

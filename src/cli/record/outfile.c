@@ -4,6 +4,7 @@
  * "cannot write PATH: reason". */
 #define _POSIX_C_SOURCE 200809L
 #include "batch.h"
+#include "cli.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -99,13 +100,9 @@ int out_sync_dir(const char *path, brdffit_error *err)
 
 int out_copy(const char *from, const char *to, brdffit_error *err)
 {
-    FILE *in = fopen(from, "rb");
-    if (!in) {
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "cannot read %.1800s: %s", from,
-                 strerror(errno));
+    FILE *in = cli_fopen_regular(from, err);
+    if (!in)
         return -1;
-    }
     out_file o;
     if (out_open(&o, to, err) != 0) {
         fclose(in);

@@ -115,6 +115,7 @@ typedef struct pub_row {
     char material[BJ_NAME_MAX];
     brdffit_model model;
     brdffit_params params;
+    int line;          /* its line in the file */
 } pub_row;
 
 typedef struct pub_table {
@@ -124,7 +125,10 @@ typedef struct pub_table {
 } pub_table;
 
 /* Read a TSV of the ngan2005-fits.tsv format: header line "material model
- * d_r ... p2", '#' comments, an empty p is 0.  0, or -1 with err (names the line). */
+ * d_r ... p2", '#' comments, an empty p is 0 (a p beyond the model's count
+ * must be empty).  0, or -1 with err (names the line): a malformed row, a
+ * second row of the same material and model (both lines named), a file
+ * without a header or empty. */
 int pub_read(const char *path, pub_table *t, brdffit_error *err);
 void pub_free(pub_table *t);
 /* The row of material and model, or NULL. */

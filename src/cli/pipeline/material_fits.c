@@ -54,6 +54,9 @@ static int take_record(const fit_record *r, const char *material, const brdffit_
     *why = "d, s (3 numbers) and p (the model's parameters) expected";
     if (!r->has_params || r->nparams != mi->nparams)
         return -1;
+    *why = "parameters out of the model's bounds (brdffit models)";
+    if (brdffit_params_check(m, &r->params, NULL) != BRDFFIT_OK)
+        return -1;
     memset(f, 0, sizeof *f);
     f->model = m;
     f->params = r->params;

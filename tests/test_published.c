@@ -55,7 +55,14 @@ typedef struct bad_case {
 } bad_case;
 
 static const bad_case bad_cases[] = {
-    { "", "line 0: no header line" },
+    { "", "the file is empty" },
+    { HEADER "a\tward\t0\t0\t0\t0\t0\t0\t0.1\t\t\n" "b\tward\t0\t0\t0\t0\t0\t0\t0.1\t\t\n"
+             "a\tWard\t0\t0\t0\t0\t0\t0\t0.2\t\t\n",
+      "line 4: a second row of a ward (the first is line 2)" },
+    { HEADER "a\tward\t0\t0\t0\t0\t0\t0\t0.1\t0.5\t\n",
+      "line 2: p1 is '0.5', but ward has 1 parameter (p1 and after empty)" },
+    { HEADER "a\tcook-torrance\t0\t0\t0\t0\t0\t0\t0.1\t0.2\t0\n",
+      "line 2: p2 is '0', but cook-torrance has 2 parameters" },
     { "# only a comment\n", "no header line" },
     { "material\tmodel\n", "line 1: expected the header" },
     { HEADER "a\tward\t1\t2\t3\n", "line 2: expected 11 tab-separated columns" },

@@ -61,7 +61,7 @@ static char *written(void (*writer)(FILE *, const char *), const char *s)
 }
 
 /* A well-formed non-ASCII sequence passes every writer as it is; a malformed
- * one never does (JSON and XML write U+FFFD, the terminal text \xHH). */
+ * one never does (JSON writes \udcXX, XML U+FFFD, the terminal text \xHH). */
 START_TEST(writers_agree_with_the_decoder)
 {
     const utf8_case *c = &cases[_i];

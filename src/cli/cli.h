@@ -22,6 +22,7 @@
  *                 the batch journal (journal.c, jsonread.c), the output
  *                 directory, its lock and files written whole or not at all
  *                 without following links (outdir.h: outdir.c, outfile.c),
+ *                 files read only when they are regular files (infile.c),
  *                 the tests' fault points
  *                 (fault.c); batch.h is what the batch's files share
  *   report/       the paper-style table (report.c), the HTML report
@@ -205,6 +206,16 @@ int cli_is_text_file(const char *path);
  * directory or a text file (a note on stderr), else nothing. */
 void cli_hint_unreadable_table(const char *path);
 
+/* ---- infile.c ---- */
+
+/* path opened for reading when it is a regular file (opened without blocking,
+ * checked with fstat, then made blocking): its descriptor, or -1 with err set
+ * ("PATH: not a regular file", "PATH: is a directory, not a file", "PATH:
+ * cannot open: REASON").  A FIFO or a device is never waited on. */
+int cli_open_regular(const char *path, brdffit_error *err);
+/* The same as a stdio stream ("rb"), or NULL with err set. */
+FILE *cli_fopen_regular(const char *path, brdffit_error *err);
+
 /* ---- material.c ---- */
 
 /* What a fit report is about: a material and the settings of its samples. */
@@ -230,7 +241,8 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels);
 
 /* ---- json.c ---- */
 
-/* s as a JSON string (quotes included); invalid UTF-8 bytes become U+FFFD. */
+/* s as a JSON string (quotes included); a byte that is not part of
+ * well-formed UTF-8 is written \udcXX (XX the byte: lossless, see json.c). */
 void json_string(FILE *f, const char *s);
 /* x with %.17g, or null when x is not finite. */
 void json_number(FILE *f, double x);

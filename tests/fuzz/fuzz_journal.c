@@ -5,7 +5,8 @@
  *
  * A line that parses must write back (fr_write_json) as a line that parses
  * to the same record: the journal's writer and reader agree on every record
- * the reader accepts, so resuming from a journal never changes what it says.
+ * the reader accepts, so resuming from a journal never changes what it says;
+ * and the check of its values (fr_check) judges both the same.
  * `make fuzz` builds this with clang and runs it; tests/fuzz/make_seeds.c
  * writes its seed corpus (real journal lines). */
 #define _POSIX_C_SOURCE 200809L
@@ -53,6 +54,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         abort();
     if (fr_read_json(text, back, FR_NEED_KEY) != 0 || !same_record(r, back))
         abort(); /* the writer wrote what the reader does not read back */
+    char why[320], why_back[320];
+    if (!fr_check(r, why, sizeof why) != !fr_check(back, why_back, sizeof why_back))
+        abort(); /* the check judged a record and its rewriting differently */
     free(text);
 done:
     free(line);

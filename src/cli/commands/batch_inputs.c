@@ -63,9 +63,10 @@ static int add_directory(material_list *L, const char *dir)
 
 static int add_list_file(material_list *L, const char *list)
 {
-    FILE *f = fopen(list, "r");
+    brdffit_error err;
+    FILE *f = cli_fopen_regular(list, &err);
     if (!f) {
-        cli_error("cannot read the list %s: %s", list, strerror(errno));
+        cli_error("cannot read the list %s", err.message);
         return -1;
     }
     char *line = NULL;

@@ -62,7 +62,7 @@ int batch_parse_options(int argc, char **argv, batch_options *b)
             const char *eq = strchr(a, '=');
             const char *v = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
             if (!v || !*v)
-                rc = cli_usage_error("%.11s needs a value", a);
+                rc = cli_usage_error("%.*s needs a value", (int)strcspn(a, "="), a);
             else
                 *dst = v;
         }

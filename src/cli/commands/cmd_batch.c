@@ -15,8 +15,8 @@
 
 /* ------------------------------------------------------------------ one material */
 
-/* A material's failure: said, journaled. */
-static void failure_record(batch_run *R, const fit_record *r)
+/* A material's failure: said (and counted). */
+static void failure_said(batch_run *R, const fit_record *r)
 {
     R->failures++;
     if (R->P.live && !R->P.quiet)
@@ -24,6 +24,12 @@ static void failure_record(batch_run *R, const fit_record *r)
     fputs("brdffit: ", stderr);
     plain_string(stderr, r->message);
     fputc('\n', stderr);
+}
+
+/* A material's failure: said, journaled. */
+static void failure_record(batch_run *R, const fit_record *r)
+{
+    failure_said(R, r);
     batch_keep(R, r);
 }
 
@@ -38,7 +44,12 @@ static void material_failed(batch_run *R, batch_material *m, const brdffit_error
     fr_set_failure(&r, err->status, err);
     if (!m->identified)
         m->id = r.id;
-    failure_record(R, &r);
+    /* the same failure journaled by an earlier run: said, not journaled again */
+    const fit_record *was = batch_find(R, FR_FAILURE, m, "");
+    if (was && was->status == r.status && strcmp(was->message, r.message) == 0)
+        failure_said(R, &r);
+    else
+        failure_record(R, &r);
 }
 
 static int ensure_context(batch_run *R, brdffit_error *err)
@@ -225,6 +236,17 @@ static void fits_after(void *user, const brdffit_samples *s, brdffit_context *ct
             published_one(R, F->m, s, R->b->common.models[k]);
 }
 
+/* How many of m's fits the journal holds as failed (a run counts each). */
+static int journaled_failed_fits(const batch_run *R, const batch_material *m)
+{
+    int failed = 0;
+    for (int k = 0; k < R->b->common.nmodels; k++) {
+        const fit_record *r = batch_find(R, FR_FIT, m, brdffit_model_get(R->b->common.models[k])->name);
+        failed += r && !fr_ok(r);
+    }
+    return failed;
+}
+
 /* next: the material after m, whose table is read while m is fitted (NULL: none). */
 static int do_material(batch_run *R, batch_material *m, const batch_material *next, int i, int n)
 {
@@ -237,9 +259,11 @@ static int do_material(batch_run *R, batch_material *m, const batch_material *ne
     const fit_record *f = batch_find(R, FR_FAILURE, m, "");
     if (!td.any || f) {
         R->P.done_fits += o->nmodels;
-        if (f)
-            R->failures++;
-        batch_progress_material(&R->P, i, n, m->name, f ? "failed (journaled)" : "done (journaled)");
+        int failed = f ? 1 : journaled_failed_fits(R, m);
+        R->failures += failed;
+        batch_progress_material(&R->P, i, n, m->name,
+                                f || failed == o->nmodels ? "failed (journaled)"
+                                                          : "done (journaled)");
         goto done;
     }
     fp_source src;
@@ -310,9 +334,6 @@ static int open_out(batch_run *R)
     const char *path = R->journal.path;
     if (bj_journal_load(path, &R->all, &bad, &torn, err) != 0)
         return -1;
-    if (bad)
-        cli_error("%s: %d line%s that are not journal records ignored", path, bad,
-                  bad == 1 ? "" : "s");
     if (torn || torn2)
         cli_error("%s: its last line was cut short (a run killed while writing "
                   "it): ignored, that fit is done again", path);

@@ -3,6 +3,7 @@
  * one BRDF value per channel (1/sr, no cosine factor). */
 #include "cli.h"
 
+#include <math.h>
 #include <string.h>
 
 const cli_help_block *cli_eval_help(void)
@@ -36,6 +37,16 @@ static int parse_vec3(int argc, char **argv, int *i, const char *name, double v[
         if (cli_parse_double(a, &v[c]) != 0)
             return cli_usage_error("%s: '%s' is not a finite number", name, a);
     }
+    /* a direction need not be normalised: one whose squared length overflows
+     * (1e308) or underflows (1e-200) is scaled by its largest component
+     * first, and so is still the direction it names */
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+    if (m == 0)
+        return cli_usage_error("%s 0 0 0 is not a direction", name);
+    double l2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (!(isfinite(l2) && l2 > 0))
+        for (int c = 0; c < 3; c++)
+            v[c] /= m;
     return CLI_OK;
 }
 
@@ -115,6 +126,12 @@ int cmd_eval(int argc, char **argv)
     brdffit_error err;
     if (brdffit_eval(model, &p, e.wi, e.wo, rgb, &err) != BRDFFIT_OK)
         return cli_usage_error("eval: %s", err.message);
+    if (!isfinite(rgb[0]) || !isfinite(rgb[1]) || !isfinite(rgb[2])) {
+        cli_error("eval: %s gives %g %g %g at these directions: not finite (d_r d_g d_b "
+                  "s_r s_g s_b or the lobe parameters too large for a double)",
+                  brdffit_model_get(model)->name, rgb[0], rgb[1], rgb[2]);
+        return CLI_FAILED;
+    }
     printf("%.17g %.17g %.17g\n", rgb[0], rgb[1], rgb[2]);
     return CLI_OK;
 }

@@ -138,9 +138,8 @@ static int load_shard(char **dirs, int d, bj_records *rs)
     od_close(&sd);
     for (int i = before; i < rs->n; i++)
         rs->r[i].origin = d;
-    if (rc == 0 && (bad || torn))
-        cli_error("%s: %d damaged line%s ignored%s", path, bad, bad == 1 ? "" : "s",
-                  torn ? " and a torn last line" : "");
+    if (rc == 0 && torn) /* the damaged lines were said one by one */
+        cli_error("%s: a torn last line ignored", path);
     return rc;
 }
 

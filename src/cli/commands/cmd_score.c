@@ -61,22 +61,35 @@ typedef struct score_job {
     int failures;
 } score_job;
 
-static void score_one(score_job *J, brdffit_model model, const brdffit_params *p, const char *label)
+/* The Error of p, printed; origin names where p came from ("--params",
+ * "--fits FILE") in a message about it.  Nothing is fitted: an Error that is
+ * not finite (a data pass summing to inf) is said as such, not as a failed fit. */
+static void score_one(score_job *J, brdffit_model model, const brdffit_params *p,
+                      const char *label, const char *origin)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);
     brdffit_error err;
     memset(&err, 0, sizeof err);
     double e = NAN;
     brdffit_status st = brdffit_params_check(model, p, &err);
-    if (st == BRDFFIT_OK) {
+    int checked = st == BRDFFIT_OK;
+    if (checked) {
         int note = kernel_note_begin(stderr, J->ctx, model);
         st = brdffit_error_of(J->ctx, J->s, model, p, &e, &err);
         kernel_note_end(stderr, note, J->ctx, model);
     }
+    if (checked && (st == BRDFFIT_E_FIT_FAILED || (st == BRDFFIT_OK && !isfinite(e)))) {
+        J->failures++;
+        printf("%-18s -  (Error not finite)\n", mi->name);
+        cli_error("%s: %s: the Error of these parameters is not a finite number (the model's "
+                  "values or their squares overflow a double: d, s or the lobe too large)",
+                  origin, mi->name);
+        return;
+    }
     if (st != BRDFFIT_OK) {
         J->failures++;
         printf("%-18s -  (%s)\n", mi->name, brdffit_strerror(st));
-        cli_error("%s: %s", mi->name, err.message);
+        cli_error("%s: %s", origin, err.message); /* the message names the model */
         return;
     }
     printf("%-18s %.10g%s%s\n", mi->name, e, label ? "  " : "", label ? label : "");
@@ -109,9 +122,10 @@ static int parse_score(int argc, char **argv, score_args *a)
             rest[nrest++] = argv[i];
             continue;
         }
-        const char *v = argv[i][n] == '=' ? argv[i] + n + 1 : (i + 1 < argc ? argv[++i] : NULL);
+        const char *opt = argv[i];
+        const char *v = opt[n] == '=' ? opt + n + 1 : (i + 1 < argc ? argv[++i] : NULL);
         if (!v || !*v)
-            rc = cli_usage_error("%.*s needs a value", (int)n, argv[i]);
+            rc = cli_usage_error("%.*s needs a value", (int)n, opt);
         *dst = v;
     }
     if (rc == CLI_OK)
@@ -138,12 +152,14 @@ static int score_fits(score_job *J, const score_args *a, const char *material)
         return CLI_USAGE;
     }
     int found = 0;
+    char origin[BJ_PATH_MAX + 16];
+    snprintf(origin, sizeof origin, "--fits %s", a->fits);
     for (int k = 0; k < a->common.nmodels; k++) {
         const pub_row *r = pub_find(&t, material, a->common.models[k]);
         if (!r)
             continue;
         found++;
-        score_one(J, r->model, &r->params, NULL);
+        score_one(J, r->model, &r->params, NULL, origin);
     }
     pub_free(&t);
     if (!found) {
@@ -184,7 +200,7 @@ static int score_run(const score_args *a)
            brdffit_metric_name(), a->common.sample.cutoff_deg,
            brdffit_scale_name(a->common.sample.scale), brdffit_samples_count(s));
     if (a->params) {
-        score_one(&J, a->common.models[0], &p, NULL);
+        score_one(&J, a->common.models[0], &p, NULL, "--params");
         rc = J.failures ? CLI_FAILED : CLI_OK;
     } else {
         rc = score_fits(&J, a, material);

@@ -3,6 +3,7 @@
  * renders out (RGBA float) and environment maps in (RGB, any pixel type). */
 #define _POSIX_C_SOURCE 200809L
 #include "image_io.h"
+#include "cli.h"
 
 #include <openexr.h>
 
@@ -13,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* The last message OpenEXR reported (its handler has no user pointer before
@@ -333,6 +335,36 @@ static const char *bad_texel(const exr_image *img, char *buf, size_t len)
     return NULL;
 }
 
+/* Reading goes through a descriptor opened here (cli_open_regular): a FIFO or
+ * a device is refused before OpenEXR would open and wait on it. */
+static int64_t read_at(exr_const_context_t ctxt, void *user, void *buf, uint64_t sz,
+                       uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    int fd = *(const int *)user;
+    char *p = buf;
+    uint64_t done = 0;
+    while (done < sz) {
+        ssize_t r = pread(fd, p + done, (size_t)(sz - done), (off_t)(offset + done));
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0) {
+            error_cb(ctxt, EXR_ERR_READ_IO, "cannot read: %s", strerror(errno));
+            return -1;
+        }
+        if (r == 0)
+            break;
+        done += (uint64_t)r;
+    }
+    return (int64_t)done;
+}
+
+static int64_t size_of(exr_const_context_t ctxt, void *user)
+{
+    (void)ctxt;
+    struct stat st;
+    return fstat(*(const int *)user, &st) == 0 ? (int64_t)st.st_size : -1;
+}
+
 int exr_read_rgb(const char *path, float **rgb, float **alpha, int *width, int *height,
                  brdffit_error *err)
 {
@@ -347,6 +379,16 @@ int exr_read_rgb(const char *path, float **rgb, float **alpha, int *width, int *
     *rgb = NULL;
     if (alpha)
         *alpha = NULL;
+    brdffit_error oerr;
+    int fd = cli_open_regular(path, &oerr);
+    if (fd < 0) {
+        if (err)
+            *err = oerr;
+        return -1;
+    }
+    init.user_data = &fd;
+    init.read_fn = read_at;
+    init.size_fn = size_of;
     exr_result_t rv = exr_start_read(&f, path, &init);
     if (rv == EXR_ERR_FILE_ACCESS)
         st = BRDFFIT_E_FILE_OPEN;
@@ -389,6 +431,7 @@ int exr_read_rgb(const char *path, float **rgb, float **alpha, int *width, int *
 done:
     if (f)
         exr_finish(&f);
+    close(fd);
     if (rc != 0) {
         free(img.rgb);
         free(img.a);

@@ -54,6 +54,9 @@ static int take_record(const fit_record *r, const char *material, const brdffit_
     *why = "d, s (3 numbers) and p (the model's parameters) expected";
     if (!r->has_params || r->nparams != mi->nparams)
         return -1;
+    *why = "parameters out of the model's bounds (brdffit models)";
+    if (brdffit_params_check(m, &r->params, NULL) != BRDFFIT_OK)
+        return -1;
     memset(f, 0, sizeof *f);
     f->model = m;
     f->params = r->params;
@@ -77,12 +80,9 @@ static int read_jsonl(const char *path, const char *material, const brdffit_mode
                       int nmodels, brdffit_scale scale, rf_fit *fits, int *nfits,
                       brdffit_error *err)
 {
-    FILE *in = fopen(path, "r");
-    if (!in) {
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "%s: cannot open", path);
+    FILE *in = cli_fopen_regular(path, err);
+    if (!in)
         return -1;
-    }
     char *line = NULL;
     size_t cap = 0;
     long lineno = 0;

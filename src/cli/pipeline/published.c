@@ -31,7 +31,10 @@ static int split_tabs(char *line, char **fields, int max)
 static int bad(brdffit_error *err, const char *path, int line, const char *why)
 {
     err->status = BRDFFIT_E_INVALID_ARGUMENT;
-    snprintf(err->message, sizeof err->message, "%.1500s: line %d: %.300s", path, line, why);
+    if (line > 0)
+        snprintf(err->message, sizeof err->message, "%.1500s: line %d: %.300s", path, line, why);
+    else /* an empty file has no line to name */
+        snprintf(err->message, sizeof err->message, "%.1500s: %.300s", path, why);
     return -1;
 }
 
@@ -46,9 +49,15 @@ static const char *parse_row(char **fld, pub_row *row, char *why, size_t len)
         snprintf(why, len, "unknown model '%.100s'", fld[1]);
         return why;
     }
+    const brdffit_model_info *mi = brdffit_model_get(row->model);
     double v[9];
     for (int k = 0; k < 9; k++) {
         const char *s = fld[2 + k];
+        if (k >= 6 + mi->nparams && s[0] != '\0') {
+            snprintf(why, len, "p%d is '%.40s', but %s has %d parameter%s (p%d and after empty)",
+                     k - 6, s, mi->name, mi->nparams, mi->nparams == 1 ? "" : "s", mi->nparams);
+            return why;
+        }
         if (k >= 6 && s[0] == '\0')
             v[k] = 0;
         else if (cli_parse_double(s, &v[k]) != 0)
@@ -79,13 +88,9 @@ int pub_read(const char *path, pub_table *t, brdffit_error *err)
 {
     memset(t, 0, sizeof *t);
     snprintf(t->path, sizeof t->path, "%s", path);
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "%.1800s: cannot open: %s", path,
-                 strerror(errno));
+    FILE *f = cli_fopen_regular(path, err);
+    if (!f)
         return -1;
-    }
     char *line = NULL, why[256];
     size_t cap = 0;
     int lineno = 0, header = 0, cap_rows = 0;
@@ -104,12 +109,23 @@ int pub_read(const char *path, pub_table *t, brdffit_error *err)
             continue;
         }
         pub_row row;
+        const pub_row *first;
         if (nf != PUB_FIELDS)
             fault = "expected 11 tab-separated columns";
-        else if ((fault = parse_row(fld, &row, why, sizeof why)) == NULL)
+        else if ((fault = parse_row(fld, &row, why, sizeof why)) != NULL)
+            continue; /* the loop ends on it */
+        else if ((first = pub_find(t, row.material, row.model)) != NULL) {
+            snprintf(why, sizeof why, "a second row of %.100s %s (the first is line %d)",
+                     row.material, brdffit_model_get(row.model)->name, first->line);
+            fault = why;
+        } else {
+            row.line = lineno;
             fault = append_row(t, &row, &cap_rows);
+        }
     }
-    if (!fault && !header)
+    if (!fault && lineno == 0)
+        fault = "the file is empty (a header line 'material<TAB>model<TAB>...' expected)";
+    else if (!fault && !header)
         fault = "no header line 'material<TAB>model<TAB>...'";
     free(line);
     fclose(f);

@@ -70,8 +70,13 @@ int bj_journal_append(bj_journal *j, const fit_record *r, brdffit_error *err);
 void bj_journal_close(bj_journal *j);
 
 /* Read the records of a journal file into rs (appended).  A missing file is
- * no record.  Lines that do not parse are skipped and counted in *bad (a torn
- * last line in *torn).  0, or -1 when the file cannot be read (err). */
+ * no record; a path that is not a regular file is refused (err).  A line
+ * that is not a record this program writes (it does not parse, or fr_check
+ * refuses its values) is skipped, said on stderr with its line number and
+ * why ("PATH: line N: WHY: ignored"; the first BJ_BAD_SHOWN of them, then
+ * how many more), and counted in *bad; a torn last line sets *torn.  0, or -1
+ * when the file cannot be read (err). */
+#define BJ_BAD_SHOWN 10
 int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdffit_error *err);
 
 /* ---- jsonread.c ---- */
@@ -113,6 +118,7 @@ typedef struct pub_row {
     char material[BJ_NAME_MAX];
     brdffit_model model;
     brdffit_params params;
+    int line;          /* its line in the file */
 } pub_row;
 
 typedef struct pub_table {
@@ -122,7 +128,10 @@ typedef struct pub_table {
 } pub_table;
 
 /* Read a TSV of the ngan2005-fits.tsv format: header line "material model
- * d_r ... p2", '#' comments, an empty p is 0.  0, or -1 with err (names the line). */
+ * d_r ... p2", '#' comments, an empty p is 0 (a p beyond the model's count
+ * must be empty).  0, or -1 with err (names the line): a malformed row, a
+ * second row of the same material and model (both lines named), a file
+ * without a header or empty. */
 int pub_read(const char *path, pub_table *t, brdffit_error *err);
 void pub_free(pub_table *t);
 /* The row of material and model, or NULL. */

@@ -8,6 +8,7 @@
  *   fit_record.c       filling a record, the retry decision of a resumed
  *                      batch, the names of the at_bound bits
  *   fit_record_json.c  the JSON writer and reader
+ *   fit_record_check.c the values of a record read back judged
  *   fit_record_tsv.c   the TSV writer
  */
 #ifndef BRDFFIT_FIT_RECORD_H
@@ -125,6 +126,15 @@ typedef enum fr_need {
  * "ok", "status" text, "on_bound", "file" {path, size, hash}; fit --json's
  * "error_message", "metric"). */
 int fr_read_json(const char *line, fit_record *r, fr_need need);
+
+/* A record's values judged as this program writes them (fit_record_check.c):
+ * NULL, or why it is not one of its records (why may hold the text): the
+ * material a file name, the file's size and 16-hex-digit hash (a failure to
+ * read it may have neither), known settings, one of this version's models
+ * by its name, a fit that succeeded with d, s and p as the model takes them
+ * (brdffit_params_check: exactly its count of p, all finite and in bounds)
+ * and a finite Error >= 0, a failure with its message and no Error. */
+const char *fr_check(const fit_record *r, char *why, size_t len);
 
 /* The TSV of fits (params.tsv, fits.tsv): the header line, then one row per
  * record; pub (may be NULL) is the published record of the same material

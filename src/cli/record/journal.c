@@ -101,20 +101,9 @@ int bj_identify(const char *path, bj_identity *id, brdffit_error *err)
         return -1;
     }
     snprintf(id->path, sizeof id->path, "%s", abs);
-    FILE *f = fopen(abs, "rb");
-    if (!f) {
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "%.1000s: cannot open: %s", path,
-                 strerror(errno));
+    FILE *f = cli_fopen_regular(path, err); /* a FIFO is refused, never waited on */
+    if (!f)
         return -1;
-    }
-    struct stat st;
-    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
-        fclose(f);
-        err->status = BRDFFIT_E_FILE_NOT_REGULAR;
-        snprintf(err->message, sizeof err->message, "%.1000s: not a regular file", path);
-        return -1;
-    }
     /* this call's own buffer: the prefetch thread and the main thread identify
      * files at the same time; a multiple of 8 bytes, as hash_words reads */
     enum { CHUNK = 1 << 16 };
@@ -294,15 +283,9 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
 {
     *bad = 0;
     *torn = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (errno == ENOENT)
-            return 0;
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "cannot read %.1800s: %s", path,
-                 strerror(errno));
-        return -1;
-    }
+    FILE *f = cli_fopen_regular(path, err);
+    if (!f)
+        return err->status == BRDFFIT_E_FILE_OPEN && errno == ENOENT ? 0 : -1;
     char *line = NULL;
     size_t cap = 0;
     ssize_t n;
@@ -314,7 +297,7 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
         snprintf(err->message, sizeof err->message, "out of memory reading %.1800s", path);
         return -1;
     }
-    int lineno = 0;
+    long lineno = 0;
     while ((n = getline(&line, &cap, f)) > 0) {
         lineno++;
         if (line[n - 1] != '\n') { /* the last line, without its newline: torn */
@@ -322,8 +305,14 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
             break;
         }
         line[n - 1] = '\0';
-        if (fr_read_json(line, r, FR_NEED_KEY) != 0) {
-            (*bad)++;
+        char why[320];
+        const char *bad_why = fr_read_json(line, r, FR_NEED_KEY) != 0
+                                  ? "not a journal record"
+                                  : fr_check(r, why, sizeof why);
+        if (bad_why) {
+            if ((*bad)++ < BJ_BAD_SHOWN)
+                cli_error("%s: line %ld: %s: ignored (what it records is done again)", path,
+                          lineno, bad_why);
             continue;
         }
         r->line = lineno;
@@ -340,6 +329,9 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
                  strerror(errno));
         rc = -1;
     }
+    if (*bad > BJ_BAD_SHOWN)
+        cli_error("%s: %d more lines that are not journal records ignored", path,
+                  *bad - BJ_BAD_SHOWN);
     free(r);
     free(line);
     fclose(f);

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* jsonread.c -- a small strict reader for the flat JSON objects of the journal:
  * members with null, booleans, numbers, strings (well-formed UTF-8 only, as
- * json.c writes them), arrays of numbers (nulls and strings in them read as
+ * json.c writes them; its \udc80..\udcff escapes become the bytes 0x80..0xff
+ * that were not UTF-8), arrays of numbers (nulls and strings in them read as
  * NAN; the strings of an array kept in its str, one a line) and one level of
  * nested flat objects. */
 #include "batch.h"
@@ -122,6 +123,10 @@ static int string(jr_parser *j, char **out)
                     cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
                     j->p += 6;
                 }
+            }
+            if (cp >= 0xDC80 && cp <= 0xDCFF) { /* a byte that is not UTF-8 (json.c) */
+                buf[n++] = (char)(cp - 0xDC00);
+                continue;
             }
             if (cp >= 0xD800 && cp <= 0xDFFF)
                 cp = 0xFFFD;

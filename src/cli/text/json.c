@@ -1,5 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* json.c -- JSON text for the --json records: escaped strings, numbers that round-trip. */
+/* json.c -- JSON text for the --json records: escaped strings, numbers that round-trip.
+ * A string is bytes (a file name need not be UTF-8): each byte that is not
+ * part of well-formed UTF-8 is written as the escape of a lone low surrogate,
+ * \udc80..\udcff for bytes 0x80..0xff (Python's "surrogateescape"), which no
+ * UTF-8 text holds; jsonread.c turns them back into those bytes. */
 #include "cli.h"
 #include "utf8.h"
 
@@ -32,8 +36,8 @@ void json_string(FILE *f, const char *s)
         }
         unsigned cp;
         int n = utf8_seq(p, &cp);
-        if (n == 0) {
-            fputs("\\ufffd", f);
+        if (n == 0) { /* a byte that is not UTF-8: a lone low surrogate, U+DC80..U+DCFF */
+            fprintf(f, "\\udc%02x", c);
             p++;
             continue;
         }

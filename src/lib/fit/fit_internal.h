@@ -28,7 +28,7 @@ typedef struct fitmap {
 
 /* A screened start. */
 typedef struct start {
-    double p[3];        /* lobe parameters */
+    double p[BRDFFIT_MAX_LOBE_PARAMS]; /* lobe parameters */
     double x[NX_MAX];   /* lobe coordinates */
     bf_linear lin;      /* the best d, s there */
     double cost;        /* r^T r there */

@@ -8,8 +8,8 @@
  * (a bounded one-unknown least-squares problem per channel) and LM moves only
  * the lobe coordinates u, as the d/pi + s K models' fit does with d and s
  * (linear.h).  A data pass (affine_pass.c) sums, over the samples, the
- * products of the weights a^2, the bases A, B and their forward differences
- * dA_j, dB_j in u_j, and the measured values rho_c: every quantity the
+ * products of the weights a^2, the bases A, B and their derivatives dA_j,
+ * dB_j in the coordinates u_j, and the measured values rho_c: every quantity the
  * reduced problem needs follows from them for any x (affine.c). */
 #ifndef BRDFFIT_AFFINE_H
 #define BRDFFIT_AFFINE_H
@@ -19,7 +19,8 @@
 #define AF_NP BRDFFIT_MAX_LOBE_PARAMS
 
 /* The sums of one pass at a point p_0 and its np neighbours p_j (all sums
- * weighted by a^2; dX_j = (X(p_j) - X(p_0)) / h_j). */
+ * weighted by a^2; dX_j = dX/dp . (p_j - p_0) / h_j, the partials' first-order
+ * step to the neighbour, bf_gltf_affine_grad). */
 typedef struct af_mom {
     int np;
     double aa, ab, bb;                 /* sum A A, A B, B B                   */

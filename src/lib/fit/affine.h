@@ -47,6 +47,12 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,
                    const brdffit_params *params);
 
+/* The subset the affine fit screens its starts on: every screen_stride-th
+ * sample of the mirror set (kept with it), or the mirror set itself when
+ * that would hold fewer than BF_SCREEN_MIN_SAMPLES. */
+brdffit_status bf_affine_subset(const brdffit_samples *mirror, brdffit_model model,
+                                const brdffit_samples **out, brdffit_error *err);
+
 /* brdffit_fit and brdffit_error_of for such a model (api.c routes to them). */
 brdffit_status bf_affine_fit(brdffit_context *ctx, const brdffit_samples *samples,
                              brdffit_model model, const brdffit_fit_options *o,

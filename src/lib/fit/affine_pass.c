@@ -8,6 +8,7 @@
 #include "affine.h"
 
 #include "samples.h"
+#include "subsets.h"
 #include "bf_gltf.h"
 
 #include <pthread.h>
@@ -164,6 +165,16 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
         m->rr[c] += samples->pair_see[c];
     (void)err;
     return BRDFFIT_OK;
+}
+
+brdffit_status bf_affine_subset(const brdffit_samples *mirror, brdffit_model model,
+                                const brdffit_samples **out, brdffit_error *err)
+{
+    size_t stride = (size_t)bf_model_def_get(model)->screen_stride;
+    *out = mirror;
+    if (stride <= 1 || mirror->n / stride < BF_SCREEN_MIN_SAMPLES)
+        return BRDFFIT_OK;
+    return bf_samples_every_kept(mirror, stride, out, err);
 }
 
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,

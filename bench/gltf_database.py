@@ -8,7 +8,8 @@ median Error, the median and quartiles of the glTF models' Error over GGX's
 on the same table, on how many tables each ends with metallic 0, 1 or
 between and which parameters end on a bound, and the fits' median seconds.
 
-usage: gltf_database.py BRDFFIT OUTDIR [--record] [--materials N]
+usage: gltf_database.py BRDFFIT OUTDIR [--record] [--materials N] [--read-only]
+(--read-only: the figures of the batch already in OUTDIR, none run)
 """
 import csv
 import os
@@ -42,12 +43,21 @@ def read_fits(path):
 def figures(fits, wall):
     mats = sorted(fits)
     err = {k: [float(fits[m][k]["error"]) for m in mats] for k in MODELS}
-    out = [("database-gltf/ggx,gltf,gltf-ext", "wall seconds", wall),
-           ("database-gltf/ggx,gltf,gltf-ext", "tables count", len(mats))]
+    out = [("database-gltf/ggx,gltf,gltf-ext", "tables count", len(mats))]
+    if wall == wall:  # not NaN: the batch ran here
+        out.insert(0, ("database-gltf/ggx,gltf,gltf-ext", "wall seconds", wall))
     for k in MODELS:
         out.append((f"database-gltf/{k}", "median Error", statistics.median(err[k])))
         out.append((f"database-gltf/{k}", "median fit seconds",
                     statistics.median(float(fits[m][k]["seconds"]) for m in mats)))
+    # GGX's lobe at normal incidence (s F0) and at grazing (s), green channel
+    s_f0 = statistics.quantiles([float(fits[m]["ggx"]["s_g"]) * float(fits[m]["ggx"]["p0"])
+                                 for m in mats], n=4)
+    out += [("database-gltf/ggx", "s F0 green median", s_f0[1]),
+            ("database-gltf/ggx", "s F0 green lower quartile", s_f0[0]),
+            ("database-gltf/ggx", "s F0 green upper quartile", s_f0[2]),
+            ("database-gltf/ggx", "s above 1 (some channel) count",
+             sum(max(float(fits[m]["ggx"][c]) for c in ("s_r", "s_g", "s_b")) > 1 for m in mats))]
     for k in ("gltf", "gltf-ext"):
         ratio = [a / b for a, b in zip(err[k], err["ggx"])]
         q = statistics.quantiles(ratio, n=4)
@@ -78,11 +88,13 @@ def main(argv):
     brdffit, outdir = argv[1], argv[2]
     record = "--record" in argv
     n = int(argv[argv.index("--materials") + 1]) if "--materials" in argv else 0
-    paths = tables(n)
-    t0 = time.monotonic()
-    subprocess.run([brdffit, "batch", *paths, "--model", ",".join(MODELS), "--no-render",
-                    "--no-plot", "--out", outdir], check=True, stdout=subprocess.DEVNULL)
-    wall = time.monotonic() - t0
+    wall = float("nan")
+    if "--read-only" not in argv:
+        paths = tables(n)
+        t0 = time.monotonic()
+        subprocess.run([brdffit, "batch", *paths, "--model", ",".join(MODELS), "--no-render",
+                        "--no-plot", "--out", outdir], check=True, stdout=subprocess.DEVNULL)
+        wall = time.monotonic() - t0
     for bench, metric, value in figures(read_fits(os.path.join(outdir, "fits.tsv")), wall):
         print(f"{bench:32s} {metric:42s} {value:.6g}")
         if record:

@@ -211,11 +211,13 @@ typedef enum brdffit_model {
     BRDFFIT_COOK_TORRANCE = 4,
     BRDFFIT_ASHIKHMIN_SHIRLEY = 5,
     BRDFFIT_HE = 6,
-    BRDFFIT_GGX = 7
+    BRDFFIT_GGX = 7,
+    BRDFFIT_GLTF = 8,     /* glTF 2.0 metallic-roughness, core: what every viewer shows */
+    BRDFFIT_GLTF_EXT = 9  /* the same with KHR_materials_ior and KHR_materials_specular */
 } brdffit_model;
-#define BRDFFIT_MODEL_COUNT 8
+#define BRDFFIT_MODEL_COUNT 10
 
-#define BRDFFIT_MAX_LOBE_PARAMS 3
+#define BRDFFIT_MAX_LOBE_PARAMS 4
 
 /* How a fit moves a lobe parameter inside its bounds [lower, upper]: through
  * an unbounded coordinate u, v = lo + (hi - lo)(1 + sin u)/2, with lo, hi the
@@ -250,7 +252,21 @@ typedef struct brdffit_model_info {
                                     depends on the wavelength (He)            */
     int default_starts;          /* starting points a fit screens by default  */
     const brdffit_param_info *params; /* nparams entries                      */
+    /* How the colours enter: BRDFFIT_COLOUR_DS, f_c = d_c/pi + s_c K_c (the
+     * paper's models, GGX), or BRDFFIT_COLOUR_GLTF, the glTF BRDF, where
+     * brdffit_params.d is the base colour (each in [0, 1]) and .s the
+     * specular colour (KHR_materials_specular; the core `gltf` takes 1, 1, 1),
+     * and p = metallic, roughness, ior, specular (docs/conventions.md). */
+    int colour_form;
+    const char *colour_names[2]; /* the names of d and s: "d", "s" or
+                                    "base_color", "specular_color"            */
+    int in_default_set;          /* 1: the program fits it when no model is
+                                    named (the paper's models and GGX); the
+                                    glTF models are fitted when named or with
+                                    "all" (their fits take longer: no kernel) */
 } brdffit_model_info;
+
+enum { BRDFFIT_COLOUR_DS = 0, BRDFFIT_COLOUR_GLTF = 1 };
 
 /* The number of models the library has (ids 0 .. count-1). */
 int brdffit_model_count(void);
@@ -263,9 +279,12 @@ const brdffit_param_info *brdffit_model_param(brdffit_model model, int index);
 brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brdffit_error *err);
 
 typedef struct brdffit_params {
-    double d[3];          /* Lambertian albedo per channel (diffuse = d/pi), >= 0 */
-    double s[3];          /* specular coefficient rho_s per channel, >= 0        */
-    double p[BRDFFIT_MAX_LOBE_PARAMS]; /* lobe parameters in the paper's units   */
+    double d[3];          /* Lambertian albedo per channel (diffuse = d/pi), >= 0;
+                             glTF: the base colour, in [0, 1]                   */
+    double s[3];          /* specular coefficient rho_s per channel, >= 0;
+                             glTF: the specular colour (colour_names)           */
+    double p[BRDFFIT_MAX_LOBE_PARAMS]; /* lobe parameters in the paper's units
+                             (glTF: the specification's)                        */
     double lambda_um[3];  /* He only: wavelength per channel in micrometres;
                              0 means the default (0.645, 0.526, 0.444)          */
 } brdffit_params;
@@ -579,8 +598,10 @@ typedef enum brdffit_at_bound {
     BRDFFIT_AT_BOUND_P0 = 1u << 0,  /* lobe parameter k: BRDFFIT_AT_BOUND_P0 << k */
     BRDFFIT_AT_BOUND_P1 = 1u << 1,
     BRDFFIT_AT_BOUND_P2 = 1u << 2,
-    BRDFFIT_AT_BOUND_LOBE = 7u,     /* any lobe parameter                       */
-    BRDFFIT_AT_BOUND_D_R = 1u << 8, /* d_c = 0: BRDFFIT_AT_BOUND_D_R << c       */
+    BRDFFIT_AT_BOUND_P3 = 1u << 3,
+    BRDFFIT_AT_BOUND_LOBE = 15u,    /* any lobe parameter                       */
+    BRDFFIT_AT_BOUND_D_R = 1u << 8, /* d_c = 0 (glTF: base colour 0 or 1):
+                                       BRDFFIT_AT_BOUND_D_R << c               */
     BRDFFIT_AT_BOUND_D_G = 1u << 9,
     BRDFFIT_AT_BOUND_D_B = 1u << 10,
     BRDFFIT_AT_BOUND_S_R = 1u << 12, /* s_c = 0: BRDFFIT_AT_BOUND_S_R << c      */

@@ -341,6 +341,7 @@ BF_GREY_LOBE(ggx, bf_ggx(g, p[0], p[1]))
  * difference neighbour: a new model's lobe needs no partials to be fitted)
  * or BF_FD_OWN (its own bf_lobe_fd_<model>).  bf_lobe and bf_lobe_fd (bf_lobe.h) switch
  * over this list; the rest of a model's facts are its registry entry. */
+#define BF_LOBE_MODELS 8 /* the models of the form d/pi + s K: ids 0 .. 7 */
 #define BF_MODEL_LOBES(X)                                                                 \
     X(0, ward, BF_FD_GRAD)                                                               \
     X(1, ward_duer, BF_FD_GRAD)                                                          \

@@ -14,7 +14,7 @@ sets to the mirror's size: the library writes the members within it.
 
 import ctypes as C
 
-MAX_LOBE_PARAMS = 3
+MAX_LOBE_PARAMS = 4
 MESSAGE_MAX = 2048
 MERL_NTH, MERL_NTD, MERL_NPD = 90, 90, 180
 MERL_BINS = MERL_NTH * MERL_NTD * MERL_NPD
@@ -56,6 +56,9 @@ class ModelInfo(C.Structure):
         ("chromatic", C.c_int),
         ("default_starts", C.c_int),
         ("params", C.POINTER(ParamInfo)),
+        ("colour_form", C.c_int),
+        ("colour_names", C.c_char_p * 2),
+        ("in_default_set", C.c_int),
     ]
 
 

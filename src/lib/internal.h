@@ -65,6 +65,11 @@ int bf_scale_known(brdffit_scale scale);
 
 /* The default He wavelengths (um) where params->lambda_um[c] is 0. */
 void bf_lambdas(const brdffit_params *params, double lam[3]);
+/* f per channel of a model at checked params for a derived geometry g
+ * (bf_geom_derive), no cosine factor: d/pi + s K, or the glTF BRDF. */
+struct bf_geom;
+void bf_model_value(brdffit_model model, const struct bf_geom *g, const brdffit_params *params,
+                    const double lam[3], double rgb[3]);
 
 /* Sized options structs (include/brdffit.h: `size` first, set by _default()).
  * bf_options_read: out holds the defaults of struct `kind`; the members of

@@ -4,6 +4,7 @@
  * OpenCL kernel). */
 #include "registry.h"
 
+#include "bf_gltf.h"
 #include "bf_lobe.h"
 
 #include <math.h>
@@ -16,6 +17,42 @@ void bf_lambdas(const brdffit_params *params, double lam[3])
         lam[c] = (params && params->lambda_um[c] != 0.0) ? params->lambda_um[c] : dflt[c];
 }
 
+void bf_model_value(brdffit_model model, const bf_geom *g, const brdffit_params *params,
+                    const double lam[3], double rgb[3])
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    if (mi && mi->colour_form == BRDFFIT_COLOUR_GLTF) {
+        bf_gltf(g, params->p, params->d, params->s, rgb);
+        return;
+    }
+    double K[3];
+    bf_lobe((int)model, g, params->p, lam, K);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = params->d[c] / BF_PI + params->s[c] * K[c];
+}
+
+/* The glTF models' colours: the base colour in [0, 1], the specular colour
+ * >= 0 (the core model: 1, its value there). */
+static brdffit_status gltf_colours_check(const brdffit_model_info *mi,
+                                         const brdffit_params *params, brdffit_error *err)
+{
+    static const char ch[3] = { 'r', 'g', 'b' };
+    for (int c = 0; c < 3; c++) {
+        double b = params->d[c], sc = params->s[c];
+        if (!(b >= 0 && b <= 1))
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: base_color_%c = %g outside [0, 1]",
+                           mi->name, ch[c], b);
+        if (mi->id == BRDFFIT_GLTF && sc != 1.0)
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE,
+                           "%s: specular_color_%c = %g must be 1 (the core material; "
+                           "gltf-ext takes others)", mi->name, ch[c], sc);
+        if (!(isfinite(sc) && sc >= 0))
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE,
+                           "%s: specular_color_%c = %g must be finite and >= 0", mi->name, ch[c], sc);
+    }
+    return BRDFFIT_OK;
+}
+
 brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *params,
                                     brdffit_error *err)
 {
@@ -25,7 +62,12 @@ brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *p
     if (!params)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "params is NULL");
     static const char ch[3] = { 'R', 'G', 'B' };
-    for (int c = 0; c < 3; c++) {
+    if (mi->colour_form == BRDFFIT_COLOUR_GLTF) {
+        brdffit_status st = gltf_colours_check(mi, params, err);
+        if (st != BRDFFIT_OK)
+            return st;
+    }
+    for (int c = 0; c < 3 && mi->colour_form == BRDFFIT_COLOUR_DS; c++) {
         if (!isfinite(params->d[c]) || params->d[c] < 0)
             return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: d_%c = %g must be finite and >= 0",
                            mi->name, ch[c], params->d[c]);
@@ -81,10 +123,7 @@ static int eval_one(brdffit_model model, const brdffit_params *params, const dou
     }
     bf_geom g = { a[0], a[1], a[2], b[0], b[1], b[2], 0, 0 };
     bf_geom_derive(&g);
-    double K[3];
-    bf_lobe((int)model, &g, params->p, lam, K);
-    for (int c = 0; c < 3; c++)
-        rgb[c] = params->d[c] / BF_PI + params->s[c] * K[c];
+    bf_model_value(model, &g, params, lam, rgb);
     return 1;
 }
 

@@ -49,9 +49,38 @@ static const brdffit_param_info he_params[] = {
 };
 
 static const brdffit_param_info ggx_params[] = {
-    { "F0", "", 0, 1, 0.5, BRDFFIT_MAP_LINEAR, "reflectance at normal incidence (Schlick)" },
-    { "alpha", "", 1e-4, 1, 0.1, BRDFFIT_MAP_LOG, "roughness: RMS slope of the microfacets (Trowbridge-Reitz)" },
+    { "F0", "", 0, 1, 0.5, BRDFFIT_MAP_LINEAR,
+      "Schlick's F0: the lobe is s F0 at normal incidence, s at grazing" },
+    { "alpha", "", 1e-4, 1, 0.1, BRDFFIT_MAP_LOG, "width of the Trowbridge-Reitz distribution (alpha, not glTF's roughness = sqrt(alpha))" },
 };
+
+/* The glTF 2.0 material's parameters, in its names (kernels/bf_gltf.h).  The
+ * core model holds ior, specular and the specular colour at the extensions'
+ * defaults, where the core material has them: its bounds are those values. */
+#define GLTF_METALLIC { "metallic", "", 0, 1, 0, BRDFFIT_MAP_LINEAR, \
+      "metalness: 0 dielectric, 1 metal (metallicFactor)" }
+#define GLTF_ROUGHNESS { "roughness", "", 0, 1, 0.3, BRDFFIT_MAP_LINEAR, \
+      "perceptual roughness, alpha = roughness^2 (roughnessFactor)" }
+
+static const brdffit_param_info gltf_params[] = {
+    GLTF_METALLIC,
+    GLTF_ROUGHNESS,
+    { "ior", "", 1.5, 1.5, 1.5, BRDFFIT_MAP_LINEAR, "index of refraction: 1.5 in the core material" },
+    { "specular", "", 1, 1, 1, BRDFFIT_MAP_LINEAR, "specular factor: 1 in the core material" },
+};
+
+static const brdffit_param_info gltf_ext_params[] = {
+    GLTF_METALLIC,
+    GLTF_ROUGHNESS,
+    { "ior", "", 1, 1000, 1.5, BRDFFIT_MAP_LOG, "index of refraction (KHR_materials_ior)" },
+    { "specular", "", 0, 1, 1, BRDFFIT_MAP_LINEAR,
+      "strength of the dielectric specular (KHR_materials_specular specularFactor)" },
+};
+
+#define DS_COLOURS .colour_form = BRDFFIT_COLOUR_DS, .colour_names = { "d", "s" }, \
+    .in_default_set = 1
+#define GLTF_COLOURS .colour_form = BRDFFIT_COLOUR_GLTF, \
+    .colour_names = { "base_color", "specular_color" }
 
 #define PARAMS(a) .nparams = (int)(sizeof a / sizeof a[0]), .params = a
 
@@ -61,37 +90,37 @@ static const brdffit_param_info ggx_params[] = {
 static const bf_model_def registry[] = {
     [BRDFFIT_WARD] = {
         .info = { BRDFFIT_WARD, "ward", "Ward", PARAMS(ward_params), .chromatic = 0,
-                  .default_starts = 8 },
+                  .default_starts = 8, DS_COLOURS },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
         .screen_stride = 8,
     },
     [BRDFFIT_WARD_DUER] = {
         .info = { BRDFFIT_WARD_DUER, "ward-duer", "Ward-Duer", PARAMS(ward_params),
-                  .chromatic = 0, .default_starts = 8 },
+                  .chromatic = 0, .default_starts = 8, DS_COLOURS },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
         .screen_stride = 8,
     },
     [BRDFFIT_BLINN_PHONG] = {
         .info = { BRDFFIT_BLINN_PHONG, "blinn-phong", "Blinn-Phong", PARAMS(blinn_phong_params),
-                  .chromatic = 0, .default_starts = 8 },
+                  .chromatic = 0, .default_starts = 8, DS_COLOURS },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
         .screen_stride = 8,
     },
     [BRDFFIT_LAFORTUNE] = {
         .info = { BRDFFIT_LAFORTUNE, "lafortune", "Lafortune", PARAMS(lafortune_params),
-                  .chromatic = 0, .default_starts = 8 },
+                  .chromatic = 0, .default_starts = 8, DS_COLOURS },
         .grid = { .param = 2, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
         .screen_stride = 8,
     },
     [BRDFFIT_COOK_TORRANCE] = {
         .info = { BRDFFIT_COOK_TORRANCE, "cook-torrance", "Cook-Torrance",
-                  PARAMS(cook_torrance_params), .chromatic = 0, .default_starts = 8 },
+                  PARAMS(cook_torrance_params), .chromatic = 0, .default_starts = 8, DS_COLOURS },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.5, NO_ROUNDS },
         .screen_stride = 8,
     },
     [BRDFFIT_ASHIKHMIN_SHIRLEY] = {
         .info = { BRDFFIT_ASHIKHMIN_SHIRLEY, "ashikhmin-shirley", "Ashikhmin-Shirley",
-                  PARAMS(ashikhmin_shirley_params), .chromatic = 0, .default_starts = 8 },
+                  PARAMS(ashikhmin_shirley_params), .chromatic = 0, .default_starts = 8, DS_COLOURS },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 2, .hi = 5e4, NO_ROUNDS },
         .screen_stride = 8,
     },
@@ -112,7 +141,7 @@ static const bf_model_def registry[] = {
      * Refinement. */
     [BRDFFIT_HE] = {
         .info = { BRDFFIT_HE, "he", "He", PARAMS(he_params), .chromatic = 1,
-                  .default_starts = 21 },
+                  .default_starts = 21, DS_COLOURS },
         .grid = { .param = 0, .spacing = BRDFFIT_MAP_LINEAR, .lo = 4, .hi = 28, .period = 7,
                   .round_param = 1, .round_factor = 4.0 },
         .screen_stride = 12,
@@ -125,8 +154,25 @@ static const bf_model_def registry[] = {
     },
     [BRDFFIT_GGX] = {
         .info = { BRDFFIT_GGX, "ggx", "GGX", PARAMS(ggx_params), .chromatic = 0,
-                  .default_starts = 8 },
+                  .default_starts = 8, DS_COLOURS },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.005, .hi = 0.8, NO_ROUNDS },
+        .screen_stride = 8,
+    },
+    /* The glTF models are fitted by the affine engine (fit/affine.c): the
+     * base colour solved exactly at every point, LM on the rest.  Its starts:
+     * roughness over the grid, metallic near 0 and near 1 in turn. */
+    [BRDFFIT_GLTF] = {
+        .info = { BRDFFIT_GLTF, "gltf", "glTF 2.0", PARAMS(gltf_params), .chromatic = 0,
+                  .default_starts = 8, GLTF_COLOURS },
+        .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.1, .hi = 0.8, .period = 4,
+                  NO_ROUNDS },
+        .screen_stride = 8,
+    },
+    [BRDFFIT_GLTF_EXT] = {
+        .info = { BRDFFIT_GLTF_EXT, "gltf-ext", "glTF 2.0 extended", PARAMS(gltf_ext_params),
+                  .chromatic = 0, .default_starts = 8, GLTF_COLOURS },
+        .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.1, .hi = 0.8, .period = 4,
+                  NO_ROUNDS },
         .screen_stride = 8,
     },
 };
@@ -135,7 +181,8 @@ static const bf_model_def registry[] = {
 _Static_assert(NMODELS == BRDFFIT_MODEL_COUNT, "one registry entry per brdffit_model");
 /* ... and one lobe per entry, ids 0 .. NMODELS-1 in order */
 #define ONE_LOBE(id, name, fd) +1
-_Static_assert(0 BF_MODEL_LOBES(ONE_LOBE) == NMODELS, "BF_MODEL_LOBES: one lobe per model");
+_Static_assert(0 BF_MODEL_LOBES(ONE_LOBE) == BF_LOBE_MODELS,
+               "BF_MODEL_LOBES: one lobe per model of the form d/pi + s K");
 #undef ONE_LOBE
 
 
@@ -196,12 +243,22 @@ int bf_model_coord_param(brdffit_model model, int j)
     if (!mi)
         return -1;
     for (int k = 0, c = 0; k < mi->nparams; k++, c++) {
+        if (mi->params[k].lower == mi->params[k].upper) {
+            c--; /* held at its one value: not a coordinate */
+            continue;
+        }
         if (c == j)
             return k;
         if (mi->params[k].map == BRDFFIT_MAP_DIRECTION)
             k++; /* with the next parameter: one angle */
     }
     return -1;
+}
+
+int bf_model_has_lobe(brdffit_model model)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    return mi && mi->colour_form == BRDFFIT_COLOUR_DS;
 }
 
 int bf_model_ncoords(brdffit_model model)

@@ -76,10 +76,7 @@ static int shade(const shader *sh, const double wi[3], const double wo[3], doubl
     /* wi, wo are unit and above the horizon (the caller's frame makes them so) */
     bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
     bf_geom_derive(&g);
-    double K[3];
-    bf_lobe((int)sh->model, &g, sh->params->p, sh->lam, K);
-    for (int c = 0; c < 3; c++)
-        rgb[c] = sh->params->d[c] / BF_PI + sh->params->s[c] * K[c];
+    bf_model_value(sh->model, &g, sh->params, sh->lam, rgb);
     return 1;
 }
 

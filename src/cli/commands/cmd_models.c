@@ -24,8 +24,11 @@ int cmd_models(int argc, char **argv)
         for (int k = 0; k < mi->nparams; k++)
             printf("%-37s %s: %s\n", "", mi->params[k].name, mi->params[k].description);
     }
-    printf("\nEvery model: f_c = d_c/pi + s_c K_c(wi, wo; p) per channel c = R, G, B;\n"
-           "d_c, s_c >= 0.  Unit um: micrometres; no unit: dimensionless.  A per-channel\n"
-           "lobe is evaluated at the wavelengths 0.645, 0.526, 0.444 um.\n");
+    printf("\nThe paper's models and GGX: f_c = d_c/pi + s_c K_c(wi, wo; p) per channel\n"
+           "c = R, G, B; d_c, s_c >= 0.  Unit um: micrometres; no unit: dimensionless.\n"
+           "A per-channel lobe is evaluated at the wavelengths 0.645, 0.526, 0.444 um.\n"
+           "gltf, gltf-ext: the glTF 2.0 BRDF (Appendix B; gltf-ext with KHR_materials_ior\n"
+           "and KHR_materials_specular): d = base_color in [0, 1], s = specular_color\n"
+           "(gltf: 1, 1, 1), alpha = roughness^2; linear sRGB (docs/conventions.md).\n");
     return CLI_OK;
 }

@@ -65,7 +65,8 @@ static const char *parse_row(char **fld, pub_row *row, char *why, size_t len)
     }
     memcpy(row->params.d, v, sizeof row->params.d);
     memcpy(row->params.s, v + 3, sizeof row->params.s);
-    memcpy(row->params.p, v + 6, sizeof row->params.p);
+    memset(row->params.p, 0, sizeof row->params.p);
+    memcpy(row->params.p, v + 6, 3 * sizeof *v); /* the file's p0, p1, p2 */
     return NULL;
 }
 

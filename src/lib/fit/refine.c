@@ -279,7 +279,7 @@ static brdffit_status bins_runs(lmstate *S, bf_pass_driver *bins, const brdffit_
 static void start_after_bins(const lmstate *S, const start *k, const lmrun *bin, start *sp)
 {
     const bf_model_def *def = bf_model_def_get(S->fm.model);
-    double p[3];
+    double p[BRDFFIT_MAX_LOBE_PARAMS];
     bf_coords_to_params(&S->fm, bin->x, p);
     *sp = *k;
     if (p[def->rough_param] >= def->rough_from)

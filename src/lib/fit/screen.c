@@ -17,7 +17,7 @@
 
 /* The lobe parameters of start number i of n: the model's start grid (see
  * bf_start_grid in registry.h). */
-static void start_params(brdffit_model model, int i, int n, double p[3])
+static void start_params(brdffit_model model, int i, int n, double p[BRDFFIT_MAX_LOBE_PARAMS])
 {
     const bf_start_grid *gr = &bf_model_def_get(model)->grid;
     const brdffit_model_info *mi = brdffit_model_get(model);
@@ -45,7 +45,7 @@ static void start_params(brdffit_model model, int i, int n, double p[3])
 
 /* One value pass at the start's lobe with d = s = 0 gives the exact best
  * linear part there. */
-static brdffit_status screen_start(lmstate *S, const double p[3], start *sp)
+static brdffit_status screen_start(lmstate *S, const double p[BRDFFIT_MAX_LOBE_PARAMS], start *sp)
 {
     bf_pass_par pp;
     memset(&pp, 0, sizeof pp);
@@ -130,7 +130,7 @@ static brdffit_status screen_round(lmstate *S, int first, int n, int nstarts, in
         int next = search ? bf_round_next(n, cost) : k;
         if (next < 0)
             break;
-        double p[3];
+        double p[BRDFFIT_MAX_LOBE_PARAMS];
         start *c = &cand[next];
         memset(c, 0, sizeof *c);
         start_params(S->fm.model, first + next, nstarts, p);

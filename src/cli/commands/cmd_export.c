@@ -83,10 +83,16 @@ static const char *to_material(const fit_record *r, int ext, gltf_material *m, c
     m->specular = r->params.p[3];
     /* the core material does not write ior, specular and the specular colour, but a
      * record with a value that is not a number is refused whatever it is */
-    for (int k = 0; k < 3; k++)
-        if (!isfinite(r->params.s[k]) || !isfinite(r->params.p[k + 1])) {
-            snprintf(why, len, "%s is not a finite number",
-                     !isfinite(r->params.s[k]) ? "a specular colour value" : "a parameter");
+    static const char *const names[10] = { "base colour r", "base colour g", "base colour b",
+                                           "specular colour r", "specular colour g",
+                                           "specular colour b", "metallic", "roughness", "ior",
+                                           "specular" };
+    const double v[10] = { r->params.d[0], r->params.d[1], r->params.d[2], r->params.s[0],
+                           r->params.s[1], r->params.s[2], r->params.p[0], r->params.p[1],
+                           r->params.p[2], r->params.p[3] };
+    for (int k = 0; k < 10; k++)
+        if (!isfinite(v[k])) {
+            snprintf(why, len, "%s = %g is not a finite number", names[k], v[k]);
             return why;
         }
     return gltf_material_check(m, why, len);

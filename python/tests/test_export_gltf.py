@@ -316,6 +316,32 @@ def test_real_fits(real_fits):
         check_file(path, rec)
 
 
+def test_real_batch_fits_tsv(tmp_path):
+    """A batch's fits.tsv of the two models (and ward, skipped), exported."""
+    r = subprocess.run([CLI, "batch", "--demo", "--model", "gltf,gltf-ext,ward", "--no-render",
+                        "--no-plot", "--quiet", "--out", str(tmp_path / "batch")],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    tsv = tmp_path / "batch" / "fits.tsv"
+    rows = [ln.split("\t") for ln in tsv.read_text().splitlines() if not ln.startswith("#")]
+    head, rows = rows[0], [dict(zip(rows[0], row)) for row in rows[1:]]
+    assert head[8:12] == ["p0", "p1", "p2", "p3"]
+    e = export(tmp_path, str(tsv))
+    assert e.returncode == 0, e.stderr
+    assert "ward: not a glTF model; fit --model gltf or gltf-ext (1 fit skipped)" in e.stderr
+    written = 0
+    for row in rows:
+        if row["model"] == "ward":
+            continue
+        rec = {"material": row["material"], "model": row["model"],
+               "d": [float(row[k]) for k in ("d_r", "d_g", "d_b")],
+               "s": [float(row[k]) for k in ("s_r", "s_g", "s_b")],
+               "p": [float(row[f"p{k}"]) for k in range(4)]}
+        check_file(tmp_path / "out" / f"{rec['material']}-{rec['model']}.gltf", rec)
+        written += 1
+    assert written == 2 and len(os.listdir(tmp_path / "out")) == 2
+
+
 # ------------------------------------------------------------------ pygltflib and Blender
 
 def _venv_python():
@@ -389,13 +415,11 @@ print(json.dumps({"version": g.asset.version, "used": g.extensionsUsed,
 """
 
 
-@pytest.mark.parametrize("rec", [CORE, EXT], ids=["gltf", "gltf-ext"])
-def test_pygltflib_reads_the_file(tmp_path, pygltflib_python, rec):
-    assert export(tmp_path, write_jsonl(tmp_path / "fits.jsonl", [rec])).returncode == 0
-    path = tmp_path / "out" / f"{rec['material']}-{rec['model']}.gltf"
+def pygltflib_check(py, path, rec, tmp_path):
+    """pygltflib loads and validates the file and sees the record's material."""
     script = tmp_path / "read.py"
     script.write_text(PYGLTFLIB_SCRIPT)
-    r = _run([pygltflib_python, str(script), str(path)])
+    r = _run([py, str(script), str(path)])
     assert r.returncode == 0, r.stderr
     got = json.loads(r.stdout)
     doc = json.loads(path.read_text())
@@ -408,6 +432,18 @@ def test_pygltflib_reads_the_file(tmp_path, pygltflib_python, rec):
     assert close(got["metallic"], rec["p"][0]) and close(got["roughness"], rec["p"][1])
     if rec["model"] == "gltf-ext":
         assert close(got["extensions"]["KHR_materials_ior"]["ior"], rec["p"][2])
+
+
+@pytest.mark.parametrize("rec", [CORE, EXT], ids=["gltf", "gltf-ext"])
+def test_pygltflib_reads_the_file(tmp_path, pygltflib_python, rec):
+    assert export(tmp_path, write_jsonl(tmp_path / "fits.jsonl", [rec])).returncode == 0
+    pygltflib_check(pygltflib_python,
+                    tmp_path / "out" / f"{rec['material']}-{rec['model']}.gltf", rec, tmp_path)
+
+
+def test_pygltflib_reads_real_fits(tmp_path, pygltflib_python, real_fits):
+    for path, rec in real_fits:
+        pygltflib_check(pygltflib_python, path, rec, tmp_path)
 
 
 BLENDER_SCRIPT = r"""
@@ -432,22 +468,19 @@ print("BSDF " + json.dumps(out))
 """
 
 
-@pytest.mark.parametrize("rec", [CORE, EXT], ids=["gltf", "gltf-ext"])
-def test_blender_imports_the_material(tmp_path, bpy_python, rec):
+def blender_check(py, path, tmp_path):
     """Blender's glTF importer gives its Principled BSDF the file's values.
     A core file shows the core material: ior 1.5, specular 1 (Blender's
     Specular IOR Level 0.5: its level is specularFactor / 2), white tint."""
-    assert export(tmp_path, write_jsonl(tmp_path / "fits.jsonl", [rec])).returncode == 0
-    path = tmp_path / "out" / f"{rec['material']}-{rec['model']}.gltf"
     script = tmp_path / "import.py"
     script.write_text(BLENDER_SCRIPT)
-    r = _run([bpy_python, str(script), str(path)], timeout=180)
+    r = _run([py, str(script), str(path)], timeout=180)
     assert r.returncode == 0, r.stderr[-4000:]
     (line,) = [ln for ln in r.stdout.splitlines() if ln.startswith("BSDF ")]
     got = json.loads(line[5:])
     assert got["result"] == ["FINISHED"]
-    bsdf = got["materials"][f"{rec['material']}-{rec['model']}"]
     mat = json.loads(path.read_text())["materials"][0]
+    bsdf = got["materials"][mat["name"]]
     pbr = mat["pbrMetallicRoughness"]
     for name in ("Base Color", "Metallic", "Roughness", "IOR"):
         assert not bsdf[name + " linked"], name
@@ -461,3 +494,15 @@ def test_blender_imports_the_material(tmp_path, bpy_python, rec):
     assert abs(bsdf["Specular IOR Level"] - spec.get("specularFactor", 1) / 2) <= 1e-6
     np.testing.assert_allclose(bsdf["Specular Tint"][:3],
                                spec.get("specularColorFactor", [1, 1, 1]), atol=1e-6)
+
+
+@pytest.mark.parametrize("rec", [CORE, EXT], ids=["gltf", "gltf-ext"])
+def test_blender_imports_the_material(tmp_path, bpy_python, rec):
+    assert export(tmp_path, write_jsonl(tmp_path / "fits.jsonl", [rec])).returncode == 0
+    blender_check(bpy_python, tmp_path / "out" / f"{rec['material']}-{rec['model']}.gltf",
+                  tmp_path)
+
+
+def test_blender_imports_real_fits(tmp_path, bpy_python, real_fits):
+    for path, _ in real_fits:
+        blender_check(bpy_python, path, tmp_path)

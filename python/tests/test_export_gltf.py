@@ -289,6 +289,10 @@ def test_usage(tmp_path):
     assert r.returncode == 2 and "--out DIR" in r.stderr, r.stderr
     r = export(tmp_path, str(tmp_path / "missing.jsonl"))
     assert r.returncode == 1 and "missing.jsonl: cannot open" in r.stderr, r.stderr
+    (tmp_path / "a-file").write_text("")
+    r = export(tmp_path, write_jsonl(tmp_path / "two.jsonl", [CORE, EXT]), out="a-file")
+    assert r.returncode == 1 and r.stdout == "", r.stderr
+    assert r.stderr.count("cannot create the directory") == 1, r.stderr
     help_text = subprocess.run([CLI, "help", "export"], capture_output=True, text=True)
     assert help_text.returncode == 0 and "--format gltf" in help_text.stdout
 

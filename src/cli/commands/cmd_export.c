@@ -41,6 +41,7 @@ typedef struct export_run {
     gltf_mesh mesh;
     int made_out;                  /* DIR exists                              */
     int written, refused;
+    int fatal;                     /* DIR cannot be made: nothing more is read */
     char other[MAX_OTHER_MODELS][BJ_MODEL_NAME_MAX]; /* models skipped        */
     int nother[MAX_OTHER_MODELS], nothers;
 } export_run;
@@ -65,24 +66,11 @@ static int name_ok(const char *name)
     return name[0] && !strchr(name, '/') && strcmp(name, ".") != 0 && strcmp(name, "..") != 0;
 }
 
-/* The record's values as a glTF material: NULL, or why not. */
-static const char *to_material(const fit_record *r, int ext, gltf_material *m, char *why,
-                               size_t len)
+/* NULL when every value of the record is a finite number, else which is not.
+ * The core material does not write ior, specular and the specular colour,
+ * but a record with a value that is not a number is refused whatever it is. */
+static const char *all_finite(const fit_record *r, char *why, size_t len)
 {
-    if (!r->has_params || r->nparams < 4)
-        return "no parameters d, s, p (4 numbers: metallic, roughness, ior, specular)";
-    memset(m, 0, sizeof *m);
-    m->ext = ext;
-    for (int c = 0; c < 3; c++) {
-        m->base_color[c] = r->params.d[c];
-        m->specular_color[c] = r->params.s[c];
-    }
-    m->metallic = r->params.p[0];
-    m->roughness = r->params.p[1];
-    m->ior = r->params.p[2];
-    m->specular = r->params.p[3];
-    /* the core material does not write ior, specular and the specular colour, but a
-     * record with a value that is not a number is refused whatever it is */
     static const char *const names[10] = { "base colour r", "base colour g", "base colour b",
                                            "specular colour r", "specular colour g",
                                            "specular colour b", "metallic", "roughness", "ior",
@@ -95,6 +83,27 @@ static const char *to_material(const fit_record *r, int ext, gltf_material *m, c
             snprintf(why, len, "%s = %g is not a finite number", names[k], v[k]);
             return why;
         }
+    return NULL;
+}
+
+/* The record's values as a glTF material: NULL, or why not. */
+static const char *to_material(const fit_record *r, int ext, gltf_material *m, char *why,
+                               size_t len)
+{
+    if (!r->has_params || r->nparams < 4)
+        return "no parameters d, s, p (4 numbers: metallic, roughness, ior, specular)";
+    if (all_finite(r, why, len))
+        return why;
+    memset(m, 0, sizeof *m);
+    m->ext = ext;
+    for (int c = 0; c < 3; c++) {
+        m->base_color[c] = r->params.d[c];
+        m->specular_color[c] = r->params.s[c];
+    }
+    m->metallic = r->params.p[0];
+    m->roughness = r->params.p[1];
+    m->ior = r->params.p[2];
+    m->specular = r->params.p[3];
     return gltf_material_check(m, why, len);
 }
 
@@ -104,8 +113,10 @@ static int write_file(export_run *X, const char *file, const gltf_material *m)
     memset(&err, 0, sizeof err);
     char path[BJ_PATH_MAX];
     out_file o;
-    if (!X->made_out && out_mkdir(X->out, &err) != 0)
+    if (!X->made_out && out_mkdir(X->out, &err) != 0) {
+        X->fatal = 1; /* no file can be written: stop */
         goto fail;
+    }
     X->made_out = 1;
     if (out_join(path, sizeof path, X->out, file) != 0) {
         cli_error("%s/%s: path too long", X->out, file);
@@ -169,7 +180,7 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
         X->refused++;
     else
         X->written++;
-    return 0;
+    return X->fatal;
 }
 
 /* The options: CLI_OK with the files of fits in files[0..*nfiles). */
@@ -221,7 +232,7 @@ int cmd_export(int argc, char **argv)
         cli_error("out of memory");
         rc = CLI_FAILED;
     }
-    for (int i = 0; rc == CLI_OK && i < nfiles; i++) {
+    for (int i = 0; rc == CLI_OK && !X.fatal && i < nfiles; i++) {
         brdffit_error err;
         memset(&err, 0, sizeof err);
         X.path = files[i];

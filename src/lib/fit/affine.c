@@ -468,7 +468,7 @@ brdffit_status bf_affine_fit(brdffit_context *ctx, const brdffit_samples *sample
     const brdffit_samples *mirror = NULL, *subset = NULL;
     brdffit_status st = bf_samples_mirror_kept(samples, &mirror, err);
     if (st == BRDFFIT_OK)
-        st = bf_samples_every_kept(mirror, (size_t)def->screen_stride, &subset, err);
+        st = bf_affine_subset(mirror, model, &subset, err);
     if (st != BRDFFIT_OK)
         return st;
     afstate all, sub;

@@ -8,8 +8,8 @@
  * (a bounded one-unknown least-squares problem per channel) and LM moves only
  * the lobe coordinates u, as the d/pi + s K models' fit does with d and s
  * (linear.h).  A data pass (affine_pass.c) sums, over the samples, the
- * products of the weights a^2, the bases A, B and their forward differences
- * dA_j, dB_j in u_j, and the measured values rho_c: every quantity the
+ * products of the weights a^2, the bases A, B and their derivatives dA_j,
+ * dB_j in the coordinates u_j, and the measured values rho_c: every quantity the
  * reduced problem needs follows from them for any x (affine.c). */
 #ifndef BRDFFIT_AFFINE_H
 #define BRDFFIT_AFFINE_H
@@ -19,7 +19,8 @@
 #define AF_NP BRDFFIT_MAX_LOBE_PARAMS
 
 /* The sums of one pass at a point p_0 and its np neighbours p_j (all sums
- * weighted by a^2; dX_j = (X(p_j) - X(p_0)) / h_j). */
+ * weighted by a^2; dX_j = dX/dp . (p_j - p_0) / h_j, the partials' first-order
+ * step to the neighbour, bf_gltf_affine_grad). */
 typedef struct af_mom {
     int np;
     double aa, ab, bb;                 /* sum A A, A B, B B                   */
@@ -45,6 +46,12 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
  * either colour form. */
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,
                    const brdffit_params *params);
+
+/* The subset the affine fit screens its starts on: every screen_stride-th
+ * sample of the mirror set (kept with it), or the mirror set itself when
+ * that would hold fewer than BF_SCREEN_MIN_SAMPLES. */
+brdffit_status bf_affine_subset(const brdffit_samples *mirror, brdffit_model model,
+                                const brdffit_samples **out, brdffit_error *err);
 
 /* brdffit_fit and brdffit_error_of for such a model (api.c routes to them). */
 brdffit_status bf_affine_fit(brdffit_context *ctx, const brdffit_samples *samples,

@@ -8,6 +8,7 @@
 #include "affine.h"
 
 #include "samples.h"
+#include "subsets.h"
 #include "bf_gltf.h"
 
 #include <pthread.h>
@@ -17,8 +18,6 @@
 #define AF_MAX_THREADS 16
 /* Below this many samples a pass runs in the calling thread alone. */
 #define AF_MIN_PER_THREAD 20000
-
-static const double white[3] = { 1.0, 1.0, 1.0 };
 
 /* Sample i's geometry, values and weight. */
 static double sample_at(const brdffit_samples *s, size_t i, bf_geom *g, double *rho)
@@ -79,22 +78,35 @@ typedef struct af_job {
     af_mom m;
 } af_job;
 
+/* dX_j from the partials in p: dX / dp . (p_j - p_0) / h_j, the first-order
+ * step to the neighbour p_j (as bf_pass_partials takes a lobe's), each
+ * coefficient (p_j - p_0) / h_j a number of the pass (coef). */
+static double af_step(const double *dX, const double *coef)
+{
+    double v = 0.0;
+    for (int k = 0; k < AF_NP; k++)
+        v += dX[k] * coef[k];
+    return v;
+}
+
 static void *af_run(void *arg)
 {
     af_job *jb = arg;
     const int np = jb->m.np;
+    double coef[AF_NP][AF_NP];
+    for (int j = 0; j < np; j++)
+        for (int k = 0; k < AF_NP; k++)
+            coef[j][k] = (jb->pts[1 + j][k] - jb->pts[0][k]) * jb->inv_h[j];
     for (size_t i = jb->i0; i < jb->i1; i++) {
         bf_geom g;
-        double rho[3], A[3], B[3], dA[AF_NP], dB[AF_NP];
+        double rho[3], A, B, pA[AF_NP], pB[AF_NP], dA[AF_NP], dB[AF_NP];
         double a2 = sample_at(jb->samples, i, &g, rho);
-        bf_gltf_affine(&g, jb->pts[0], white, A, B);
+        bf_gltf_affine_grad(&g, jb->pts[0], &A, &B, pA, pB);
         for (int j = 0; j < np; j++) {
-            double Aj[3], Bj[3];
-            bf_gltf_affine(&g, jb->pts[1 + j], white, Aj, Bj);
-            dA[j] = (Aj[0] - A[0]) * jb->inv_h[j];
-            dB[j] = (Bj[0] - B[0]) * jb->inv_h[j];
+            dA[j] = af_step(pA, coef[j]);
+            dB[j] = af_step(pB, coef[j]);
         }
-        af_add(&jb->m, a2, rho, A[0], B[0], dA, dB);
+        af_add(&jb->m, a2, rho, A, B, dA, dB);
     }
     return NULL;
 }
@@ -153,6 +165,16 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
         m->rr[c] += samples->pair_see[c];
     (void)err;
     return BRDFFIT_OK;
+}
+
+brdffit_status bf_affine_subset(const brdffit_samples *mirror, brdffit_model model,
+                                const brdffit_samples **out, brdffit_error *err)
+{
+    size_t stride = (size_t)bf_model_def_get(model)->screen_stride;
+    *out = mirror;
+    if (stride <= 1 || mirror->n / stride < BF_SCREEN_MIN_SAMPLES)
+        return BRDFFIT_OK;
+    return bf_samples_every_kept(mirror, stride, out, err);
 }
 
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,

@@ -15,8 +15,8 @@
 #include <string.h>
 #include <unistd.h>
 
-static const char *const all_commands[] = { "fit",    "demo",   "models", "eval", "batch",
-                                            "report", "render", "plot",   "score" };
+static const char *const all_commands[] = { "fit",    "demo",   "models", "eval",  "batch",
+                                            "report", "render", "plot",   "score", "export" };
 #define NCOMMANDS ((int)(sizeof all_commands / sizeof all_commands[0]))
 
 #define expect_status TU_EXPECT_STATUS
@@ -76,6 +76,7 @@ START_TEST(help_shows_the_commands_options)
         { "batch", "--cutoff", "--size" },  { "render", "--size", "--theta-i" },
         { "plot", "--theta-i", "--size" },  { "score", "--params", "--shard" },
         { "eval", "--wi", "--cutoff" },     { "report", "--out", "--cutoff" },
+        { "export", "--format", "--cutoff" },
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char args[64];

@@ -4,7 +4,9 @@
  * The program is in rooms, one folder a job:
  *   brdffit.c     main: the table of subcommands, --help, --version
  *   commands/     one cmd_NAME.c per subcommand: fit and demo, models, eval,
- *                 batch, report, render, plot, score
+ *                 batch, report, render, plot, score, export
+ *   export/       the files export writes: glTF 2.0 (gltf_write.c, the
+ *                 sphere gltf_mesh.c), the files of fits it reads (fits_read.c)
  *   usage/        the command line: strict number parsing and usage errors
  *                 (args.c), the options of fit and demo (options.c), the help
  *                 text (usage.c) and the manual page (man.c) from one table,
@@ -124,6 +126,7 @@ int cmd_report(int argc, char **argv);
 int cmd_score(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 /* Their blocks of options (each beside the command's parser). */
 const cli_help_block *cli_batch_help(void);  /* batch_options.c                  */
 const cli_help_block *cli_draw_help(void);   /* cmd_render.c: render and plot    */
@@ -132,6 +135,7 @@ const cli_help_block *cli_plot_help(void);   /* cmd_plot.c                      
 const cli_help_block *cli_eval_help(void);   /* cmd_eval.c                       */
 const cli_help_block *cli_score_help(void);  /* cmd_score.c                      */
 const cli_help_block *cli_report_help(void); /* cmd_report.c                     */
+const cli_help_block *cli_export_help(void); /* cmd_export.c                     */
 
 /* ---- demo_material.c: the embedded synthetic material ---- */
 

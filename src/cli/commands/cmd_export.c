@@ -39,7 +39,8 @@ typedef struct export_run {
     const char *out;
     const char *path;              /* the file of fits being read             */
     gltf_mesh mesh;
-    int made_out;                  /* DIR exists                              */
+    int made_out;                  /* DIR is open (dir)                       */
+    out_dir dir;                   /* --out, opened once (outdir.h)            */
     int written, refused;
     int fatal;                     /* DIR cannot be made: nothing more is read */
     char other[MAX_OTHER_MODELS][BJ_MODEL_NAME_MAX]; /* models skipped        */
@@ -113,7 +114,7 @@ static int write_file(export_run *X, const char *file, const gltf_material *m)
     memset(&err, 0, sizeof err);
     char path[BJ_PATH_MAX];
     out_file o;
-    if (!X->made_out && out_mkdir(X->out, &err) != 0) {
+    if (!X->made_out && od_open(&X->dir, X->out, 1, &err) != 0) {
         X->fatal = 1; /* no file can be written: stop */
         goto fail;
     }
@@ -122,7 +123,7 @@ static int write_file(export_run *X, const char *file, const gltf_material *m)
         cli_error("%s/%s: path too long", X->out, file);
         return -1;
     }
-    if (out_open(&o, path, &err) != 0)
+    if (out_open(&o, &X->dir, file, &err) != 0)
         goto fail;
     gltf_write(o.f, m, &X->mesh);
     if (out_commit(&o, &err) != 0)
@@ -249,6 +250,8 @@ int cmd_export(int argc, char **argv)
         rc = X.written == 0 || X.refused ? CLI_FAILED : CLI_OK;
     }
     gltf_mesh_free(&X.mesh);
+    if (X.made_out)
+        od_close(&X.dir);
     free(files);
     return rc;
 }

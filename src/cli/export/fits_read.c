@@ -201,20 +201,15 @@ static int looks_like_json(FILE *in)
 
 int fits_read(const char *path, fits_visit visit, void *user, brdffit_error *err)
 {
-    FILE *in = fopen(path, "r");
-    if (!in) {
-        err->status = BRDFFIT_E_FILE_OPEN;
-        snprintf(err->message, sizeof err->message, "%.1800s: cannot open: %s", path,
-                 strerror(errno));
-        return -1;
-    }
     if (cli_is_directory(path)) {
-        fclose(in);
         err->status = BRDFFIT_E_FILE_NOT_REGULAR;
         snprintf(err->message, sizeof err->message,
                  "%.1800s: a directory (a batch's fits are DIR/fits.tsv)", path);
         return -1;
     }
+    FILE *in = cli_fopen_regular(path, err); /* a FIFO or device refused before it is read */
+    if (!in)
+        return -1;
     int rc = looks_like_json(in) ? read_jsonl(in, visit, user) : read_tsv(in, visit, user);
     if (rc != 0) {
         err->status = BRDFFIT_E_NO_MEMORY;

@@ -346,6 +346,29 @@ def test_real_batch_fits_tsv(tmp_path):
     assert written == 2 and len(os.listdir(tmp_path / "out")) == 2
 
 
+def test_batch_report_has_the_gltf_files_and_the_material_to_paste(tmp_path):
+    """A batch with the glTF models writes each fit's .gltf beside its page, and
+    the page shows the material object to paste, equal to the file's."""
+    import html
+    import re
+    out = tmp_path / "batch"
+    r = subprocess.run([CLI, "batch", "--demo", "--model", "gltf,gltf-ext,ward", "--no-render",
+                        "--no-plot", "--quiet", "--out", str(out)],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    (mdir,) = [d for d in out.iterdir() if d.is_dir()]
+    params = json.loads((mdir / "params.json").read_text())
+    page = (mdir / "index.html").read_text()
+    pasted = [json.loads(html.unescape(t)) for t in re.findall(r"<pre>(.*?)</pre>", page, re.S)]
+    fits = [f for f in params["fits"] if f["model"] in ("gltf", "gltf-ext")]
+    assert len(fits) == 2 and len(pasted) == 2
+    for rec, mat in zip(fits, pasted):
+        doc = check_file(mdir / f"{rec['material']}-{rec['model']}.gltf", rec)
+        assert mat == doc["materials"][0]
+        assert f'href="{rec["material"]}-{rec["model"]}.gltf"' in page
+    assert not list(mdir.glob("*ward*.gltf"))
+
+
 # ------------------------------------------------------------------ pygltflib and Blender
 
 def _venv_python():

@@ -67,46 +67,6 @@ static int name_ok(const char *name)
     return name[0] && !strchr(name, '/') && strcmp(name, ".") != 0 && strcmp(name, "..") != 0;
 }
 
-/* NULL when every value of the record is a finite number, else which is not.
- * The core material does not write ior, specular and the specular colour,
- * but a record with a value that is not a number is refused whatever it is. */
-static const char *all_finite(const fit_record *r, char *why, size_t len)
-{
-    static const char *const names[10] = { "base colour r", "base colour g", "base colour b",
-                                           "specular colour r", "specular colour g",
-                                           "specular colour b", "metallic", "roughness", "ior",
-                                           "specular" };
-    const double v[10] = { r->params.d[0], r->params.d[1], r->params.d[2], r->params.s[0],
-                           r->params.s[1], r->params.s[2], r->params.p[0], r->params.p[1],
-                           r->params.p[2], r->params.p[3] };
-    for (int k = 0; k < 10; k++)
-        if (!isfinite(v[k])) {
-            snprintf(why, len, "%s = %g is not a finite number", names[k], v[k]);
-            return why;
-        }
-    return NULL;
-}
-
-/* The record's values as a glTF material: NULL, or why not. */
-static const char *to_material(const fit_record *r, int ext, gltf_material *m, char *why,
-                               size_t len)
-{
-    if (!r->has_params || r->nparams < 4)
-        return "no parameters d, s, p (4 numbers: metallic, roughness, ior, specular)";
-    if (all_finite(r, why, len))
-        return why;
-    memset(m, 0, sizeof *m);
-    m->ext = ext;
-    for (int c = 0; c < 3; c++) {
-        m->base_color[c] = r->params.d[c];
-        m->specular_color[c] = r->params.s[c];
-    }
-    m->metallic = r->params.p[0];
-    m->roughness = r->params.p[1];
-    m->ior = r->params.p[2];
-    m->specular = r->params.p[3];
-    return gltf_material_check(m, why, len);
-}
 
 static int write_file(export_run *X, const char *file, const gltf_material *m)
 {
@@ -166,7 +126,7 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
         X->refused++;
         return 0;
     }
-    const char *bad = to_material(r, ext, &m, reason, sizeof reason);
+    const char *bad = gltf_material_of(r, ext, &m, reason, sizeof reason);
     if (bad) {
         cli_error("%s: line %ld: %s, %s: %s; not written", X->path, line, r->material, r->model,
                   bad);

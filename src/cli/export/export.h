@@ -5,7 +5,8 @@
  *                 --json` (or a batch journal), the TSV of a batch (fits.tsv)
  *   gltf_mesh.c   the sphere the material is shown on: its vertices and
  *                 triangles as glTF's little-endian buffer
- *   gltf_write.c  the glTF 2.0 file: one JSON text, the buffer embedded */
+ *   gltf_write.c  the glTF 2.0 file: one JSON text, the buffer embedded
+ *   gltf_record.c a fit record of a glTF model as the material written */
 #ifndef BRDFFIT_EXPORT_H
 #define BRDFFIT_EXPORT_H
 
@@ -73,5 +74,16 @@ typedef struct gltf_material {
 const char *gltf_material_check(const gltf_material *m, char *why, size_t len);
 /* The .gltf text of m on the sphere onto f. */
 void gltf_write(FILE *f, const gltf_material *m, const gltf_mesh *mesh);
+/* m as one glTF material object ({"name": ..., "pbrMetallicRoughness": ...,
+ * "extensions": ...}, the extensions when m->ext) onto f: what a .gltf's
+ * "materials" holds, and what the report shows to paste. */
+void gltf_write_material(FILE *f, const gltf_material *m);
+
+/* ---- gltf_record.c ---- */
+
+/* The values of fit record r (model gltf: ext 0; gltf-ext: ext 1) as a glTF
+ * material into m (its name left NULL): NULL, or why not (into why). */
+const char *gltf_material_of(const fit_record *r, int ext, gltf_material *m, char *why,
+                             size_t len);
 
 #endif

@@ -74,10 +74,10 @@ static void vec(FILE *f, const double *x, int n)
     putc(']', f);
 }
 
-static void write_material(FILE *f, const gltf_material *m)
+void gltf_write_material(FILE *f, const gltf_material *m)
 {
     double base[4] = { m->base_color[0], m->base_color[1], m->base_color[2], 1 };
-    fputs("\"materials\":[{\"name\":", f);
+    fputs("{\"name\":", f);
     json_string(f, m->name);
     fputs(",\"pbrMetallicRoughness\":{\"baseColorFactor\":", f);
     vec(f, base, 4);
@@ -95,7 +95,14 @@ static void write_material(FILE *f, const gltf_material *m)
         vec(f, m->specular_color, 3);
         fputs("}}", f);
     }
-    fputs("}],\n", f);
+    putc('}', f);
+}
+
+static void write_material(FILE *f, const gltf_material *m)
+{
+    fputs("\"materials\":[", f);
+    gltf_write_material(f, m);
+    fputs("],\n", f);
 }
 
 static void write_accessors(FILE *f, const gltf_mesh *mesh)

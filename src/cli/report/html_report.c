@@ -82,7 +82,8 @@ static const char *const page_css =
     "span.pub{display:block;color:#555;font-size:85%}"
     "figure{display:inline-block;margin:4px;text-align:center}"
     "figure img{display:block}figcaption{font-size:90%}"
-    "p.note{color:#555;font-size:90%}";
+    "p.note{color:#555;font-size:90%}"
+    "pre{white-space:pre-wrap;overflow-wrap:anywhere;background:#f6f6f6;padding:4px 6px}";
 
 void rp_html_begin(xml_writer *w, FILE *f, const char *title)
 {

@@ -199,7 +199,7 @@ def fit(ctx, samples, model, **options):
 
 def error_of(ctx, samples, model, params):
     """The "ngan-l2" Error of given parameters on a sample set (params: a
-    Params, a FitResult or d_r d_g d_b s_r s_g s_b p0 [p1 [p2]])."""
+    Params, a FitResult or d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]])."""
     _check_args(ctx, samples)
     m, _, cp = resolve(model, params)
     out = ctypes.c_double()

@@ -236,6 +236,12 @@ brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brd
                    names);
 }
 
+int bf_model_has_lobe(brdffit_model model)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    return mi && mi->colour_form == BRDFFIT_COLOUR_DS && (int)model < BF_LOBE_MODELS;
+}
+
 int bf_model_coord_param(brdffit_model model, int j)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);

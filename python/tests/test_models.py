@@ -70,7 +70,7 @@ def test_params(brdffit):
     assert list(c.p) == [10, 0.5, 2] and list(c.lambda_um) == [0.6, 0.5, 0.4]
     assert brdffit.Params.from_c(c, 3) == he
     for bad in (lambda: brdffit.Params([1, 2], 0, [1]),
-                lambda: brdffit.Params(0, 0, [1, 2, 3, 4]),
+                lambda: brdffit.Params(0, 0, [1, 2, 3, 4, 5]),
                 lambda: brdffit.Params("x", 0, [1]),
                 lambda: brdffit.Params(0, 0, ["a"]),
                 lambda: brdffit.Params.from_vector([1, 2, 3]),

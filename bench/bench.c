@@ -354,8 +354,8 @@ static int bench_passes(brdffit_context *ctx, const brdffit_samples *set, const 
     memset(&bs, 0, sizeof bs);
     int rc = 0;
     for (int m = 0; m < brdffit_model_count() && rc == 0; m++) {
-        if (!model_selected(a->models, (brdffit_model)m))
-            continue;
+        if (!model_selected(a->models, (brdffit_model)m) || !bf_model_has_lobe((brdffit_model)m))
+            continue; /* the glTF models have no data-pass kernel: part 2 times their fits */
         bf_pass_par pp;
         point_of((brdffit_model)m, &pp);
         rc = pass_row(ctx, s, (brdffit_model)m, &pp, 0, &bs, reps, creps, sum);
@@ -389,6 +389,34 @@ static void record_fit(brdffit_model m, const brdffit_fit_result *r)
     char benchmark[96];
     snprintf(benchmark, sizeof benchmark, "fit/%s/alum-bronze", brdffit_model_get(m)->name);
     bench_record_all(benchmark, f, (int)(sizeof f / sizeof f[0]));
+}
+
+/* The glTF models' fits against GGX's, alternating as above: the fastest of
+ * each, printed and recorded (fit/gltf/alum-bronze, fit/gltf-ext/...). */
+static int gltf_ratios(brdffit_context *ctx, const brdffit_samples *s, const bench_args *a,
+                       double *fit_seconds)
+{
+    static const brdffit_model gm[2] = { BRDFFIT_GLTF, BRDFFIT_GLTF_EXT };
+    for (int k = 0; k < 2; k++) {
+        if (!(fit_seconds[BRDFFIT_GGX] > 0 && fit_seconds[gm[k]] > 0))
+            continue;
+        int pairs = a->quick ? 1 : 3;
+        brdffit_fit_result r;
+        brdffit_fit_result_init(&r);
+        for (int rep = 0; rep < pairs; rep++)
+            if (!fit_fastest(ctx, s, BRDFFIT_GGX, 1, &r, fit_seconds) ||
+                !fit_fastest(ctx, s, gm[k], 1, &r, fit_seconds))
+                return 1;
+        const char *name = brdffit_model_get(gm[k])->name;
+        double ratio = fit_seconds[gm[k]] / fit_seconds[BRDFFIT_GGX];
+        printf("%s fit / ggx fit: %.1fx (%.3f s / %.3f s, the fastest of %d more runs each,\n"
+               "  alternating, and the above)\n",
+               name, ratio, fit_seconds[gm[k]], fit_seconds[BRDFFIT_GGX], pairs);
+        char benchmark[96];
+        snprintf(benchmark, sizeof benchmark, "fit/%s/alum-bronze", name);
+        bench_record(benchmark, "fit / ggx's fit ratio", ratio);
+    }
+    return 0;
 }
 
 /* 2. per model one complete fit (kernels built beforehand), the fastest of
@@ -440,7 +468,7 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
         sum->he_per_ct = fit_seconds[BRDFFIT_HE] / fit_seconds[BRDFFIT_COOK_TORRANCE];
         bench_record("fit/he/alum-bronze", "fit / cook-torrance's fit ratio", sum->he_per_ct);
     }
-    return 0;
+    return gltf_ratios(ctx, s, a, fit_seconds);
 }
 
 int main(int argc, char **argv)

@@ -601,8 +601,10 @@ typedef enum brdffit_at_bound {
     BRDFFIT_AT_BOUND_P0 = 1u << 0,  /* lobe parameter k: BRDFFIT_AT_BOUND_P0 << k */
     BRDFFIT_AT_BOUND_P1 = 1u << 1,
     BRDFFIT_AT_BOUND_P2 = 1u << 2,
-    BRDFFIT_AT_BOUND_LOBE = 7u,     /* any lobe parameter                       */
-    BRDFFIT_AT_BOUND_D_R = 1u << 8, /* d_c = 0: BRDFFIT_AT_BOUND_D_R << c       */
+    BRDFFIT_AT_BOUND_P3 = 1u << 3,
+    BRDFFIT_AT_BOUND_LOBE = 15u,    /* any lobe parameter                       */
+    BRDFFIT_AT_BOUND_D_R = 1u << 8, /* d_c = 0 (glTF: base colour 0 or 1):
+                                       BRDFFIT_AT_BOUND_D_R << c               */
     BRDFFIT_AT_BOUND_D_G = 1u << 9,
     BRDFFIT_AT_BOUND_D_B = 1u << 10,
     BRDFFIT_AT_BOUND_S_R = 1u << 12, /* s_c = 0: BRDFFIT_AT_BOUND_S_R << c      */

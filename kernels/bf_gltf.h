@@ -102,6 +102,43 @@ BF_FN void bf_gltf_affine(const bf_geom *g, const double *p, const double *col, 
     }
 }
 
+/* The affine form's A, B with a white specular colour (the same in every
+ * channel: what a fit takes), and their partials dA[k] = dA / dp_k,
+ * dB[k] = dB / dp_k in p = [metallic, roughness, ior, specularFactor].
+ * With q = (ior - 1) / (ior + 1) and w = specularFactor, F = w F1,
+ * F1 = q^2 + (1 - q^2) fw, and d specular / d a^2 = specular (1 / a^2 -
+ * 2 (N.H)^2 / t - (dgv + dgl) / (gv + gl)) (t, gv, gl as in bf_gltf_d and
+ * bf_gltf_vis); a roughness below BF_GLTF_ROUGHNESS_MIN has no effect. */
+BF_FN void bf_gltf_affine_grad(const bf_geom *g, const double *p, double *A, double *B,
+                               double *dA, double *dB)
+{
+    const double m = p[0], w = p[3];
+    double u = 1.0 - g->vh, u2 = u * u;
+    double fw = u2 * u2 * u;
+    double r = fmax(p[1], BF_GLTF_ROUGHNESS_MIN), a2 = (r * r) * (r * r);
+    double t = g->nh * g->nh * (a2 - 1.0) + 1.0;
+    double sv = sqrt(a2 + (1.0 - a2) * g->oz * g->oz), sl = sqrt(a2 + (1.0 - a2) * g->iz * g->iz);
+    double gv = g->iz * sv, gl = g->oz * sl;
+    double spec = (a2 / (BF_PI * t * t)) * (0.5 / (gv + gl));
+    double dgv = g->iz * (1.0 - g->oz * g->oz) / (2.0 * sv);
+    double dgl = g->oz * (1.0 - g->iz * g->iz) / (2.0 * sl);
+    double dspec_da2 = spec * (1.0 / a2 - 2.0 * g->nh * g->nh / t - (dgv + dgl) / (gv + gl));
+    double dspec = p[1] > BF_GLTF_ROUGHNESS_MIN ? dspec_da2 * 4.0 * (r * r * r) : 0.0;
+    double q = (p[2] - 1.0) / (p[2] + 1.0), q2 = fmin(q * q, 1.0);
+    double F1 = q2 + (1.0 - q2) * fw, F = w * F1;
+    double dF_ior = w * (1.0 - fw) * 4.0 * q / ((p[2] + 1.0) * (p[2] + 1.0));
+    *A = (1.0 - m) * (F * spec) + m * (fw * spec);
+    *B = (1.0 - m) * (1.0 - F) * (1.0 / BF_PI) + m * ((1.0 - fw) * spec);
+    dA[0] = (fw - F) * spec;
+    dB[0] = (1.0 - fw) * spec - (1.0 - F) * (1.0 / BF_PI);
+    dA[1] = ((1.0 - m) * F + m * fw) * dspec;
+    dB[1] = m * (1.0 - fw) * dspec;
+    dA[2] = (1.0 - m) * spec * dF_ior;
+    dB[2] = -(1.0 - m) * dF_ior * (1.0 / BF_PI);
+    dA[3] = (1.0 - m) * spec * F1;
+    dB[3] = -(1.0 - m) * F1 * (1.0 / BF_PI);
+}
+
 /* f_c for base colour base[c], specular colour col[c] and p. */
 BF_FN void bf_gltf(const bf_geom *g, const double *p, const double *base, const double *col,
                    double *f)

@@ -422,8 +422,7 @@ brdffit_status brdffit_context_prepare(brdffit_context *ctx, brdffit_model model
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "brdffit_context_prepare: ctx is NULL");
     if (!brdffit_model_get(model))
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
-    /* a model without a lobe (the glTF models) has no kernel to build */
-    if (ctx->backend == BRDFFIT_BACKEND_OPENCL && bf_model_has_lobe(model)) {
+    if (ctx->backend == BRDFFIT_BACKEND_OPENCL && bf_model_has_lobe(model)) { /* the glTF models: no kernel */
         cl_kernel full, value;
         brdffit_status st = bf_context_kernels(ctx, model, &full, &value, err);
         if (st != BRDFFIT_OK)

@@ -236,24 +236,28 @@ brdffit_status brdffit_model_from_name(const char *name, brdffit_model *out, brd
                    names);
 }
 
-int bf_model_has_lobe(brdffit_model model)
-{
-    const brdffit_model_info *mi = brdffit_model_get(model);
-    return mi && mi->colour_form == BRDFFIT_COLOUR_DS && (int)model < BF_LOBE_MODELS;
-}
-
 int bf_model_coord_param(brdffit_model model, int j)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);
     if (!mi)
         return -1;
     for (int k = 0, c = 0; k < mi->nparams; k++, c++) {
+        if (mi->params[k].lower == mi->params[k].upper) {
+            c--; /* held at its one value: not a coordinate */
+            continue;
+        }
         if (c == j)
             return k;
         if (mi->params[k].map == BRDFFIT_MAP_DIRECTION)
             k++; /* with the next parameter: one angle */
     }
     return -1;
+}
+
+int bf_model_has_lobe(brdffit_model model)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    return mi && mi->colour_form == BRDFFIT_COLOUR_DS;
 }
 
 int bf_model_ncoords(brdffit_model model)

@@ -68,14 +68,13 @@ typedef struct bf_model_def {
 /* The registry entry of a model, or NULL for an id out of range. */
 const bf_model_def *bf_model_def_get(brdffit_model model);
 
-/* 1 when the model is of the form f_c = d_c/pi + s_c K_c (colour_form
- * BRDFFIT_COLOUR_DS): it has a lobe K (BF_MODEL_LOBES of kernels/bf_models.h),
- * data passes and an OpenCL kernel.  0 for the glTF models (kernels/bf_gltf.h,
- * evaluated on the host only) and for an unknown id. */
+/* 1 when the model is of the form f = d/pi + s K with a lobe K in
+ * BF_MODEL_LOBES (the data pass and its kernel fit it), 0 for the others
+ * (the glTF models: fit/affine.c) and unknown ids. */
 int bf_model_has_lobe(brdffit_model model);
-
 /* The lobe coordinates a fit uses for a model: one per parameter, one per
- * DIRECTION pair (Lafortune: direction + n = 2); 0 for an unknown model. */
+ * DIRECTION pair (Lafortune: direction + n = 2), none for a parameter whose
+ * bounds are equal (held at that value); 0 for an unknown model. */
 int bf_model_ncoords(brdffit_model model);
 /* The first parameter of lobe coordinate j (-1 when out of range). */
 int bf_model_coord_param(brdffit_model model, int j);

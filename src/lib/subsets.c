@@ -8,6 +8,7 @@
 #include "registry.h"
 #include "samples.h"
 #include "subsets.h"
+#include "fit/affine.h"
 
 #include "bf_lobe_pass.h"
 
@@ -43,7 +44,9 @@ brdffit_status brdffit_samples_prepare(const brdffit_samples *samples, brdffit_m
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
     const brdffit_samples *sets[3] = { NULL, NULL, NULL }; /* all samples' mirror set, subsets */
     brdffit_status st = bf_samples_mirror_kept(samples, &sets[0], err);
-    if (st == BRDFFIT_OK)
+    if (st == BRDFFIT_OK && !bf_model_has_lobe(model)) /* the glTF models (fit/affine.c) */
+        st = bf_affine_subset(sets[0], model, &sets[1], err);
+    else if (st == BRDFFIT_OK)
         st = bf_screen_subsets(samples, model, &sets[1], &sets[2], err);
     for (int i = 0; i < 3 && st == BRDFFIT_OK; i++)
         if (sets[i] && sets[i]->n > 0 && bf_lobe_has_own_fd((int)model))

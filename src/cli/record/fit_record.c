@@ -66,6 +66,12 @@ void fr_set_fit(fit_record *r, brdffit_model model, brdffit_status st, const brd
     r->seconds_passes = res->seconds_passes;
     r->seconds_build = res->seconds_build;
     r->samples = (long long)res->samples;
+    if (res->backend == BRDFFIT_BACKEND_HOST && strcmp(r->backend, "host") != 0) {
+        /* a model the kernel does not have (the glTF models): the C loop */
+        snprintf(r->backend, sizeof r->backend, "host");
+        snprintf(r->backend_description, sizeof r->backend_description,
+                 "host: C loop in threads (%s has no OpenCL kernel)", mi->name);
+    }
 }
 
 int fr_ok(const fit_record *r)
@@ -95,10 +101,19 @@ int fr_retry(const fit_record *r)
 
 /* ------------------------------------------------------------------ at_bound */
 
-static const char *const linear_names[6] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b" };
 static const unsigned linear_bits[6] = { BRDFFIT_AT_BOUND_D_R, BRDFFIT_AT_BOUND_D_G,
                                          BRDFFIT_AT_BOUND_D_B, BRDFFIT_AT_BOUND_S_R,
                                          BRDFFIT_AT_BOUND_S_G, BRDFFIT_AT_BOUND_S_B };
+
+/* The name of colour c (0 .. 5: the first colour's r, g, b, the second's)
+ * of model: "d_r", ..., "s_b", or the glTF models' "base_color_r", ...
+ * (brdffit_model_info.colour_names). */
+static const char *linear_name(brdffit_model model, int c, char *buf, size_t len)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    snprintf(buf, len, "%s_%c", mi ? mi->colour_names[c / 3] : c < 3 ? "d" : "s", "rgb"[c % 3]);
+    return buf;
+}
 
 void fr_at_bound_names(brdffit_model model, unsigned at_bound, int with_linear,
                        void (*put)(const char *name, void *user), void *user)
@@ -107,9 +122,10 @@ void fr_at_bound_names(brdffit_model model, unsigned at_bound, int with_linear,
     for (int k = 0; mi && k < mi->nparams; k++)
         if (at_bound & ((unsigned)BRDFFIT_AT_BOUND_P0 << k))
             put(mi->params[k].name, user);
+    char name[64];
     for (int c = 0; with_linear && c < 6; c++)
         if (at_bound & linear_bits[c])
-            put(linear_names[c], user);
+            put(linear_name(model, c, name, sizeof name), user);
 }
 
 typedef struct text_buf {
@@ -142,9 +158,12 @@ unsigned fr_bound_bit(brdffit_model model, const char *name, size_t len)
     for (int k = 0; mi && k < mi->nparams; k++)
         if (strlen(mi->params[k].name) == len && strncmp(mi->params[k].name, name, len) == 0)
             return (unsigned)BRDFFIT_AT_BOUND_P0 << k;
-    for (int c = 0; c < 6; c++)
-        if (strlen(linear_names[c]) == len && strncmp(linear_names[c], name, len) == 0)
+    char lin[64];
+    for (int c = 0; c < 6; c++) {
+        linear_name(model, c, lin, sizeof lin);
+        if (strlen(lin) == len && strncmp(lin, name, len) == 0)
             return linear_bits[c];
+    }
     return 0;
 }
 

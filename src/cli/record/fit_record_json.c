@@ -77,6 +77,16 @@ void fr_write_json(FILE *f, const fit_record *r)
     } else {
         fputs("null", f);
     }
+    fputs(",\"colour_names\":", f);
+    if (mi) {
+        putc('[', f);
+        json_string(f, mi->colour_names[0]);
+        putc(',', f);
+        json_string(f, mi->colour_names[1]);
+        putc(']', f);
+    } else {
+        fputs("null", f);
+    }
     fputs(",\"status\":", f);
     json_string(f, fr_status_text(r));
     fprintf(f, ",\"status_code\":%d,\"message\":", (int)r->status);
@@ -109,7 +119,7 @@ void fr_write_json(FILE *f, const fit_record *r)
             json_list_put("limit", &l);
         fputs("],\"at_bound\":[", f);
         l.n = 0;
-        fr_at_bound_names(known ? model : BRDFFIT_WARD, known ? r->at_bound : r->at_bound & ~7u, 1,
+        fr_at_bound_names(known ? model : BRDFFIT_WARD, known ? r->at_bound : r->at_bound & ~(unsigned)BRDFFIT_AT_BOUND_LOBE, 1,
                           json_list_put, &l);
         putc(']', f);
     } else {
@@ -382,7 +392,7 @@ int fr_read_json(const char *line, fit_record *r, fr_need need)
         r->flags |= BRDFFIT_FIT_LIMIT;
     const jr_member *ab = jr_get(&o, "at_bound"), *ob = jr_get(&o, "on_bound");
     if (ab && ab->type == JR_ARRAY && ab->narr > 0) {
-        if (!ab->str || ab->narr > 9 || bound_bits(model, known, ab->str, "\n", 0, &r->at_bound) != 0)
+        if (!ab->str || ab->narr > 10 || bound_bits(model, known, ab->str, "\n", 0, &r->at_bound) != 0)
             goto done;
     } else if (ab && ab->type != JR_NULL && ab->type != JR_ARRAY) {
         goto done;

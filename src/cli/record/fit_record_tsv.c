@@ -39,7 +39,7 @@ double fr_ratio(const fit_record *fit, const fit_record *pub)
 
 void fr_write_tsv_header(FILE *f)
 {
-    fputs("material\tmodel\td_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\terror\tstatus\tstatus_code"
+    fputs("material\tmodel\td_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\tp3\terror\tstatus\tstatus_code"
           "\titerations\tpasses\tcminpack_info\tseconds\tsamples\tat_bound\tflags\tbackend"
           "\tpublished_error\tratio\tfile\tsize\thash\tmessage\n",
           f);
@@ -75,7 +75,7 @@ void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub)
     if (r->has_counts) {
         char b[128];
         fputs(fr_at_bound_text(fr_record_model(r, &model) ? model : BRDFFIT_WARD,
-                               fr_record_model(r, &model) ? r->at_bound : r->at_bound & ~7u, ",", b,
+                               fr_record_model(r, &model) ? r->at_bound : r->at_bound & ~(unsigned)BRDFFIT_AT_BOUND_LOBE, ",", b,
                                sizeof b),
               f);
         fprintf(f, "\t%s", r->flags & BRDFFIT_FIT_LIMIT ? "limit" : "");

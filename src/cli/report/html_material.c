@@ -21,7 +21,8 @@ int rp_write_params_tsv(const rp_report *rep, const rp_material *m, const char *
     if (rp_open_in(&o, dir, "params.tsv", err) != 0)
         return -1;
     fprintf(o.f, "# %s: metric %s, cutoff %g deg, scale %s, starts %d, brdffit %s; "
-                 "ratio = error / published_error; p0..p2 per model: brdffit models; "
+                 "ratio = error / published_error; p0..p3 per model (gltf: d = base_color, "
+                 "s = specular_color): brdffit models; "
                  "the columns: docs/fit-record.md\n",
             m->name, brdffit_metric_name(), rep->settings.cutoff_deg, rep->settings.scale,
             rep->settings.starts, rep->settings.version);
@@ -69,12 +70,13 @@ int rp_write_params_json(const rp_report *rep, const rp_material *m, const char 
 /* The parameter table of a material. */
 static void params_table(xml_writer *w, const rp_report *rep, const rp_material *m, int best)
 {
-    static const char *const head[] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0", "p1", "p2" };
+    static const char *const head[] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b",
+                                        "p0", "p1", "p2", "p3" };
     char b[64];
     xml_open(w, "table");
     xml_open(w, "tr");
     rp_cell(w, "th", "name", "model");
-    for (int i = 0; i < 9; i++)
+    for (int i = 0; i < 10; i++)
         rp_cell(w, "th", NULL, head[i]);
     rp_cell(w, "th", NULL, "Error");
     if (rep->have_published) {
@@ -94,7 +96,7 @@ static void params_table(xml_writer *w, const rp_report *rep, const rp_material 
         if (!fr_ok(f)) {
             xml_open(w, "td");
             xml_attr(w, "class", "failed");
-            xml_attr(w, "colspan", "10");
+            xml_attr(w, "colspan", "11");
             xml_textf(w, "failed: %s: %s", fr_status_text(f), f->message);
             xml_close(w);
         } else {
@@ -102,7 +104,7 @@ static void params_table(xml_writer *w, const rp_report *rep, const rp_material 
                 rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.4g", f->params.d[c]));
             for (int c = 0; c < 3; c++)
                 rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.4g", f->params.s[c]));
-            for (int q = 0; q < 3; q++) {
+            for (int q = 0; q < BRDFFIT_MAX_LOBE_PARAMS; q++) {
                 char t[96];
                 if (q < f->nparams)
                     snprintf(t, sizeof t, "%s %.4g", param_label(rep->models[k], q), f->params.p[q]);
@@ -203,7 +205,9 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
         xml_open(&w, "p");
         xml_attr(&w, "class", "note");
         xml_text(&w, "d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s, "
-                     "p0..p2 the lobe parameters in the paper's units; Error = ngan-l2 (1/sr); "
+                     "p0..p3 the lobe parameters in the paper's units (gltf, gltf-ext: "
+                     "d = base_color, s = specular_color, linear sRGB; p in glTF's names); "
+                     "Error = ngan-l2 (1/sr); "
                      "\xe2\x98\x85 the lowest Error");
         if (rep->have_published)
             xml_text(&w, "; published Error = the Error of the published parameters on this "

@@ -8,8 +8,8 @@
 
 /* ------------------------------------------------------------------ table */
 
-/* Column layout: model, d_rgb, s_rgb, p0..p2, Error, iterations, seconds. */
-#define ROW_FMT "%-17s  %9s %9s %9s  %9s %9s %9s  %10s %10s %10s  %11s %5s %8s%s\n"
+/* Column layout: model, d_rgb, s_rgb, p0..p3, Error, iterations, seconds. */
+#define ROW_FMT "%-17s  %9s %9s %9s  %9s %9s %9s  %10s %10s %10s %10s  %11s %5s %8s%s\n"
 
 static const char *num(char *buf, size_t len, const char *fmt, double x)
 {
@@ -44,7 +44,7 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
     else
         fprintf(f, "the model's default starts screened (%s)", cli_default_starts(dflt, sizeof dflt));
     fprintf(f, ", the best %d refined by Levenberg-Marquardt (cminpack lmder)\n\n", fo->refine);
-    fprintf(f, ROW_FMT, "model", "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0", "p1", "p2",
+    fprintf(f, ROW_FMT, "model", "d_r", "d_g", "d_b", "s_r", "s_g", "s_b", "p0", "p1", "p2", "p3",
             "Error", "iter", "seconds", "");
     fflush(f);
 }
@@ -82,14 +82,16 @@ static const char *row_note(const brdffit_fit_result *r, char *buf, size_t len)
 void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
                 const brdffit_params *p, double error, const brdffit_fit_result *r)
 {
-    char d[3][32], s[3][32], q[3][32], e[32], it[32], sec[32];
+    char d[3][32], s[3][32], q[BRDFFIT_MAX_LOBE_PARAMS][32], e[32], it[32], sec[32];
     for (int c = 0; c < 3; c++) {
         num(d[c], sizeof d[c], "%.4g", p->d[c]);
         num(s[c], sizeof s[c], "%.4g", p->s[c]);
-        if (c < mi->nparams)
-            num(q[c], sizeof q[c], "%.4g", p->p[c]);
+    }
+    for (int k = 0; k < BRDFFIT_MAX_LOBE_PARAMS; k++) {
+        if (k < mi->nparams)
+            num(q[k], sizeof q[k], "%.4g", p->p[k]);
         else
-            strcpy(q[c], "-");
+            strcpy(q[k], "-");
     }
     if (isfinite(error))
         num(e, sizeof e, "%.5g", error);
@@ -104,7 +106,7 @@ void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
     }
     char note[256];
     fprintf(f, ROW_FMT, label ? label : mi->name, d[0], d[1], d[2], s[0], s[1], s[2], q[0], q[1],
-            q[2], e, it, sec, row_note(r, note, sizeof note));
+            q[2], q[3], e, it, sec, row_note(r, note, sizeof note));
     fflush(f);
 }
 
@@ -123,7 +125,7 @@ void report_row_failed(FILE *f, brdffit_model model, const brdffit_error *err)
 
 void report_legend(FILE *f, const brdffit_model *models, int nmodels)
 {
-    fputs("\n  p0..p2:", f);
+    fputs("\n  p0..p3:", f);
     for (int i = 0; i < nmodels; i++) {
         const brdffit_model_info *mi = brdffit_model_get(models[i]);
         fprintf(f, "%s %s", i ? ";" : "", mi->name);
@@ -132,6 +134,12 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels)
             fprintf(f, " %s%s%s%s", pi->name, *pi->unit ? "[" : "", pi->unit, *pi->unit ? "]" : "");
         }
     }
+    for (int i = 0; i < nmodels; i++)
+        if (brdffit_model_get(models[i])->colour_form == BRDFFIT_COLOUR_GLTF) {
+            fputs("\n  gltf, gltf-ext: d = base_color, s = specular_color (linear sRGB);"
+                  " roughness = sqrt(alpha)", f);
+            break;
+        }
     fprintf(f, "\n  d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s;"
                " Error = %s (1/sr);\n  iter = Jacobian evaluations of the LM run kept,"
                " seconds = wall time of the fit\n",

@@ -6,7 +6,7 @@
  * samples), so that a fit's Error is brdffit_error_of's to the bit.  What
  * the caller sees, apart from how the fit gets there; docs/fitting.md,
  * "Result and status". */
-#include "fit_internal.h"
+#include "affine.h"
 
 #include "samples.h"
 
@@ -145,6 +145,22 @@ static brdffit_status open_all_samples(bf_pass_driver *ps, brdffit_context *ctx,
     return st == BRDFFIT_OK ? bf_driver_open(ps, ctx, all, model, err) : st;
 }
 
+/* brdffit_fit of a model without a lobe (the glTF models: affine.c). */
+static brdffit_status affine_fit(brdffit_context *ctx, const brdffit_samples *samples,
+                                 brdffit_model model, const brdffit_fit_options *o,
+                                 brdffit_fit_result *result, double t_start, brdffit_error *err)
+{
+    brdffit_fit_result r; /* the library's whole struct; the caller gets its size of it */
+    brdffit_status st = bf_affine_fit(ctx, samples, model, o, &r, err);
+    if (st != BRDFFIT_OK)
+        return st;
+    r.seconds = bf_now() - t_start;
+    st = bf_options_write(BRDFFIT_STRUCT_FIT_RESULT, &r, result, err);
+    if (st == BRDFFIT_OK)
+        bf_ok(err);
+    return st;
+}
+
 brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples, brdffit_model model,
                            const brdffit_fit_options *opt, brdffit_fit_result *result,
                            brdffit_error *err)
@@ -168,6 +184,8 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     st = check_enough_samples(samples, model, err);
     if (st != BRDFFIT_OK)
         return st;
+    if (!bf_model_has_lobe(model))
+        return affine_fit(ctx, samples, model, &o, result, t_start, err);
 
     bf_pass_driver ps, sd, bd; /* all samples (their mirror set); the screening's
                                 * subset and its bin subset */
@@ -238,6 +256,15 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
     brdffit_status st = brdffit_params_check(model, params, err);
     if (st != BRDFFIT_OK)
         return st;
+    if (!bf_model_has_lobe(model)) { /* summed directly (affine_pass.c) */
+        const brdffit_samples *all = NULL;
+        st = bf_samples_mirror_kept(samples, &all, err);
+        if (st == BRDFFIT_OK) {
+            *error = sqrt(fmax(bf_model_rr(all, model, params), 0.0));
+            bf_ok(err);
+        }
+        return st;
+    }
     bf_pass_driver ps;
     st = open_all_samples(&ps, ctx, samples, model, err);
     if (st == BRDFFIT_OK) {

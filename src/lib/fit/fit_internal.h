@@ -20,10 +20,13 @@ enum { MAX_KEEP = 16 };
 /* How lobe coordinate j maps to the model's parameters (registry.c). */
 typedef struct fitmap {
     brdffit_model model;
-    int nl;                     /* lobe coordinates */
-    brdffit_param_map kind[BF_MAX_NP];
-    int param[BF_MAX_NP];       /* the (first) lobe parameter of coordinate j */
-    double lo[BF_MAX_NP], hi[BF_MAX_NP]; /* bounds, in log units for BRDFFIT_MAP_LOG */
+    int nl;                     /* lobe coordinates (at most BF_MAX_NP for a
+                                 * model with a lobe, BRDFFIT_MAX_LOBE_PARAMS
+                                 * for the affine engine's) */
+    brdffit_param_map kind[BRDFFIT_MAX_LOBE_PARAMS];
+    int param[BRDFFIT_MAX_LOBE_PARAMS]; /* the (first) lobe parameter of coordinate j */
+    double lo[BRDFFIT_MAX_LOBE_PARAMS], hi[BRDFFIT_MAX_LOBE_PARAMS]; /* bounds, in log
+                                 * units for BRDFFIT_MAP_LOG */
 } fitmap;
 
 /* A screened start. */
@@ -104,9 +107,9 @@ typedef struct fitsubsets {
 /* fm for model: its lobe coordinates, their parameters, maps and bounds. */
 void bf_fitmap_init(fitmap *fm, brdffit_model model);
 /* Lobe coordinates u -> lobe parameters p in the paper's units. */
-void bf_coords_to_params(const fitmap *fm, const double *u, double p[3]);
+void bf_coords_to_params(const fitmap *fm, const double *u, double *p);
 /* Lobe parameters p -> lobe coordinates u (the inverse map, clamped to the bounds). */
-void bf_params_to_coords(const fitmap *fm, const double p[3], double *u);
+void bf_params_to_coords(const fitmap *fm, const double *p, double *u);
 /* Where coordinate j at u stands in its range: 0 lower bound, 1 upper, -1 a direction. */
 double bf_coord_position(const fitmap *fm, int j, double u);
 /* The places of lobe coordinates x, two a coordinate (see BF_END_PLACES). */

@@ -47,9 +47,14 @@ static double map_inv(const fitmap *fm, int j, double v)
     return asin(fmin(fmax(t, -1.0), 1.0));
 }
 
-void bf_coords_to_params(const fitmap *fm, const double *u, double p[3])
+/* p gets BF_MAX_NP entries for a model with a lobe (the pass's points),
+ * BRDFFIT_MAX_LOBE_PARAMS for the others; a held parameter (one whose bounds
+ * are equal: bf_model_coord_param) its value. */
+void bf_coords_to_params(const fitmap *fm, const double *u, double *p)
 {
-    p[0] = p[1] = p[2] = 0.0;
+    double start[BRDFFIT_MAX_LOBE_PARAMS];
+    bf_model_start_params(fm->model, start);
+    memcpy(p, start, (bf_model_has_lobe(fm->model) ? BF_MAX_NP : BRDFFIT_MAX_LOBE_PARAMS) * sizeof *p);
     for (int j = 0; j < fm->nl; j++) {
         int k = fm->param[j];
         if (fm->kind[j] == BRDFFIT_MAP_DIRECTION) {
@@ -61,7 +66,7 @@ void bf_coords_to_params(const fitmap *fm, const double *u, double p[3])
     }
 }
 
-void bf_params_to_coords(const fitmap *fm, const double p[3], double *u)
+void bf_params_to_coords(const fitmap *fm, const double *p, double *u)
 {
     for (int j = 0; j < fm->nl; j++) {
         int k = fm->param[j];

@@ -121,10 +121,12 @@ class FitResult:
     def at_bound_names(self):
         """The parameters on a bound, as the program names them: lobe
         parameters by their registry names ("F0", "m"), then "d_r".."d_b"
-        (d_c = 0) and "s_r".."s_b" (s_c = 0)."""
+        (d_c = 0) and "s_r".."s_b" (s_c = 0); a glTF model's colours by its
+        colour_names ("base_color_r": 0 or 1)."""
         bits = int(self.at_bound)
         names = [p.name for k, p in enumerate(self.model.params) if bits & (AtBound.P0 << k)]
-        for first, letter in ((AtBound.D_R, "d"), (AtBound.S_R, "s")):
+        cn = self.model.colour_names
+        for first, letter in ((AtBound.D_R, cn[0]), (AtBound.S_R, cn[1])):
             names += [f"{letter}_{c}" for k, c in enumerate("rgb") if bits & (first << k)]
         return names
 

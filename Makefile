@@ -309,6 +309,13 @@ bench-database: $(BUILD)/bench_brdffit $(BUILD)/brdffit
 	$(RUN_ENV) BRDFFIT_CLI=$(CURDIR)/$(BUILD)/brdffit ./$(BUILD)/bench_brdffit --database \
 	    --rounds $(BENCH_ROUNDS) --baseline bench/baseline-errors.tsv $(BENCH_RECORD_ARG)
 
+# The glTF models beside GGX on the 100 tables (bench/gltf_database.py):
+# medians of the Errors and of their ratios to GGX's, where metallic ends,
+# the parameters on a bound (docs/gltf.md).  A few minutes.
+bench-gltf: $(BUILD)/brdffit
+	python3 bench/gltf_database.py $(CURDIR)/$(BUILD)/brdffit $(BUILD)/bench-gltf \
+	    $(if $(BENCH_RECORD),--record)
+
 # The Python package's eval on 1,000,000 pairs against the same call from C.
 $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdffit.so
 	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $< -L$(BUILD) -lbrdffit -Wl,-rpath,$(CURDIR)/$(BUILD) $(LDFLAGS)
@@ -436,5 +443,5 @@ clean:
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
 
-.PHONY: all demo test sanitize tsan fuzz bench bench-ceres bench-database bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan fuzz bench bench-ceres bench-database bench-gltf bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

@@ -267,6 +267,10 @@ typedef struct brdffit_model_info {
     int colour_form;
     const char *colour_names[2]; /* the names of d and s: "d", "s" or
                                     "base_color", "specular_color"            */
+    int in_default_set;          /* 1: the program fits it when no model is
+                                    named (the paper's models and GGX); the
+                                    glTF models are fitted when named or with
+                                    "all" (their fits take longer: no kernel) */
 } brdffit_model_info;
 
 enum { BRDFFIT_COLOUR_DS = 0, BRDFFIT_COLOUR_GLTF = 1 };

@@ -58,6 +58,7 @@ class ModelInfo(C.Structure):
         ("params", C.POINTER(ParamInfo)),
         ("colour_form", C.c_int),
         ("colour_names", C.c_char_p * 2),
+        ("in_default_set", C.c_int),
     ]
 
 

@@ -30,6 +30,7 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, params),
     M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, colour_form),
     M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, colour_names),
+    M(BRDFFIT_STRUCT_MODEL_INFO, brdffit_model_info, in_default_set),
 
     M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, name),
     M(BRDFFIT_STRUCT_PARAM_INFO, brdffit_param_info, unit),

@@ -72,12 +72,13 @@ static const brdffit_param_info gltf_params[] = {
 static const brdffit_param_info gltf_ext_params[] = {
     GLTF_METALLIC,
     GLTF_ROUGHNESS,
-    { "ior", "", 1, 10, 1.5, BRDFFIT_MAP_LOG, "index of refraction (KHR_materials_ior)" },
+    { "ior", "", 1, 1000, 1.5, BRDFFIT_MAP_LOG, "index of refraction (KHR_materials_ior)" },
     { "specular", "", 0, 1, 1, BRDFFIT_MAP_LINEAR,
       "strength of the dielectric specular (KHR_materials_specular specularFactor)" },
 };
 
-#define DS_COLOURS .colour_form = BRDFFIT_COLOUR_DS, .colour_names = { "d", "s" }
+#define DS_COLOURS .colour_form = BRDFFIT_COLOUR_DS, .colour_names = { "d", "s" }, \
+    .in_default_set = 1
 #define GLTF_COLOURS .colour_form = BRDFFIT_COLOUR_GLTF, \
     .colour_names = { "base_color", "specular_color" }
 

@@ -34,8 +34,16 @@ const cli_help_block *cli_options_help(void)
     char *wrap = strchr(names + strlen(names) / 2, ' '); /* two lines, at a ", " */
     if (wrap)
         *wrap = '\n';
+    char extra[128] = ""; /* the models fitted only when named (registry: in_default_set) */
+    for (int k = 0; k < brdffit_model_count(); k++) {
+        const brdffit_model_info *mi = brdffit_model_get((brdffit_model)k);
+        size_t used = strlen(extra);
+        if (!mi->in_default_set)
+            snprintf(extra + used, sizeof extra - used, "%s%s", used ? ", " : "", mi->name);
+    }
     snprintf(model_text, sizeof model_text,
-             "models to fit (repeatable; default all; any case):\n%s", names);
+             "models to fit (repeatable; any case; default all but\n"
+             "%s: their fits take longer):\n%s", extra, names);
     snprintf(starts_text, sizeof starts_text,
              "starting points screened per model, 1..1000\n(default: the model's own, %s)",
              cli_default_starts(starts, sizeof starts));
@@ -206,7 +214,8 @@ int cli_parse_options(int argc, char **argv, cli_options *o)
     }
     if (rc == CLI_OK && o->nmodels == 0)
         for (int k = 0; k < brdffit_model_count(); k++)
-            o->models[o->nmodels++] = (brdffit_model)k;
+            if (brdffit_model_get((brdffit_model)k)->in_default_set)
+                o->models[o->nmodels++] = (brdffit_model)k;
     return rc;
 }
 

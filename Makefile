@@ -354,13 +354,14 @@ bench-ceres:
 # ---- install / uninstall ----
 # The header, both libraries (libbrdffit.so.VERSION, its soname link and the
 # .so link), brdffit.pc, the program, and the drop-in evaluator headers a
-# renderer includes (docs/library.md): kernels/bf_lobe.h and every header it includes,
-# as <brdffit/bf_lobe.h>.
+# renderer includes (docs/library.md): kernels/bf_lobe.h and kernels/bf_gltf.h
+# and every header they include, as <brdffit/bf_lobe.h>, <brdffit/bf_gltf.h>.
 LIBDIR     = $(PREFIX)/lib
 INCLUDEDIR = $(PREFIX)/include
 BINDIR     = $(PREFIX)/bin
 MAN1DIR    = $(PREFIX)/share/man/man1
-DROPIN_HEADERS = $(shell $(CC) -MM -MT x -x c kernels/bf_lobe.h | sed -e 's/^x://' -e 's/\\//g')
+DROPIN_HEADERS = $(sort $(foreach h,kernels/bf_lobe.h kernels/bf_gltf.h,\
+                   $(shell $(CC) -MM -MT x -x c $(h) | sed -e 's/^x://' -e 's/\\//g')))
 # brdffit.pc's Libs carries -Wl,-rpath,${libdir} for every prefix but / and
 # /usr, so that a program linked through `pkg-config --libs brdffit` finds
 # libbrdffit.so.1 where it was installed, without LD_LIBRARY_PATH.  /usr/lib

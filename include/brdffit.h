@@ -50,6 +50,13 @@
  *                            (Trowbridge-Reitz), G2 = 1 / (1 + L(wi) + L(wo))
  *                            (height-correlated Smith), L(w) = (sqrt(1 + a^2
  *                            tan^2 theta_w) - 1) / 2
+ *     gltf [metallic, roughness, ior = 1.5, specular = 1]  not d/pi + s K:
+ *                            the glTF 2.0 metallic-roughness material
+ *                            (Appendix B), d = base colour in [0, 1], s =
+ *                            specular colour (1, 1, 1); alpha = roughness^2
+ *     gltf-ext [metallic, roughness, ior, specular]  the same with
+ *                            KHR_materials_ior and KHR_materials_specular
+ *                            (s = specularColorFactor): kernels/bf_gltf.h
  *     F(F0, c) = F0 + (1 - F0)(1 - c)^5 (Schlick).
  *   The Lafortune lobe depends on (Cxy, Cz) only through their direction;
  *   fits report them scaled to 2 Cxy^2 + Cz^2 = 1.

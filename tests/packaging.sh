@@ -85,7 +85,7 @@ for f in include/brdffit.h include/brdffit/bf_lobe.h include/brdffit/bf_common.h
 done
 # the drop-in headers hold the lobes' values (the closed-form lobes, He's
 # model) and none of a data pass's machinery
-for f in bf_he_model.h bf_models.h; do
+for f in bf_he_model.h bf_models.h bf_gltf.h; do
     if [ -f "$D$P/include/brdffit/$f" ]; then pass; else fail "make install did not install $P/include/brdffit/$f"; fi
 done
 for f in bf_lobe_pass.h bf_pass.h bf_layout.h bf_he_pass.h bf_he_rows.h bf_he_stages.h \

@@ -317,16 +317,17 @@ START_TEST(fit_good_and_missing)
                       strstr(r.out, "scale standard"),
                   "no metric line:\n%s", r.out);
     ck_assert_msg(strstr(r.out, "backend ") != NULL, "no backend line:\n%s", r.out);
-    /* the ward row: name, 3 + 3 + 1 numbers, '-' '-', the Error */
+    /* the ward row: name, 3 + 3 + 1 numbers, '-' for p1 p2 p3, the Error */
     const char *row = strstr(r.out, "\nward ");
     ck_assert_msg(row != NULL, "no ward row:\n%s", r.out);
     double v[7], e;
-    char d1[8], d2[8];
-    int got = sscanf(row, " ward %lf %lf %lf %lf %lf %lf %lf %7s %7s %lf", &v[0], &v[1], &v[2],
-                     &v[3], &v[4], &v[5], &v[6], d1, d2, &e);
-    ck_assert_msg(got == 10, "ward row not parsed (%d fields): %.200s", got, row);
+    char d1[8], d2[8], d3[8];
+    int got = sscanf(row, " ward %lf %lf %lf %lf %lf %lf %lf %7s %7s %7s %lf", &v[0], &v[1], &v[2],
+                     &v[3], &v[4], &v[5], &v[6], d1, d2, d3, &e);
+    ck_assert_msg(got == 11, "ward row not parsed (%d fields): %.200s", got, row);
     ck_assert_str_eq(d1, "-");
     ck_assert_str_eq(d2, "-");
+    ck_assert_str_eq(d3, "-");
     ck_assert(isfinite(e) && e > 0 && e < 1);
     for (int k = 0; k < 6; k++)
         ck_assert(v[k] >= 0);
@@ -532,6 +533,26 @@ START_TEST(eval_usage_errors)
 }
 END_TEST
 
+/* A glTF model's numbers are named by its colours and parameters in eval's
+ * messages; a core-material value it refuses is named too. */
+START_TEST(eval_gltf_names)
+{
+    run_out r = run("eval gltf 0.5 0.5 0.5 1 1 1 0.5 0.5 1.5 --wi 0 0 1 --wo 0 0 1");
+    expect_status(r, 2, "eval gltf, 9 numbers");
+    ck_assert_msg(strstr(r.err, "base_color_r base_color_g base_color_b specular_color_r "
+                                "specular_color_g specular_color_b metallic roughness ior specular"),
+                  "%s", r.err);
+    run_free(&r);
+    r = run("eval gltf 0.5 0.5 0.5 1 0.5 1 0.5 0.5 1.5 1 --wi 0 0 1 --wo 0 0 1");
+    expect_status(r, 2, "eval gltf, a specular colour");
+    ck_assert_msg(strstr(r.err, "specular_color_g"), "%s", r.err);
+    run_free(&r);
+    r = run("eval gltf-ext 0.5 0.5 0.5 1 0.5 1 0.5 0.5 2.2 0.8 --wi 0 0 1 --wo 0.6 0 0.8");
+    expect_status(r, 0, "eval gltf-ext");
+    run_free(&r);
+}
+END_TEST
+
 Suite *cli_suite(void)
 {
     Suite *s = suite_create("cli");
@@ -549,6 +570,7 @@ Suite *cli_suite(void)
     tcase_add_test(tu, json_failure_records);
     tcase_add_test(tu, eval_matches_library);
     tcase_add_loop_test(tu, eval_usage_errors, 0, (int)(sizeof bad_evals / sizeof bad_evals[0]));
+    tcase_add_test(tu, eval_gltf_names);
     suite_add_tcase(s, tu);
 
     TCase *tf = tcase_create("fit");

@@ -6,6 +6,7 @@
  * take; the registry itself and the ABI values it pins. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
+#include "registry.h"
 #include "bf_lobe_pass.h"
 
 #include <check.h>
@@ -63,20 +64,35 @@ START_TEST(reference_values)
 }
 END_TEST
 
-/* The closed-form models of the registry, in id order. */
-static int closed_form(brdffit_model *out)
+/* The closed-form models of the registry, in id order: those with a lobe
+ * (lobes = 1: the form d/pi + s K, bf_model_has_lobe) or all (the glTF
+ * models too). */
+static int closed_form_of(brdffit_model *out, int lobes)
 {
     int n = 0;
     for (int m = 0; m < brdffit_model_count(); m++)
-        if (!brdffit_model_get((brdffit_model)m)->chromatic)
+        if (!brdffit_model_get((brdffit_model)m)->chromatic &&
+            (!lobes || bf_model_has_lobe((brdffit_model)m)))
             out[n++] = (brdffit_model)m;
     return n;
+}
+
+static int closed_form(brdffit_model *out)
+{
+    return closed_form_of(out, 0);
 }
 
 static brdffit_model closed_form_model(int i)
 {
     brdffit_model ms[BRDFFIT_MODEL_COUNT];
     ck_assert_int_lt(i, closed_form(ms));
+    return ms[i];
+}
+
+static brdffit_model closed_lobe_model(int i)
+{
+    brdffit_model ms[BRDFFIT_MODEL_COUNT];
+    ck_assert_int_lt(i, closed_form_of(ms, 1));
     return ms[i];
 }
 
@@ -91,6 +107,13 @@ static void published(brdffit_model m, brdffit_params *p)
                                        { 0 }, { 0 } };
     *p = ds;
     tu_start_params(m, p->p);
+    if (brdffit_model_get(m)->colour_form == BRDFFIT_COLOUR_GLTF) { /* a bronze-like metal */
+        for (int c = 0; c < 3; c++) {
+            p->d[c] = 10 * ds.d[c];
+            p->s[c] = 1.0;
+        }
+        p->p[0] = 0.7;
+    }
 }
 
 START_TEST(reciprocity)
@@ -364,7 +387,10 @@ START_TEST(model_table)
             const brdffit_param_info *pi = brdffit_model_param((brdffit_model)m, k);
             ck_assert_ptr_eq(pi, &mi->params[k]);
             ck_assert(pi->name && *pi->name && pi->unit && pi->description && *pi->description);
-            ck_assert(pi->lower < pi->upper);
+            /* lower == upper: a parameter the model holds fixed (the core
+             * glTF material's ior and specular) */
+            ck_assert(pi->lower < pi->upper ||
+                      (pi->lower == pi->upper && mi->colour_form == BRDFFIT_COLOUR_GLTF));
             ck_assert(pi->start >= pi->lower && pi->start <= pi->upper);
             ck_assert(pi->map == BRDFFIT_MAP_LOG || pi->map == BRDFFIT_MAP_LINEAR ||
                       pi->map == BRDFFIT_MAP_DIRECTION);
@@ -378,10 +404,18 @@ START_TEST(model_table)
         }
         ck_assert_ptr_null(brdffit_model_param((brdffit_model)m, mi->nparams));
         ck_assert_ptr_null(brdffit_model_param((brdffit_model)m, -1));
-        /* the default parameters are valid */
+        /* the default parameters are valid (with colours 0, or for a glTF
+         * model the core material's white specular colour) */
+        ck_assert(mi->colour_form == BRDFFIT_COLOUR_DS || mi->colour_form == BRDFFIT_COLOUR_GLTF);
+        ck_assert(mi->colour_names[0] && mi->colour_names[1]);
+        ck_assert_str_eq(mi->colour_names[0], mi->colour_form == BRDFFIT_COLOUR_DS ? "d" : "base_color");
+        ck_assert_str_eq(mi->colour_names[1],
+                         mi->colour_form == BRDFFIT_COLOUR_DS ? "s" : "specular_color");
         brdffit_params p;
         memset(&p, 0, sizeof p);
         tu_start_params((brdffit_model)m, p.p);
+        for (int c = 0; c < 3 && mi->colour_form == BRDFFIT_COLOUR_GLTF; c++)
+            p.s[c] = 1.0;
         ck_assert_int_eq(brdffit_params_check((brdffit_model)m, &p, NULL), BRDFFIT_OK);
     }
     brdffit_model m;
@@ -420,7 +454,15 @@ START_TEST(lobe_list_is_the_registry)
 #undef LOBE_ROW
     };
     int n = (int)(sizeof lobes / sizeof lobes[0]);
-    ck_assert_int_eq(n, brdffit_model_count());
+    ck_assert_int_eq(n, BF_LOBE_MODELS);
+    /* the models with a lobe are ids 0 .. n-1; the rest (the glTF models) have none */
+    for (int m = 0; m < brdffit_model_count(); m++) {
+        ck_assert_int_eq(bf_model_has_lobe((brdffit_model)m), m < n);
+        ck_assert_int_eq(brdffit_model_get((brdffit_model)m)->colour_form,
+                         m < n ? BRDFFIT_COLOUR_DS : BRDFFIT_COLOUR_GLTF);
+    }
+    ck_assert(!bf_model_has_lobe((brdffit_model)brdffit_model_count()));
+    ck_assert(!bf_model_has_lobe((brdffit_model)-1));
     for (int i = 0; i < n; i++) {
         ck_assert_int_eq(lobes[i].id, i);
         char want[64];
@@ -494,7 +536,7 @@ static void fd_pointwise(int model, const bf_geom *g, const double (*p)[3], int 
  * box too.  K0 is the lobe's value, bit for bit. */
 START_TEST(partials_match_differences)
 {
-    brdffit_model m = closed_form_model(_i);
+    brdffit_model m = closed_lobe_model(_i);
     const brdffit_model_info *mi = brdffit_model_get(m);
     ck_assert_int_ne(bf_lobe_fd_kind((int)m), BF_FD_KIND_OWN);
     const double lam[3] = { 0.645, 0.526, 0.444 };
@@ -583,10 +625,10 @@ Suite *models_suite(void)
     TCase *tc = tcase_create("closed-form");
     tcase_set_timeout(tc, 60);
     brdffit_model ms[BRDFFIT_MODEL_COUNT];
-    int nclosed = closed_form(ms);
+    int nclosed = closed_form(ms), nlobes = closed_form_of(ms, 1);
     tcase_add_loop_test(tc, reciprocity, 0, nclosed);
     tcase_add_loop_test(tc, finite_everywhere, 0, nclosed);
-    tcase_add_loop_test(tc, partials_match_differences, 0, nclosed);
+    tcase_add_loop_test(tc, partials_match_differences, 0, nlobes);
     tcase_add_test(tc, exponent_million);
     tcase_add_test(tc, exp_function);
     tcase_add_test(tc, bad_parameters);

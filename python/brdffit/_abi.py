@@ -180,7 +180,7 @@ STRUCT_KINDS = {
 # at_bound and flags, by the C name less its prefix (BRDFFIT_AT_BOUND_,
 # BRDFFIT_FIT_).
 AT_BOUND_BITS = {
-    "P0": 1 << 0, "P1": 1 << 1, "P2": 1 << 2, "LOBE": 7,
+    "P0": 1 << 0, "P1": 1 << 1, "P2": 1 << 2, "P3": 1 << 3, "LOBE": 15,
     "D_R": 1 << 8, "D_G": 1 << 9, "D_B": 1 << 10,
     "S_R": 1 << 12, "S_G": 1 << 13, "S_B": 1 << 14,
 }
@@ -188,6 +188,7 @@ FIT_FLAG_BITS = {"LIMIT": 1 << 0}
 
 # brdffit_param_map (pinned values).
 PARAM_MAPS = {0: "log", 1: "linear", 2: "direction"}
+COLOUR_FORMS = {0: "ds", 1: "gltf"}  # brdffit_model_info.colour_form (BRDFFIT_COLOUR_*)
 
 # brdffit_scale, brdffit_interp, brdffit_backend (pinned values).
 SCALES = {"standard": 0, "flat": 1}

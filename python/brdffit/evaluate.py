@@ -11,7 +11,7 @@ def eval(model, params, wi, wo, out=None):  # noqa: A001 (the C API's name)
     """f(wi, wo) per channel, without the cosine factor, in 1/sr.
 
     model: a name, id or Model; params: a Params, a fit result, or
-    d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]; wi, wo: arrays of shape (..., 3)
+    d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]]; wi, wo: arrays of shape (..., 3)
     (broadcast against each other; wi toward the light, wo toward the
     viewer; need not be unit).  Returns an array of shape (..., 3) (R, G, B),
     or fills out.  One brdffit_eval_batch call for all pairs; no copy of

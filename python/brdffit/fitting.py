@@ -125,10 +125,12 @@ class FitResult:
     def at_bound_names(self):
         """The parameters on a bound, as the program names them: lobe
         parameters by their registry names ("F0", "m"), then "d_r".."d_b"
-        (d_c = 0) and "s_r".."s_b" (s_c = 0)."""
+        (d_c = 0) and "s_r".."s_b" (s_c = 0); a glTF model's colours by its
+        colour_names ("base_color_r": 0 or 1)."""
         bits = int(self.at_bound)
         names = [p.name for k, p in enumerate(self.model.params) if bits & (AtBound.P0 << k)]
-        for first, letter in ((AtBound.D_R, "d"), (AtBound.S_R, "s")):
+        cn = self.model.colour_names
+        for first, letter in ((AtBound.D_R, cn[0]), (AtBound.S_R, cn[1])):
             names += [f"{letter}_{c}" for k, c in enumerate("rgb") if bits & (first << k)]
         return names
 
@@ -205,7 +207,7 @@ def fit(ctx, samples, model, **options):
 
 def error_of(ctx, samples, model, params):
     """The "ngan-l2" Error of given parameters on a sample set (params: a
-    Params, a FitResult or d_r d_g d_b s_r s_g s_b p0 [p1 [p2]])."""
+    Params, a FitResult or d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]])."""
     _check_args(ctx, samples)
     m, _, cp = resolve(model, params)
     out = ctypes.c_double()

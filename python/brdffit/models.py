@@ -33,8 +33,11 @@ class Param:
 class Model:
     """A model of the registry: ``id`` (brdffit_model), ``name``
     ("cook-torrance"), ``title`` ("Cook-Torrance"), its lobe ``params`` and
-    whether its lobe differs per channel (``chromatic``), and the number of
-    starting points a fit screens by default (``default_starts``)."""
+    whether its lobe differs per channel (``chromatic``), the number of
+    starting points a fit screens by default (``default_starts``), how the
+    two colours of a Params enter (``colour_form``: "ds", f = d/pi + s K, or
+    "gltf", the glTF material) and their names (``colour_names``: ("d", "s"),
+    or ("base_color", "specular_color") for the glTF models)."""
 
     id: int
     name: str
@@ -42,6 +45,8 @@ class Model:
     params: Tuple[Param, ...]
     chromatic: bool
     default_starts: int
+    colour_form: str = "ds"
+    colour_names: Tuple[str, str] = ("d", "s")
 
     @property
     def nparams(self):
@@ -87,7 +92,9 @@ def models():
             for pi in (mi.params[k] for k in range(mi.nparams))
         )
         out.append(Model(mi.id, _text(mi.name), _text(mi.title), params, bool(mi.chromatic),
-                         mi.default_starts))
+                         mi.default_starts,
+                         colour_form=_abi.COLOUR_FORMS.get(mi.colour_form, str(mi.colour_form)),
+                         colour_names=(_text(mi.colour_names[0]), _text(mi.colour_names[1]))))
     result = tuple(out)
     _cache[id(lib)] = (lib, result)
     return result
@@ -128,7 +135,9 @@ def _vector3(name, value, default=None):
 class Params:
     """A parameter set: Lambertian albedo ``d`` (R, G, B), specular
     coefficient ``s`` (R, G, B), lobe parameters ``p`` in the paper's units,
-    and for He the wavelengths ``lambda_um`` (0 = the defaults).
+    and for He the wavelengths ``lambda_um`` (0 = the defaults).  For the glTF
+    models ``d`` is the base colour, ``s`` the specular colour and ``p``
+    metallic, roughness, ior, specular (Model.colour_names, param_names).
 
     Params(d, s, p) or Params.from_vector([d_r, d_g, d_b, s_r, s_g, s_b, p0, ...]).
     A single number for d or s means the same for the three channels."""
@@ -147,11 +156,11 @@ class Params:
 
     @classmethod
     def from_vector(cls, values):
-        """From d_r d_g d_b s_r s_g s_b p0 [p1 [p2]] (the program's order)."""
+        """From d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]] (the program's order)."""
         v = np.array(_arrays.real_array("params", values), dtype=np.float64).reshape(-1)
         if not 6 <= v.size <= 6 + _abi.MAX_LOBE_PARAMS:
             raise InvalidArgumentError(
-                _BAD, f"params: {v.size} numbers, expected d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]"
+                _BAD, f"params: {v.size} numbers, expected d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]]"
             )
         return cls(v[0:3], v[3:6], v[6:])
 

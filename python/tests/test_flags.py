@@ -31,11 +31,12 @@ def header_bits(name):
 
 def test_named_bits_are_the_headers(brdffit):
     c = header_bits("brdffit_at_bound")
-    assert len(c) == 10 and c["BRDFFIT_AT_BOUND_S_B"] == 1 << 14
+    assert len(c) == 11 and c["BRDFFIT_AT_BOUND_S_B"] == 1 << 14
     assert {"BRDFFIT_AT_BOUND_" + k: int(v) for k, v in brdffit.AtBound.__members__.items()} == c
     c = header_bits("brdffit_fit_flag")
     assert {"BRDFFIT_FIT_" + k: int(v) for k, v in brdffit.FitFlag.__members__.items()} == c
-    assert brdffit.AtBound.LOBE == brdffit.AtBound.P0 | brdffit.AtBound.P1 | brdffit.AtBound.P2
+    A = brdffit.AtBound
+    assert A.LOBE == A.P0 | A.P1 | A.P2 | A.P3
 
 
 def result(brdffit, model, at_bound=0, flags=0):
@@ -54,6 +55,8 @@ def test_at_bound_names(brdffit):
     assert int(r.at_bound) == (1 << 1) | (1 << 9) | (1 << 12) | (1 << 14)
     he = brdffit.model("he").params
     assert result(brdffit, "he", A.P0 | A.P2).at_bound_names == [he[0].name, he[2].name]
+    r = result(brdffit, "gltf-ext", A.P3 | A.D_R)
+    assert r.at_bound_names == ["specular", "base_color_r"]
     assert result(brdffit, "ward", 0, brdffit.FitFlag.LIMIT).converged is False
 
 

@@ -67,10 +67,10 @@ def test_params(brdffit):
     he = brdffit.Params(0.1, 0.2, [10, 0.5, 2], lambda_um=[0.6, 0.5, 0.4])
     assert "lambda_um=[0.6, 0.5, 0.4]" in repr(he)
     c = he.to_c()
-    assert list(c.p) == [10, 0.5, 2] and list(c.lambda_um) == [0.6, 0.5, 0.4]
+    assert list(c.p) == [10, 0.5, 2, 0] and list(c.lambda_um) == [0.6, 0.5, 0.4]
     assert brdffit.Params.from_c(c, 3) == he
     for bad in (lambda: brdffit.Params([1, 2], 0, [1]),
-                lambda: brdffit.Params(0, 0, [1, 2, 3, 4]),
+                lambda: brdffit.Params(0, 0, [1, 2, 3, 4, 5]),
                 lambda: brdffit.Params("x", 0, [1]),
                 lambda: brdffit.Params(0, 0, ["a"]),
                 lambda: brdffit.Params.from_vector([1, 2, 3]),

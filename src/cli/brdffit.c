@@ -18,7 +18,7 @@ static const cli_command commands[] = {
       { cli_options_help } },
     { "models", cmd_models, "", "list the models, their lobe parameters and bounds",
       "list the models, their lobe parameters and bounds", { NULL } },
-    { "eval", cmd_eval, "MODEL d_r d_g d_b s_r s_g s_b p0 [p1 [p2]] --wi X Y Z --wo X Y Z",
+    { "eval", cmd_eval, "MODEL d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]] --wi X Y Z --wo X Y Z",
       "print a model's BRDF value for two directions",
       "print f(wi, wo) per channel (1/sr, no cosine factor)", { cli_eval_help } },
     { "batch", cmd_batch, "INPUT... --out DIR [OPTIONS]",
@@ -40,7 +40,7 @@ static const cli_command commands[] = {
       "incidence-plane plots (SVG, cube root) of the measured table\n"
       "and each fitted model",
       { cli_draw_help, cli_plot_help, cli_options_help } },
-    { "score", cmd_score, "TABLE --model M --params d_r,...,p0[,p1,p2] | --fits FILE",
+    { "score", cmd_score, "TABLE --model M --params d_r,...,p0[,p1,p2,p3] | --fits FILE",
       "print the Error of given parameters on a table",
       "print the Error of given parameters on a table", { cli_score_help, cli_options_help } },
     { "export", cmd_export, "FITS... --out DIR [--format gltf]",

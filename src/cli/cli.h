@@ -160,6 +160,10 @@ int cli_usage_error(const char *fmt, ...) CLI_PRINTF(1, 2);
 void cli_set_command(const char *name);
 /* The valid model names, comma-separated, into buf. */
 const char *cli_model_names(char *buf, size_t len);
+/* The numbers a model's parameters are given as, in order, separated by sep
+ * (' ' or ','): its colours by colour_names ("d_r", ..., "s_b", or
+ * "base_color_r", ..., "specular_color_b"), then its lobe parameters by name. */
+const char *cli_param_list(brdffit_model model, char sep, char *buf, size_t len);
 /* The models' default numbers of starts, "8; he 7" (the common one first), into buf. */
 const char *cli_default_starts(char *buf, size_t len);
 

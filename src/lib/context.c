@@ -445,6 +445,10 @@ brdffit_status bf_context_kernels(brdffit_context *ctx, brdffit_model model, cl_
     const brdffit_model_info *mi = brdffit_model_get(model);
     if (!mi)
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
+    if (!bf_model_has_lobe(model))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "%s has no OpenCL kernel (no lobe K: its colours enter as the glTF "
+                       "material's, evaluated on the host)", mi->name);
     if (ctx->backend != BRDFFIT_BACKEND_OPENCL)
         return bf_fail(err, BRDFFIT_E_NO_DEVICE, "the context has no OpenCL device");
     if (!ctx->program[model]) {

@@ -71,6 +71,10 @@ brdffit_status bf_driver_open(bf_pass_driver *dr, brdffit_context *ctx,
     const brdffit_model_info *mi = brdffit_model_get(model);
     if (!mi)
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
+    if (!bf_model_has_lobe(model))
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "%s has no lobe K: no data pass (a glTF model's fit solves its colours "
+                       "on the host)", mi->name);
     if (!ctx || !samples)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "context or samples is NULL");
     if (samples->n == 0)

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* cmd_eval.c -- `brdffit eval MODEL d_r d_g d_b s_r s_g s_b p... --wi X Y Z --wo X Y Z`:
+/* cmd_eval.c -- `brdffit eval MODEL d_r d_g d_b s_r s_g s_b p... --wi X Y Z --wo X Y Z`
+ * (glTF models: base colour, specular colour, metallic roughness ior specular):
  * one BRDF value per channel (1/sr, no cosine factor). */
 #include "cli.h"
 
@@ -10,8 +11,9 @@ const cli_help_block *cli_eval_help(void)
 {
     static const cli_help_item items[] = {
         { "MODEL", "a model's name (brdffit models), in any case" },
-        { "d_r d_g d_b s_r s_g s_b p0 [p1 [p2]]",
-          "the Lambertian albedo d, the lobe's\nscale s and parameters p, in the paper's units" },
+        { "d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]]",
+          "the Lambertian albedo d, the lobe's\nscale s and parameters p, in the paper's units;\n"
+          "for gltf and gltf-ext the base colour, the specular\ncolour, metallic roughness ior specular" },
         { "--wi X Y Z, --wo X Y Z", "the directions of incidence and view, in the\n"
                                     "surface's frame" },
     };
@@ -91,13 +93,9 @@ static int eval_params(const eval_args *e, brdffit_model *model, brdffit_params 
                                cli_model_names(names, sizeof names));
     const brdffit_model_info *mi = brdffit_model_get(*model);
     if (e->nnum != 6 + mi->nparams) {
-        char pn[128] = "";
-        for (int k = 0; k < mi->nparams; k++) {
-            strcat(pn, " ");
-            strncat(pn, mi->params[k].name, 32);
-        }
-        return cli_usage_error("eval %s needs %d numbers (d_r d_g d_b s_r s_g s_b%s), got %d",
-                               mi->name, 6 + mi->nparams, pn, e->nnum);
+        char pn[512];
+        return cli_usage_error("eval %s needs %d numbers (%s), got %d", mi->name, 6 + mi->nparams,
+                               cli_param_list(*model, ' ', pn, sizeof pn), e->nnum);
     }
     if (!e->have_wi || !e->have_wo)
         return cli_usage_error("eval needs --wi X Y Z and --wo X Y Z");

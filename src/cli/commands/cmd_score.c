@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* cmd_score.c -- `brdffit score TABLE --model M --params d_r,d_g,d_b,s_r,s_g,s_b,p0[,p1,p2]`
+/* cmd_score.c -- `brdffit score TABLE --model M --params d_r,d_g,d_b,s_r,s_g,s_b,p0[,p1,p2,p3]`
  * or `--fits FITS.tsv`: the Error of given parameters on a table, as a
  * researcher checks a published number.  With --fits, every row of the
  * table's material (named by its file) is scored, or those of --model. */
@@ -15,8 +15,9 @@ const cli_help_block *cli_score_help(void)
 {
     static const cli_help_item items[] = {
         { "--model M", "the model of --params; with --fits, only these models" },
-        { "--params d_r,d_g,d_b,s_r,s_g,s_b,p0[,p1,p2]", "the parameters to score, in the\n"
-                                                         "paper's units" },
+        { "--params d_r,d_g,d_b,s_r,s_g,s_b,p0[,p1,p2,p3]", "the parameters to score, in the\n"
+                                                         "paper's units (gltf, gltf-ext: base colour,\n"
+                                                         "specular colour, metallic,roughness,ior,specular)" },
         { "--fits FILE", "score the rows of this material (named by TABLE's file)\n"
                          "in an ngan2005-fits.tsv-style TSV" },
     };
@@ -176,11 +177,12 @@ static int score_run(const score_args *a)
     char material[BJ_NAME_MAX];
     cli_material_name(path, material, sizeof material);
     brdffit_params p;
+    char names[512];
     if (a->params && parse_params(a->params, a->common.models[0], &p) != 0)
-        return cli_usage_error("--params '%s': expected %d comma-separated numbers for %s "
-                               "(d_r,d_g,d_b,s_r,s_g,s_b then the lobe parameters)",
+        return cli_usage_error("--params '%s': expected %d comma-separated numbers for %s (%s)",
                                a->params, 6 + brdffit_model_get(a->common.models[0])->nparams,
-                               brdffit_model_get(a->common.models[0])->name);
+                               brdffit_model_get(a->common.models[0])->name,
+                               cli_param_list(a->common.models[0], ',', names, sizeof names));
     brdffit_error err;
     memset(&err, 0, sizeof err);
     brdffit_table *t = NULL;

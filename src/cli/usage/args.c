@@ -77,6 +77,22 @@ const char *cli_model_names(char *buf, size_t len)
     return buf;
 }
 
+const char *cli_param_list(brdffit_model model, char sep, char *buf, size_t len)
+{
+    const brdffit_model_info *mi = brdffit_model_get(model);
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int k = 0; mi && k < 6 + mi->nparams; k++) {
+        int w = k < 6 ? snprintf(buf + used, len - used, "%s%s_%c", k ? (sep == ',' ? "," : " ") : "",
+                                 mi->colour_names[k / 3], "rgb"[k % 3])
+                      : snprintf(buf + used, len - used, "%c%s", sep, mi->params[k - 6].name);
+        if (w < 0 || (size_t)w >= len - used)
+            break;
+        used += (size_t)w;
+    }
+    return buf;
+}
+
 const char *cli_default_starts(char *buf, size_t len)
 {
     /* the count most models have, then the others by name */

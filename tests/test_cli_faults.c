@@ -16,35 +16,6 @@
 
 #define NB ((size_t)BRDFFIT_MERL_BINS)
 
-/* A Ward-Duer table file, made once for the test case (35 MB in $TMPDIR) by
- * an unchecked fixture: no OpenCL in it. */
-static char table_path[512];
-
-static void make_table(void)
-{
-    brdffit_error err;
-    brdffit_table *t = NULL;
-    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
-    if (brdffit_table_create(&t, &err) != BRDFFIT_OK ||
-        brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err) != BRDFFIT_OK ||
-        !tu_tmpfile(table_path, sizeof table_path) ||
-        brdffit_table_write(t, table_path, &err) != BRDFFIT_OK)
-        table_path[0] = '\0';
-    brdffit_table_free(t);
-}
-
-static void remove_table(void)
-{
-    if (table_path[0])
-        unlink(table_path);
-}
-
-static const char *table_file(void)
-{
-    ck_assert_msg(table_path[0], "the fixture could not write its table");
-    return table_path;
-}
-
 #define expect_exit(r, want, what)                                                          \
     ck_assert_msg((r).status == (want), "%s: exit %d, expected %d\nstdout:\n%s\nstderr:\n%s", \
                   (what), (r).status, (want), (r).out, (r).err)
@@ -56,7 +27,7 @@ START_TEST(no_device_every_file_recorded)
 {
     char icd[] = "/tmp/brdffit-noicd-XXXXXX";
     ck_assert_ptr_nonnull(mkdtemp(icd));
-    const char *table = table_file();
+    const char *table = tu_table_fixture();
     char env[256], args[2048];
     snprintf(env, sizeof env, "OCL_ICD_VENDORS=%s", icd);
     snprintf(args, sizeof args, "fit --json --backend opencl --model ward '%s' '%s' '%s'", table,
@@ -84,7 +55,7 @@ END_TEST
  * on stderr under auto (not silent), and the fit runs on the host. */
 START_TEST(device_matching_nothing)
 {
-    const char *table = table_file();
+    const char *table = tu_table_fixture();
     char args[2048];
     snprintf(args, sizeof args, "fit --backend opencl --device no-such-device-xyz --model ward '%s'",
              table);
@@ -121,7 +92,7 @@ END_TEST
  * every fit; under auto the host path, said so. */
 START_TEST(unwritable_cache_named)
 {
-    const char *table = table_file();
+    const char *table = tu_table_fixture();
     char args[2048];
     snprintf(args, sizeof args, "fit --backend opencl --model ward '%s'", table);
     tu_run_out r = tu_run_cli("POCL_CACHE_DIR=/proc", args);
@@ -154,7 +125,7 @@ END_TEST
  * status (not ok with s up to 3.6e35). */
 START_TEST(tiny_cutoff_refused)
 {
-    const char *table = table_file();
+    const char *table = tu_table_fixture();
     char args[2048];
     snprintf(args, sizeof args, "fit --json --cutoff 1e-300 --model ward,he '%s'", table);
     tu_run_out r = tu_run_cli("", args);
@@ -174,7 +145,7 @@ START_TEST(huge_value_file_named)
 {
     brdffit_error err;
     brdffit_table *t = NULL;
-    ck_assert_int_eq(brdffit_table_read(table_file(), &t, &err), BRDFFIT_OK);
+    ck_assert_int_eq(brdffit_table_read(tu_table_fixture(), &t, &err), BRDFFIT_OK);
     brdffit_table_values(t)[5 + 180 * (6 + 90 * 7)] = 2.5e150;
     char path[512], args[1024];
     ck_assert_ptr_nonnull(tu_tmpfile(path, sizeof path));
@@ -283,7 +254,7 @@ Suite *cli_faults_suite(void)
     Suite *s = suite_create("cli_faults");
     TCase *tc = tcase_create("cli_faults");
     tcase_set_timeout(tc, 600);
-    tcase_add_unchecked_fixture(tc, make_table, remove_table);
+    tcase_add_unchecked_fixture(tc, tu_table_fixture_make, tu_table_fixture_remove);
     tcase_add_test(tc, no_device_every_file_recorded);
     tcase_add_test(tc, device_matching_nothing);
     tcase_add_test(tc, unwritable_cache_named);

@@ -61,34 +61,6 @@ static void plant(const char *target, const char *dir, const char *name)
     ck_assert_msg(symlink(target, link) == 0, "symlink %s", link);
 }
 
-/* A Ward-Duer table (render, plot): made once by an unchecked fixture. */
-static char table_path[512];
-
-static void make_table(void)
-{
-    brdffit_error err;
-    brdffit_table *t = NULL;
-    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
-    if (brdffit_table_create(&t, &err) != BRDFFIT_OK ||
-        brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err) != BRDFFIT_OK ||
-        !tu_tmpfile(table_path, sizeof table_path) ||
-        brdffit_table_write(t, table_path, &err) != BRDFFIT_OK)
-        table_path[0] = '\0';
-    brdffit_table_free(t);
-}
-
-static void remove_table(void)
-{
-    if (table_path[0])
-        unlink(table_path);
-}
-
-static const char *table_file(void)
-{
-    ck_assert_msg(table_path[0], "the fixture could not write its table");
-    return table_path;
-}
-
 /* ------------------------------------------------------------------ names, TSV text */
 
 START_TEST(names_and_tsv_text)
@@ -255,7 +227,7 @@ START_TEST(links_in_render_and_plot)
         snprintf(name, sizeof name, "%s.tmp", names[i]);
         plant(v, out, name);
         snprintf(args, sizeof args, "%s '%s' --out '%s' %s --cutoff 20 " FAST, cmd,
-                 table_file(), out, size);
+                 tu_table_fixture(), out, size);
         tu_run_out r = tu_run_cli("", args);
         expect_exit(r, 0, args);
         tu_run_free(&r);
@@ -264,7 +236,7 @@ START_TEST(links_in_render_and_plot)
         ck_assert_int_eq(mkdir(out, 0777), 0);
         plant(v, out, names[i]);
         snprintf(args, sizeof args, "%s '%s' --out '%s' %s --cutoff 20 " FAST, cmd,
-                 table_file(), out, size);
+                 tu_table_fixture(), out, size);
         r = tu_run_cli("", args);
         expect_exit(r, 1, args);
         ck_assert_msg(strstr(r.err, names[i]) && strstr(r.err, "symbolic link (not followed)"),
@@ -494,7 +466,7 @@ START_TEST(modes_follow_the_umask)
         check_modes(merged, masks[k]);
         snprintf(out, sizeof out, "%s/render-%03o", dir, (unsigned)masks[k]);
         snprintf(args, sizeof args, "render '%s' --out '%s' --size 16 --cutoff 20 " FAST,
-                 table_file(), out);
+                 tu_table_fixture(), out);
         r = tu_run_cli(um, args);
         expect_exit(r, 0, args);
         tu_run_free(&r);
@@ -519,7 +491,7 @@ START_TEST(out_links)
     expect_exit(r, 1, "batch --out dangling");
     ck_assert_msg(strstr(r.err, want), "%s", r.err);
     tu_run_free(&r);
-    snprintf(args, sizeof args, "plot '%s' --out '%s' --cutoff 20 " FAST, table_file(), out);
+    snprintf(args, sizeof args, "plot '%s' --out '%s' --cutoff 20 " FAST, tu_table_fixture(), out);
     r = tu_run_cli("", args);
     expect_exit(r, 1, args);
     ck_assert_msg(strstr(r.err, want), "%s", r.err);
@@ -545,9 +517,9 @@ START_TEST(tsv_names_escaped)
     tmpdir(dir, sizeof dir);
     snprintf(in, sizeof in, "%s/in", dir);
     ck_assert_int_eq(mkdir(in, 0777), 0);
-    plant(table_file(), in, "a\tb.binary");
-    plant(table_file(), in, "a\nb.binary");
-    plant(table_file(), in, "a b.binary");
+    plant(tu_table_fixture(), in, "a\tb.binary");
+    plant(tu_table_fixture(), in, "a\nb.binary");
+    plant(tu_table_fixture(), in, "a b.binary");
     snprintf(out, sizeof out, "%s/out", dir);
     snprintf(args, sizeof args, "batch '%s' --out '%s' --cutoff 20 --no-render --no-plot " FAST,
              in, out);
@@ -587,7 +559,7 @@ Suite *outdir_suite(void)
     Suite *s = suite_create("outdir");
     TCase *tc = tcase_create("outdir");
     tcase_set_timeout(tc, 600);
-    tcase_add_unchecked_fixture(tc, make_table, remove_table);
+    tcase_add_unchecked_fixture(tc, tu_table_fixture_make, tu_table_fixture_remove);
     tcase_add_test(tc, names_and_tsv_text);
     tcase_add_test(tc, old_temporary_names_linked);
     tcase_add_test(tc, links_at_every_batch_name);

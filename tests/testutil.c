@@ -452,3 +452,33 @@ void tu_run_free(tu_run_out *r)
     free(r->err);
     r->out = r->err = NULL;
 }
+
+static char fixture_table[512];
+
+void tu_table_fixture_make(void)
+{
+    brdffit_error err;
+    brdffit_table *t = NULL;
+    brdffit_params p = { { 0.05, 0.04, 0.03 }, { 0.04, 0.03, 0.02 }, { 0.15, 0, 0 }, { 0 } };
+    if (brdffit_table_create(&t, &err) != BRDFFIT_OK ||
+        brdffit_table_fill_model(t, BRDFFIT_WARD_DUER, &p, BRDFFIT_SCALE_STANDARD, &err) != BRDFFIT_OK ||
+        !tu_tmpfile(fixture_table, sizeof fixture_table) ||
+        brdffit_table_write(t, fixture_table, &err) != BRDFFIT_OK)
+        fixture_table[0] = '\0';
+    brdffit_table_free(t);
+}
+
+void tu_table_fixture_remove(void)
+{
+    if (fixture_table[0])
+        unlink(fixture_table);
+}
+
+const char *tu_table_fixture(void)
+{
+    if (!fixture_table[0]) { /* the test errs (a signal) with this said */
+        fprintf(stderr, "tu_table_fixture: the fixture could not write its table\n");
+        abort();
+    }
+    return fixture_table;
+}

@@ -27,6 +27,15 @@ int tu_shared_present(char *why, size_t len);
 const char *tu_merl_table(const char *name, char *buf, size_t len);
 /* A fresh temporary file path (the file exists, empty) into buf. */
 const char *tu_tmpfile(char *buf, size_t len);
+
+/* A Ward-Duer table file (35 MB in $TMPDIR) for the program's tests, made
+ * once for a test case by an unchecked fixture (no OpenCL in it):
+ * tcase_add_unchecked_fixture(tc, tu_table_fixture_make,
+ * tu_table_fixture_remove); tu_table_fixture() is its path (the test aborts,
+ * saying why, when it could not be made). */
+void tu_table_fixture_make(void);
+void tu_table_fixture_remove(void);
+const char *tu_table_fixture(void);
 /* Write len bytes to path; 0 on success. */
 int tu_write_bytes(const char *path, const void *data, size_t len);
 

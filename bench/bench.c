@@ -94,7 +94,7 @@ static void point_at(brdffit_model m, const double *p, const brdffit_params *fit
 static void point_of(brdffit_model m, bf_pass_par *pp)
 {
     double p[BRDFFIT_MAX_LOBE_PARAMS];
-    bf_model_start_params(m, p);
+    bf_model_start_params(m, p, BRDFFIT_MAX_LOBE_PARAMS);
     point_at(m, p, NULL, pp);
 }
 

@@ -1646,7 +1646,7 @@ START_TEST(fd_lobe_dispatch)
         ck_assert_ptr_nonnull(mi);
         double p[4][3];
         for (int j = 0; j < 4; j++) {
-            bf_model_start_params((brdffit_model)model, p[j]);
+            bf_model_start_params((brdffit_model)model, p[j], 3);
             if (mi->params[0].map == BRDFFIT_MAP_DIRECTION)
                 p[j][1] *= 1.01; /* Lafortune's start is on its kink |Cxy| = |Cz| */
             if (j > 0)

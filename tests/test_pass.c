@@ -40,7 +40,7 @@ static void some_point(brdffit_model m, bf_pass_par *pp)
     pp->lam[0] = 0.645, pp->lam[1] = 0.526, pp->lam[2] = 0.444;
     int np = bf_model_ncoords(m);
     for (int j = 0; j <= np; j++) {
-        bf_model_start_params(m, pp->p[j]);
+        bf_model_start_params(m, pp->p[j], BF_MAX_NP);
         if (j > 0) {
             int k = bf_model_coord_param(m, j - 1); /* a parameter coordinate j-1 moves */
             pp->p[j][k] *= 1 + 1e-6;

@@ -269,9 +269,9 @@ int bf_model_ncoords(brdffit_model model)
     return n;
 }
 
-void bf_model_start_params(brdffit_model model, double p[BRDFFIT_MAX_LOBE_PARAMS])
+void bf_model_start_params(brdffit_model model, double *p, int n)
 {
     const brdffit_model_info *mi = brdffit_model_get(model);
-    for (int k = 0; k < BRDFFIT_MAX_LOBE_PARAMS; k++)
+    for (int k = 0; k < n; k++)
         p[k] = mi && k < mi->nparams ? mi->params[k].start : 0.0;
 }

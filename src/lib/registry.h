@@ -78,7 +78,8 @@ int bf_model_has_lobe(brdffit_model model);
 int bf_model_ncoords(brdffit_model model);
 /* The first parameter of lobe coordinate j (-1 when out of range). */
 int bf_model_coord_param(brdffit_model model, int j);
-/* Every lobe parameter at its `start` value (unused entries 0). */
-void bf_model_start_params(brdffit_model model, double p[BRDFFIT_MAX_LOBE_PARAMS]);
+/* p[0 .. n-1]: every lobe parameter at its `start` value, 0 beyond the
+ * model's parameters (n: the room the caller has). */
+void bf_model_start_params(brdffit_model model, double *p, int n);
 
 #endif

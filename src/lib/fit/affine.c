@@ -278,7 +278,7 @@ static brdffit_status af_lm(afstate *S, const brdffit_fit_options *o, afrun *run
 static void start_coords(const fitmap *fm, const bf_model_def *def, int i, double *u)
 {
     double p[AF_NP];
-    bf_model_start_params(fm->model, p);
+    bf_model_start_params(fm->model, p, AF_NP);
     const bf_start_grid *gr = &def->grid;
     int period = gr->period > 1 ? gr->period : 1, k = i % period;
     double t = period > 1 ? (double)k / (period - 1) : 0.0;

@@ -53,7 +53,7 @@ static double map_inv(const fitmap *fm, int j, double v)
 void bf_coords_to_params(const fitmap *fm, const double *u, double *p)
 {
     double start[BRDFFIT_MAX_LOBE_PARAMS];
-    bf_model_start_params(fm->model, start);
+    bf_model_start_params(fm->model, start, BRDFFIT_MAX_LOBE_PARAMS);
     memcpy(p, start, (bf_model_has_lobe(fm->model) ? BF_MAX_NP : BRDFFIT_MAX_LOBE_PARAMS) * sizeof *p);
     for (int j = 0; j < fm->nl; j++) {
         int k = fm->param[j];

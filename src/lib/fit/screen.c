@@ -21,7 +21,7 @@ static void start_params(brdffit_model model, int i, int n, double p[BRDFFIT_MAX
 {
     const bf_start_grid *gr = &bf_model_def_get(model)->grid;
     const brdffit_model_info *mi = brdffit_model_get(model);
-    bf_model_start_params(model, p);
+    bf_model_start_params(model, p, BRDFFIT_MAX_LOBE_PARAMS);
     int k = gr->period > 0 ? i % gr->period : i, m = gr->period > 0 ? gr->period : n;
     double v = gr->lo;
     if (m > 1) {

@@ -4,9 +4,8 @@ gltf-ext, read back three ways: as JSON and bytes here (the buffer's layout,
 the sphere's vertices, the material's values against the fit record's), by
 pygltflib (it parses and validates the file), and by Blender's glTF importer
 (bpy), whose Principled BSDF must show the file's values.  pygltflib and bpy
-are pip-installed into a virtual environment kept under build/ (made once,
-reused; $BRDFFIT_TEST_VENV overrides where); without pip or the network the
-tests that need them are skipped, saying so.  Then the program's refusals:
+are pip-installed into the tools' virtual environment (toolvenv.py); without
+pip or the network the tests that need them are skipped, saying so.  Then the program's refusals:
 fits of other models, failed fits, values outside glTF's ranges, names that
 are not file names, formats it does not write."""
 
@@ -14,7 +13,6 @@ import base64
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 
@@ -22,11 +20,11 @@ import numpy as np
 import pytest
 
 from conftest import CLI, REPO
+from toolvenv import last_line as _last_line, run as _run, tool_python
 
 EXTENSIONS = ["KHR_materials_ior", "KHR_materials_specular"]
 PARAM_NAMES = ["metallic", "roughness", "ior", "specular"]
 BPY = "bpy==5.0.1"   # a wheel for Python 3.11 (cp311)
-VENV = os.environ.get("BRDFFIT_TEST_VENV") or os.path.join(REPO, "build", "gltf-venv")
 
 # glTF 2.0: componentType -> (bytes, numpy dtype), type -> components
 COMPONENT = {5126: (4, "<f4"), 5123: (2, "<u2"), 5125: (4, "<u4")}
@@ -371,57 +369,14 @@ def test_batch_report_has_the_gltf_files_and_the_material_to_paste(tmp_path):
 
 # ------------------------------------------------------------------ pygltflib and Blender
 
-def _venv_python():
-    return os.path.join(VENV, "bin", "python")
-
-
-def _run(args, timeout=60):
-    return subprocess.run(args, capture_output=True, text=True, timeout=timeout)
-
-
-def _last_line(r):
-    lines = (r.stderr or r.stdout).strip().splitlines()
-    return lines[-1] if lines else f"exit status {r.returncode}"
+@pytest.fixture(scope="session")
+def pygltflib_python():
+    return tool_python(("pygltflib", "pygltflib"))
 
 
 @pytest.fixture(scope="session")
-def venv():
-    """A virtual environment of this Python under build/ (made once, kept)."""
-    py = _venv_python()
-    want = f"{sys.version_info[0]}.{sys.version_info[1]}"
-    if os.path.exists(py):
-        r = _run([py, "-c", "import sys; print('%d.%d' % sys.version_info[:2])"])
-        if r.returncode != 0 or r.stdout.strip() != want:
-            shutil.rmtree(VENV)  # made by another Python: made again
-    if not os.path.exists(py):
-        r = _run([sys.executable, "-m", "venv", VENV], timeout=300)
-        if r.returncode != 0:
-            pytest.skip(f"python3 -m venv failed (Debian: python3-venv): {_last_line(r)}")
-    return py
-
-
-def _pip_install(py, spec, module):
-    """Install spec unless module imports; skip the test, saying why, when pip cannot."""
-    if _run([py, "-c", f"import {module}"], timeout=120).returncode == 0:
-        return
-    r = _run([py, "-m", "pip", "install", "--disable-pip-version-check", "--retries", "1",
-              "--timeout", "30", "-q", spec], timeout=1800)
-    if r.returncode != 0:
-        pytest.skip(f"pip could not install {spec} into {VENV}: {_last_line(r)}")
-
-
-@pytest.fixture(scope="session")
-def pygltflib_python(venv):
-    _pip_install(venv, "pygltflib", "pygltflib")
-    return venv
-
-
-@pytest.fixture(scope="session")
-def bpy_python(venv):
-    _pip_install(venv, BPY, "bpy")
-    r = _run([venv, "-c", "import bpy"], timeout=120)
-    assert r.returncode == 0, f"bpy installed but does not import: {r.stderr[-2000:]}"
-    return venv
+def bpy_python():
+    return tool_python((BPY, "bpy"))
 
 
 PYGLTFLIB_SCRIPT = r"""

@@ -17,8 +17,9 @@ import subprocess
 
 import pytest
 
+# every model: the glTF ones have four parameters, the widest parameter table
 MODELS = ["ward", "ward-duer", "blinn-phong", "lafortune", "cook-torrance",
-          "ashikhmin-shirley", "he", "ggx"]
+          "ashikhmin-shirley", "he", "ggx", "gltf", "gltf-ext"]
 DEMO = "synthetic-alum-bronze-ct"
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta",
         "source", "track", "wbr"}
@@ -155,8 +156,8 @@ def test_index_tables(report):
     for c in values:
         assert float(c[1]["data-v"]) >= 0
     # the published Error and the ratio under the Error, in full on hover
-    # every model but GGX has published parameters: their Error and the ratio under it
-    assert sum("\u00d7" in c[2] for c in values) == len(MODELS) - 1
+    # every model but GGX and the glTF ones has published parameters: their Error and the ratio
+    assert sum("\u00d7" in c[2] for c in values) == len(MODELS) - 3
     src = (report / "index.html").read_text()
     assert "<script>" in src and "aria-sort" in src and 'id="matrix"' in src
     assert 'data="headline.svg"' in src  # an object: the SVG's titles show on hover
@@ -167,7 +168,9 @@ def test_material_page_tables(report):
     (t,) = [t for t in p.tables if t and t[0][0].get("class") == "mhead"]
     heads = [r for r in t if r[0].get("class") == "mhead"]
     assert [cells(h)[0] for h in heads] == ["Ward", "Ward-Duer", "Blinn-Phong", "Lafortune",
-                                           "Cook-Torrance", "Ashikhmin-Shirley", "He", "GGX"]
+                                           "Cook-Torrance", "Ashikhmin-Shirley", "He", "GGX",
+                                           "glTF 2.0", "glTF 2.0 extended"]
+    assert cells(heads[8])[7:11] == ["metallic", "roughness", "ior", "specular"]
     assert cells(heads[3])[7:10] == ["Cxy", "Cz", "n"]  # names in the header, not in cells
     assert cells(heads[0])[7] == "alpha"
     pubs = [r for r in t if r[0].get("class") == "pub"]
@@ -175,13 +178,32 @@ def test_material_page_tables(report):
     ward_pub = cells(pubs[0])
     assert ward_pub[0] == "published" and ward_pub[1:8] == ["0.1", "0.07", "0.03", "0.05",
                                                            "0.03", "0.02", "0.04"]
-    assert "no published parameters" in cells(pubs[-1])[1]  # GGX
+    assert "no published parameters" in cells(pubs[7])[1]  # GGX
     for r in t:
         if r[0].get("class") == "mhead":
             continue
         for c in cells(r)[1:]:
             assert not re.search(r"[A-Za-z] [0-9]", c), c  # a number without its name
             assert "e+" not in c and "e-0" not in c, c  # the compact exponent: 2.8e4, 1.2e-5
+
+
+def test_headline_figure(report):
+    """Every point names its material, model and Error on hover; the axis is
+    that of the bulk: the generating model's Error of about 1e-13 on its own
+    data is a triangle below the axis, not a decade of the axis."""
+    import xml.etree.ElementTree as ET
+    ns = "{http://www.w3.org/2000/svg}"
+    root = ET.parse(report / "headline.svg").getroot()
+    titles = [c.find(ns + "title") for c in root.iter(ns + "circle")]
+    points = [t.text for t in titles if t is not None]
+    assert len(points) == len(MODELS) - 1, points  # Cook-Torrance's is below the axis
+    assert all(t.startswith(DEMO + " \u2014 ") for t in points), points
+    below = [p.find(ns + "title").text for p in root.iter(ns + "path")]
+    assert len(below) == 1 and "Cook-Torrance" in below[0] and "below the axis" in below[0], below
+    ticks = [t.text for t in root.iter(ns + "text") if re.fullmatch(r"1e-\d+|0\.0*1|1", t.text or "")]
+    lowest = min(float(t) for t in ticks)
+    assert 1e-8 <= lowest <= 1e-3, ticks  # not stretched down to 1e-14
+    assert any("1 below the axis" in (t.text or "") for t in root.iter(ns + "text"))
 
 
 def chromium():

@@ -38,6 +38,13 @@ typedef struct headline {
     int below, above; /* points beyond them */
 } headline;
 
+/* The palette has 8 colours: a model past them (its colour repeats an
+ * earlier one's) is drawn dashed, its points hollow. */
+static int second_round(const rp_report *rep, int k)
+{
+    return (int)rep->models[k] >= 8;
+}
+
 static int by_error(const void *a, const void *b)
 {
     const order_item *x = a, *y = b;
@@ -193,7 +200,8 @@ static void point(xml_writer *w, headline *h, int j, int k, double e)
     xml_attr_num(w, "cx", x);
     xml_attr_num(w, "cy", y);
     xml_attr_num(w, "r", 3);
-    xml_attr(w, "fill", col);
+    xml_attr(w, "fill", second_round(rep, k) ? "#ffffff" : col);
+    xml_attr(w, "stroke", col);
     titled(w, t);
 }
 
@@ -210,7 +218,7 @@ static void series(xml_writer *w, headline *h, int k)
         double d = isfinite(e) ? log10(e) : NAN;
         int in = isfinite(d) && d >= h->lo && d <= h->hi;
         if (run > 0 && (!in || j % h->per == 0)) {
-            svg_polyline(w, x, y, run, col, 1.2, NULL);
+            svg_polyline(w, x, y, run, col, 1.2, second_round(rep, k) ? "6,3" : NULL);
             run = 0;
         }
         if (in) {
@@ -231,8 +239,9 @@ static void legend(xml_writer *w, const rp_report *rep)
     for (int k = 0; k < rep->nmodels; k++) {
         double ly = HL_T + 10 + 20 * k, lx = HL_W - HL_R + 16;
         const char *col = svg_color((int)rep->models[k]);
-        svg_line(w, lx, ly, lx + 22, ly, col, 2, NULL);
-        svg_circle(w, lx + 11, ly, 3, col, NULL);
+        int two = second_round(rep, k);
+        svg_line(w, lx, ly, lx + 22, ly, col, 2, two ? "6,3" : NULL);
+        svg_circle(w, lx + 11, ly, 3, two ? "#ffffff" : col, col);
         svg_text(w, lx + 28, ly + 4, "start", 13, brdffit_model_get(rep->models[k])->title);
     }
 }

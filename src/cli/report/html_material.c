@@ -148,7 +148,7 @@ static void fitted_row(xml_writer *w, const rp_report *rep, int k, const fit_rec
     char bound[128] = "";
     if (f->has_counts)
         fr_at_bound_text(rep->models[k], f->at_bound, ", ", bound, sizeof bound);
-    rp_cell(w, "td", "name", bound[0] ? bound : "-");
+    rp_cell(w, "td", "wrap", bound[0] ? bound : "-"); /* names, not numbers: may wrap */
     xml_close(w);
 }
 

@@ -98,7 +98,7 @@ void rp_tsv_material(FILE *f, const rp_report *rep, const rp_material *m)
  * wrap, failed) do. */
 static const char *const page_css =
     "body{font-family:sans-serif;margin:1.5em;color:#222}"
-    "table{border-collapse:collapse;margin:0.5em 0}"
+    "table{border-collapse:collapse;margin:0.5em 0;font-size:0.9em}"
     "td,th{border:1px solid #bbb;padding:2px 4px;text-align:right;"
     "font-variant-numeric:tabular-nums;white-space:nowrap}"
     "th{background:#eee}td.name,th.name{text-align:left}"

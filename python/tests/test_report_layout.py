@@ -109,12 +109,27 @@ def parse(path):
     return p
 
 
+# two tables of models with noise (no model fits them exactly): rows to sort
+NOISY = {"noisy-blinn": ("blinn-phong", [0.05, 0.1, 0.2, 0.3, 0.3, 0.3, 300.0]),
+         "noisy-ward": ("ward", [0.3, 0.2, 0.1, 0.05, 0.05, 0.05, 0.2])}
+
+
 @pytest.fixture(scope="module")
-def report(cli, tmp_path_factory):
-    """The demo batch with every default model and a published-fits file of
-    the demo material (no scale stated): a row under each model, and a
-    second line in each cell of the Error matrix."""
+def report(cli, brdffit, tmp_path_factory):
+    """The batch of the demo material and two noisy tables with every model,
+    and a published-fits file of the demo material (no scale stated): a row
+    under each model, and a second line in its cells of the Error matrix."""
+    import numpy as np
     d = tmp_path_factory.mktemp("report")
+    rng = np.random.default_rng(7)
+    tables = []
+    for name, (model, params) in NOISY.items():
+        t = brdffit.Table.from_model(model, params)
+        v = t.values
+        covered = v >= 0
+        v[covered] *= rng.uniform(0.6, 1.4, int(covered.sum()))
+        tables.append(str(d / f"{name}.binary"))
+        t.write(tables[-1])
     pub = d / "published.tsv"
     rows = {"ward": "0.1\t0.07\t0.03\t0.05\t0.03\t0.02\t0.04\t\t",
             "ward-duer": "0.1\t0.07\t0.03\t0.05\t0.03\t0.02\t0.04\t\t",
@@ -126,7 +141,7 @@ def report(cli, tmp_path_factory):
     pub.write_text("material\tmodel\td_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\n" +
                    "".join(f"{DEMO}\t{m}\t{v}\n" for m, v in rows.items()))
     out = d / "demo"
-    r = subprocess.run([cli, "batch", "--demo", "--out", str(out), "--model", ",".join(MODELS),
+    r = subprocess.run([cli, "batch", *tables, "--demo", "--out", str(out), "--model", ",".join(MODELS),
                         "--starts", "1", "--no-render", "--no-plot", "--quiet",
                         "--published", str(pub)], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
@@ -148,7 +163,8 @@ def test_index_tables(report):
     assert re.fullmatch(r"[0-9.e-]+ \(of 1\)", cells(ward)[2]), cells(ward)
     matrix = next(t for t in p.tables if t and cells(t[0])[0] == "material")
     assert len(cells(matrix[0])) == 1 + len(MODELS)
-    row = matrix[1]
+    assert [cells(r)[0] for r in matrix[1:]] == sorted(NOISY) + [DEMO]  # by name
+    row = matrix[3]
     values = [c for c in row[1] if "data-v" in c[1]]
     assert len(values) == len(MODELS)
     best = [c for c in values if c[1].get("class") == "best"]
@@ -196,8 +212,10 @@ def test_headline_figure(report):
     root = ET.parse(report / "headline.svg").getroot()
     titles = [c.find(ns + "title") for c in root.iter(ns + "circle")]
     points = [t.text for t in titles if t is not None]
-    assert len(points) == len(MODELS) - 1, points  # Cook-Torrance's is below the axis
-    assert all(t.startswith(DEMO + " \u2014 ") for t in points), points
+    # Cook-Torrance's on the demo is below the axis
+    assert len(points) == 3 * len(MODELS) - 1, points
+    names = tuple(n + " \u2014 " for n in [DEMO, *NOISY])
+    assert all(t.startswith(names) for t in points), points
     below = [p.find(ns + "title").text for p in root.iter(ns + "path")]
     assert len(below) == 1 and "Cook-Torrance" in below[0] and "below the axis" in below[0], below
     ticks = [t.text for t in root.iter(ns + "text") if re.fullmatch(r"1e-\d+|0\.0*1|1", t.text or "")]
@@ -236,6 +254,51 @@ def test_no_cell_wraps(report, page, width, tmp_path):
     assert got["cells"] > 20, got
     assert got["wrapped"] == [], f"{page} at {width} px: cells that wrap: {got['wrapped']}"
     assert got["overflow"] <= 0, f"{page} at {width} px is {got['overflow']} px too wide"
+
+
+SORT = r"""
+<script>
+window.addEventListener('load', function () {
+  var t = document.getElementById('matrix'), hs = t.tHead.rows[0].cells, got = {};
+  function order() {
+    return Array.prototype.map.call(t.tBodies[0].rows, function (r) {
+      return [r.cells[0].textContent.trim(), r.cells[1].getAttribute('data-v')];
+    });
+  }
+  hs[1].click(); got.up = order(); got.aria = hs[1].getAttribute('aria-sort');
+  hs[1].click(); got.down = order();
+  hs[0].click(); hs[0].click(); got.names_down = order();
+  var pre = document.createElement('pre');
+  pre.id = 'sort-report';
+  pre.textContent = JSON.stringify(got);
+  document.body.appendChild(pre);
+});
+</script>
+"""
+
+
+def test_matrix_sorts_by_a_column(report, tmp_path):
+    """The matrix's script: a click on a model's header sorts the rows by its
+    Error, a second click the other way; the material column by name."""
+    exe = chromium()
+    if not exe:
+        pytest.skip("no chromium on PATH: the sorting script is not run")
+    probe = report / "sort-probe.html"
+    probe.write_text((report / "index.html").read_text(encoding="utf-8").replace(
+        "</body>", SORT + "</body>"), encoding="utf-8")
+    r = subprocess.run([exe, "--headless", "--no-sandbox", "--disable-gpu",
+                        "--window-size=1200,900", "--virtual-time-budget=2000",
+                        f"--user-data-dir={tmp_path / 'profile'}", "--dump-dom",
+                        probe.as_uri()], capture_output=True, text=True, timeout=120)
+    probe.unlink()
+    m = re.search(r'<pre id="sort-report">(.*?)</pre>', r.stdout, re.S)
+    assert m, r.stderr[-2000:]
+    got = json.loads(html.unescape(m.group(1)))
+    up = [float(v) for _, v in got["up"]]
+    assert up == sorted(up) and len(up) == 3, got
+    assert [float(v) for _, v in got["down"]] == sorted(up, reverse=True), got
+    assert got["aria"] == "ascending"
+    assert [n for n, _ in got["names_down"]] == sorted([DEMO, *NOISY], reverse=True), got
 
 
 def test_measure_finds_a_wrapped_cell(report, tmp_path):

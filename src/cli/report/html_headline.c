@@ -182,17 +182,17 @@ static void point(xml_writer *w, headline *h, int j, int k, double e)
     const char *col = svg_color((int)rep->models[k]);
     int p = j / h->per;
     double x = x_of(h, j), d = log10(e), y = y_of(h, p, d);
-    char t[BJ_NAME_MAX + 128], v[32];
-    snprintf(t, sizeof t, "%s \xe2\x80\x94 %s: %s", rep->m[h->ord[j].i].name,
-             brdffit_model_get(rep->models[k])->title, rp_compact(v, sizeof v, 4, e));
-    if (d < h->lo || d > h->hi) {
-        int up = d > h->hi;
+    int out = d < h->lo || d > h->hi, up = d > h->hi;
+    char t[BJ_NAME_MAX + 160], v[32];
+    snprintf(t, sizeof t, "%s \xe2\x80\x94 %s: %s%s", rep->m[h->ord[j].i].name,
+             brdffit_model_get(rep->models[k])->title, rp_compact(v, sizeof v, 4, e),
+             !out ? "" : up ? " (above the axis)" : " (below the axis)");
+    if (out) {
         h->above += up;
         h->below += !up;
         xml_open(w, "path");
         xml_attrf(w, "d", "M%.2f %.2fl-4.5 %dh9z", x, y, up ? 8 : -8);
         xml_attr(w, "fill", col);
-        strcat(t, up ? " (above the axis)" : " (below the axis)");
         titled(w, t);
         return;
     }

@@ -408,11 +408,15 @@ static void check_batch_pages(const char *out)
     char *idx = slurp(path);
     ck_assert_int_eq(count_lines(idx, "class=\"best\""), 3);
     ck_assert_int_eq(count_lines(idx, "not fitted: "), 2);
-    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") &&
+    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, ">flat<") &&
                       strstr(idx, brdffit_version()) && strstr(idx, "median Error") &&
                       strstr(idx, "headline.svg"),
                   "%s", idx);
-    ck_assert_msg(strstr(idx, "published "), "no published Error in the matrix");
+    ck_assert_msg(strstr(idx, "published Error ") && strstr(idx, "\xc2\xa0\xc3\x97"),
+                  "no published Error and ratio in the matrix");
+    ck_assert_msg(strstr(idx, "median ratio to published"), "no median ratio in the Models table");
+    ck_assert_msg(strstr(idx, "computed here: the published parameters scored on the tables given"),
+                  "the settings do not say where the published Errors come from");
     free(idx);
     snprintf(path, sizeof path, "%s/chrome/index.html", out);
     char *page = slurp(path);
@@ -443,8 +447,8 @@ START_TEST(batch_writes_every_file)
     ck_assert_int_eq(tu_write_bytes(list, body, strlen(body)), 0);
     tu_shared("data/ngan2005-fits.tsv", pub, sizeof pub);
     snprintf(out, sizeof out, "%s/out", dir);
-    snprintf(args, sizeof args, "batch '%s/in' @'%s' --out '%s' " FAST " --published '%s'", dir, list,
-             out, pub);
+    snprintf(args, sizeof args, "batch '%s/in' @'%s' --out '%s' " FAST " --scale flat --published '%s'",
+             dir, list, out, pub);
     run_out r = run(args);
     expect_status(r, 1, args); /* two tables failed; the others are fitted */
     char want[1200];
@@ -924,7 +928,7 @@ START_TEST(score_agrees_with_the_batch)
     make_inputs(dir, 0);
     tu_shared("data/ngan2005-fits.tsv", pub, sizeof pub);
     char extra[1200];
-    snprintf(extra, sizeof extra, "--published '%s'", pub);
+    snprintf(extra, sizeof extra, "--scale flat --published '%s'", pub);
     free(clean_run(dir, "out", extra));
     snprintf(out, sizeof out, "%s/out", dir);
     ck_assert_ptr_nonnull(tu_merl_table("blue-rubber", table, sizeof table));
@@ -940,7 +944,7 @@ START_TEST(score_agrees_with_the_batch)
     char e_fit[64], e_pub[64];
     fits_field(out, "blue-rubber", "ward", "error", e_fit, sizeof e_fit);
     fits_field(out, "blue-rubber", "ward", "published_error", e_pub, sizeof e_pub);
-    snprintf(args, sizeof args, "score '%s' --model ward --params %s", table, params);
+    snprintf(args, sizeof args, "score '%s' --scale flat --model ward --params %s", table, params);
     run_out r = run(args);
     expect_status(r, 0, args);
     double e = score_error(r.out, "ward");
@@ -948,7 +952,8 @@ START_TEST(score_agrees_with_the_batch)
     run_free(&r);
 
     /* the published parameters: the batch's published Error */
-    snprintf(args, sizeof args, "score '%s' --fits '%s' --model ward,blinn-phong", table, pub);
+    snprintf(args, sizeof args, "score '%s' --scale flat --fits '%s' --model ward,blinn-phong",
+             table, pub);
     r = run(args);
     expect_status(r, 0, args);
     e = score_error(r.out, "ward");
@@ -966,6 +971,49 @@ START_TEST(score_agrees_with_the_batch)
     r = run(args);
     expect_status(r, 2, args);
     run_free(&r);
+    tmpdir_remove(dir);
+}
+END_TEST
+
+/* A published-fits file stating another scale than --scale is refused,
+ * naming both, and nothing is written; with --allow-scale-mismatch the
+ * comparison is made and said on every page. */
+START_TEST(published_scale_mismatch)
+{
+    char dir[512], args[8192], pub[1024], out[1024], path[2048];
+    tmpdir(dir, sizeof dir);
+    make_inputs(dir, 0);
+    tu_shared("data/ngan2005-fits.tsv", pub, sizeof pub); /* "# scale: flat" */
+    snprintf(out, sizeof out, "%s/out", dir);
+    snprintf(args, sizeof args, "batch '%s/in' --out '%s' " FAST " --no-render --no-plot "
+             "--published '%s'", dir, out, pub);
+    run_out r = run(args);
+    expect_status(r, 2, args);
+    ck_assert_msg(strstr(r.err, "states '# scale: flat'") && strstr(r.err, "--scale standard") &&
+                      strstr(r.err, "pass --scale flat") && strstr(r.err, "--allow-scale-mismatch"),
+                  "%s", r.err);
+    run_free(&r);
+    snprintf(path, sizeof path, "%s/index.html", out);
+    ck_assert_msg(!exists(path), "a refused batch wrote %s", path);
+
+    strcat(args, " --allow-scale-mismatch");
+    r = run(args);
+    expect_status(r, 0, args);
+    ck_assert_msg(strstr(r.err, "warning: --published") && strstr(r.err, "not fitted to"), "%s", r.err);
+    run_free(&r);
+    check_page(out, "index.html");
+    for (int i = -1; i < 3; i++) {
+        if (i < 0)
+            snprintf(path, sizeof path, "%s/index.html", out);
+        else
+            snprintf(path, sizeof path, "%s/%s/index.html", out, names[i]);
+        char *page = slurp(path);
+        ck_assert_msg(page && strstr(page, "class=\"warn\">Warning: ") &&
+                          strstr(page, "states &#39;# scale: flat&#39;") &&
+                          strstr(page, "not fitted to"),
+                      "%s has no warning of the scale mismatch", path);
+        free(page);
+    }
     tmpdir_remove(dir);
 }
 END_TEST
@@ -1233,6 +1281,7 @@ Suite *batch_suite(void)
     tcase_add_test(tc, changed_settings_and_files_are_refitted);
     tcase_add_test(tc, progress_lines);
     tcase_add_test(tc, score_agrees_with_the_batch);
+    tcase_add_test(tc, published_scale_mismatch);
     tcase_add_test(tc, demo_batch_prints_its_index);
     tcase_add_test(tc, one_record_schema_everywhere);
     tcase_add_test(tc, resume_decides_by_status_code);

@@ -71,6 +71,10 @@ int draw_common_option(draw_job *j, int argc, char **argv, int *i)
             j->fits = v;
         return r != 1 ? r : CLI_OK;
     }
+    if (strcmp(argv[*i], "--allow-scale-mismatch") == 0) {
+        j->allow_scale_mismatch = 1;
+        return CLI_OK;
+    }
     if ((r = draw_option(argc, argv, i, "--interp", &v)) != 0) {
         if (r != 1)
             return r;
@@ -120,9 +124,14 @@ static int get_fits(draw_job *j, const brdffit_table *t, const char *material, r
 {
     if (j->fits) {
         brdffit_error err;
-        if (mf_read(j->fits, material, j->o.models, j->o.nmodels, j->o.sample.scale, fits, nfits,
-                    &err) != 0) {
+        mf_scale sc = { j->o.sample.scale, j->allow_scale_mismatch };
+        if (mf_read(j->fits, material, j->o.models, j->o.nmodels, &sc, fits, nfits, &err) != 0) {
             cli_error("--fits %s", err.message);
+            return CLI_FAILED;
+        }
+        /* a TSV of parameters holds no Error: it is computed here, as score does */
+        if (j->s.render && mf_score(t, &j->o.sample, &j->o.context, fits, *nfits, &err) != 0) {
+            cli_error("--fits %s: %s", j->fits, err.message);
             return CLI_FAILED;
         }
         return CLI_OK;

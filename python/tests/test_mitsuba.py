@@ -281,6 +281,37 @@ def test_measured_table_renders_as_brdffits_reference(mitsuba_python, fitted):
     assert list(rms.values())[0] <= RMS_BOUND, rms
 
 
+ENV_EXR = r"""
+import numpy as np, mitsuba as mi
+mi.set_variant("scalar_rgb")
+u, v = np.meshgrid((np.arange(64) + 0.5) / 64, (np.arange(32) + 0.5) / 32)
+blob = 1.5 * np.exp(-((u - 0.75) ** 2 + (v - 0.35) ** 2) / 0.01)
+mi.Bitmap(np.stack([0.2 + blob, 0.3 + 0.5 * v, 0.2 + 0.8 * u], -1).astype(np.float32)).write("env.exr")
+"""
+
+
+def test_environment_map_renders_as_brdffits(mitsuba_python, fitted):
+    """An asymmetric map (a bright spot at +x, above the horizon; gradients
+    along both axes): Mitsuba's envmap, turned as the scene turns it, lights
+    the sphere as brdffit's quadrature does.  Measured 0.9% (32 x 32 at 1024
+    samples against brdffit's 128 x 128 at 512 directions a pixel); a map
+    turned or mirrored the wrong way gives 20-30%."""
+    d, table = fitted
+    run_mitsuba(mitsuba_python, ENV_EXR, d)
+    ggx = [r for r in map(json.loads, (d / "fits.jsonl").read_text().splitlines())
+           if r.get("model") == "ggx"]
+    r = export(d, write_jsonl(d / "ggx.jsonl", ggx), "--size", "32", "--env", str(d / "env.exr"),
+               out="envxml")
+    assert r.returncode == 0, r.stderr
+    r = subprocess.run([CLI, "render", table, "--fits", str(d / "ggx.jsonl"), "--model", "ggx",
+                        "--size", "128", "--env", str(d / "env.exr"), "--env-samples", "512",
+                        "--out", str(d / "envref")], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    rms = compare(mitsuba_python, d, [(str(d / "envxml" / "blue-metallic-paint-ggx.xml"),
+                                       str(d / "envref" / "ggx.exr"))], spp=1024)
+    assert list(rms.values())[0] <= 0.025, rms
+
+
 # Chi-square (mitsuba.chi2) of the sampler against its pdf, and weight x pdf =
 # eval, for each model at its registry's typical parameters.
 CHI2 = r"""

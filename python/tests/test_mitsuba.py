@@ -395,3 +395,29 @@ import numpy as np
 img = np.array(mi.Bitmap("alum-bronze-ggx.exr"))
 assert img.shape == (32, 32, 4) and img[16, 16, :3].min() > 0 and img[0, 0, 3] == 0, img.shape
 """
+
+
+BAD_PARAMS = r"""
+import mitsuba as mi, brdffit.mitsuba
+mi.set_variant("scalar_rgb"); brdffit.mitsuba.register()
+for spec, says in [({"model": "ward", "alpha": 5.0}, "alpha"), ({"model": "velvet"}, "velvet"),
+                   ({}, "model"), ({"model": "ggx", "F0": 0.5, "alpha": 0.1}, None)]:
+    try:
+        b = mi.load_dict(dict(type="brdffit", **spec))
+    except RuntimeError as e:
+        assert says and says in str(e), (spec, str(e)[-500:])
+        print("refused", spec)
+    else:
+        assert says is None, spec
+        print("loaded", b)
+try:
+    mi.load_dict({"type": "brdffit_measured", "filename": "no-such.binary"})
+except RuntimeError as e:
+    assert "no-such.binary" in str(e), str(e)[-500:]
+    print("refused table")
+"""
+
+
+def test_bad_parameters_are_refused_when_the_scene_loads(mitsuba_python, tmp_path):
+    out = run_mitsuba(mitsuba_python, BAD_PARAMS, tmp_path)
+    assert out.count("refused") == 4 and "loaded BrdffitBSDF[ggx" in out, out

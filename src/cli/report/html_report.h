@@ -41,6 +41,12 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
 int rp_write_gltf_files(const rp_report *rep, const rp_material *m, const out_dir *dir,
                         brdffit_error *err);
 void rp_gltf_section(xml_writer *w, const rp_report *rep, const rp_material *m);
+/* html_mitsuba.c: each ok fit of m as a Mitsuba 3 scene into dir
+ * (MATERIAL-MODEL.xml, as `brdffit export --format mitsuba` writes it), and
+ * the line of m's page linking them. */
+int rp_write_mitsuba_files(const rp_report *rep, const rp_material *m, const out_dir *dir,
+                           brdffit_error *err);
+void rp_mitsuba_section(xml_writer *w, const rp_report *rep, const rp_material *m);
 
 /* ---- html_index.c: DIR/ ---- */
 

@@ -12,6 +12,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -52,10 +53,24 @@ static void xyz_to_linear(const float x[3], float c[3])
 static const float inv_white[3] = { 1.052156925f, 1.000000000f, 0.918357670f };
 static const float white[3] = { 0.950428545f, 1.000000000f, 1.088900371f };
 
+/* The cube root of t > 0: a guess from the float's bits, two Halley steps
+ * in double (correct to float precision, without libm's frexp and scalbn). */
+static float cube_root(float t)
+{
+    union { float f; uint32_t u; } g = { t };
+    g.u = g.u / 3 + 709921077u;
+    double x = t, y = g.f;
+    for (int i = 0; i < 2; i++) {
+        double y3 = y * y * y;
+        y *= (y3 + 2 * x) / (2 * y3 + x);
+    }
+    return (float)y;
+}
+
 static float lab_f(float t)
 {
     const float d = 6.0f / 29.0f, d3 = d * d * d;
-    return t > d3 ? cbrtf(t) : t / (3.0f * d * d) + 4.0f / 29.0f;
+    return t > d3 ? cube_root(t) : t / (3.0f * d * d) + 4.0f / 29.0f;
 }
 
 /* Linear RGB (clamped to the unit cube) to Hunt-adjusted CIELab. */
@@ -198,6 +213,7 @@ static void conv_col(const float *in, int w, int h, int y, const float *k, int r
 struct brdffit_flip_ref {
     int w, h, wp;        /* wp: w rounded up to FLIP_LANES */
     float cmax;
+    float code[256];     /* q / 255                                           */
     float lut[256];      /* srgb_to_linear(q / 255): 8-bit images without powf */
     csf_filters csf;
     feature_filters feat;
@@ -217,10 +233,9 @@ typedef struct flip_work {
 /* srgb_to_linear(v), from R's table when v is an 8-bit code q / 255. */
 static float linear_of(const brdffit_flip_ref *R, float v)
 {
-    float s = v * 255.0f;
-    if (s >= 0 && s <= 255) {
-        int q = (int)lrintf(s);
-        if ((float)q / 255.0f == v)
+    if (v >= 0 && v <= 1) {
+        int q = (int)(v * 255.0f + 0.5f);
+        if (R->code[q] == v)
             return R->lut[q];
     }
     return srgb_to_linear(v);
@@ -381,7 +396,7 @@ static int ref_alloc(brdffit_flip_ref *R, int w, int h, float ppd)
     feature_set(&R->feat, sd);
     R->cmax = max_distance();
     for (int q = 0; q < 256; q++)
-        R->lut[q] = srgb_to_linear((float)q / 255.0f);
+        R->lut[q] = srgb_to_linear(R->code[q] = (float)q / 255.0f);
     return 0;
 }
 

@@ -74,25 +74,26 @@ void ci_lightness(const unsigned char *rgb8, const float *ref_rgba, int n, float
         l[i] = ref_rgba[4 * i + 3] == 1.0f ? lightness8(rgb8 + 3 * i, lin) : NAN;
 }
 
-static int cmp_float(const void *a, const void *b)
-{
-    float x = *(const float *)a, y = *(const float *)b;
-    return (x > y) - (x < y);
-}
+#define HIST_BINS 10001 /* |dL*| in steps of 0.01 up to 100, and one for more */
 
 double ci_diff_scale(const float *dl, size_t count)
 {
-    float *v = malloc(sizeof(float) * (count ? count : 1));
+    unsigned *hist = calloc(HIST_BINS, sizeof *hist);
     size_t m = 0;
-    for (size_t i = 0; v && i < count; i++)
-        if (isfinite(dl[i]))
-            v[m++] = fabsf(dl[i]);
-    double p = 0;
-    if (m > 0) {
-        qsort(v, m, sizeof *v, cmp_float);
-        p = v[(size_t)floor(0.95 * (double)(m - 1))];
+    for (size_t i = 0; hist && i < count; i++)
+        if (isfinite(dl[i])) {
+            double b = fabs((double)dl[i]) * 100.0;
+            hist[b < HIST_BINS - 1 ? (size_t)b : HIST_BINS - 1]++;
+            m++;
+        }
+    double p = 0; /* the 95th percentile (rank floor(0.95 (m - 1))), to the bin's upper edge */
+    if (m > 0 && hist) {
+        size_t rank = (size_t)floor(0.95 * (double)(m - 1)), seen = 0, k = 0;
+        while ((seen += hist[k]) <= rank)
+            k++;
+        p = (double)(k + 1) / 100.0;
     }
-    free(v);
+    free(hist);
     static const double nice[] = { 1, 1.5, 2, 3, 5, 7, 10, 15, 20, 30, 50, 70, 100 };
     for (size_t k = 0; k < sizeof nice / sizeof nice[0]; k++)
         if (p <= nice[k])

@@ -88,6 +88,7 @@ typedef struct render_job {
     const out_dir *dir;
     int n;                   /* image width = height */
     float *ref, *img;        /* RGBA, 4 n^2 floats each (ref: masked pixels filled) */
+    const float *raw;        /* the reference as rendered (relative_rms: its covered pixels) */
     unsigned char *rgb8;     /* 3 n^2 */
     rf_result *r;
     brdffit_error *err;
@@ -160,7 +161,7 @@ static int write_model(render_job *j, const rf_fit *f, int k, const rf_settings 
         write_png(j, j->img, stem_of(f), caption, k) != 0)
         return -1;
     double e;
-    j->r->relative_rms[k] = brdffit_image_error(j->ref, j->img, j->n, j->n, 0, &e, NULL, NULL) ==
+    j->r->relative_rms[k] = brdffit_image_error(j->raw, j->img, j->n, j->n, 0, &e, NULL, NULL) ==
                                     BRDFFIT_OK ? e : NAN;
     return compare_model(j, f, k);
 }
@@ -270,11 +271,12 @@ static int write_diffs(render_job *j, const rf_fit *fits, int nfits)
 /* The reference: its EXR as rendered (masked pixels A = 0.5), then its
  * masked pixels filled where a covered neighbour is, its PNG, the PNG's L*
  * and its FLIP reference. */
-static int write_reference(render_job *j, float *ref_l, brdffit_flip_ref **flip)
+static int write_reference(render_job *j, float *raw, float *ref_l, brdffit_flip_ref **flip)
 {
     size_t px = (size_t)j->n * (size_t)j->n;
     if (write_exr(j, j->ref, "reference", "Reference (measured)", -1) != 0)
         return -1;
+    memcpy(raw, j->ref, sizeof(float) * 4 * px);
     j->r->filled = ci_fill_masked(j->ref, j->n);
     if (write_png(j, j->ref, "reference", "Reference (measured)", -1) != 0)
         return -1;
@@ -296,13 +298,13 @@ static int write_renders(const out_dir *dir, const brdffit_table *table, const r
 {
     int n = s->render_opt.width, rc = -1;
     size_t px = (size_t)n * (size_t)n;
-    render_job j = { dir, n, malloc(16 * px), malloc(16 * px), malloc(3 * px), r, err,
+    render_job j = { dir, n, malloc(16 * px), malloc(16 * px), NULL, malloc(3 * px), r, err,
                      NULL, malloc(sizeof(float) * px * (size_t)(nfits > 0 ? nfits : 1)), NULL,
                      NULL };
-    float *ref_l = malloc(sizeof(float) * px);
+    float *ref_l = malloc(sizeof(float) * px), *raw = malloc(16 * px);
     brdffit_flip_ref *flip = NULL;
     brdffit_error lerr;
-    if (!j.ref || !j.img || !j.rgb8 || !j.dl || !ref_l) {
+    if (!j.ref || !j.img || !j.rgb8 || !j.dl || !ref_l || !raw) {
         failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", dir->path);
         goto done;
     }
@@ -316,8 +318,9 @@ static int write_renders(const out_dir *dir, const brdffit_table *table, const r
         r->masked += j.ref[4 * i + 3] == BRDFFIT_COVERAGE_MASKED;
     }
     r->exposure = s->exposure > 0 ? s->exposure : tm_auto_exposure(j.ref, n, n, 0);
-    if (write_reference(&j, ref_l, &flip) != 0)
+    if (write_reference(&j, raw, ref_l, &flip) != 0)
         goto done;
+    j.raw = raw;
     j.ref_l = ref_l;
     j.flip = flip;
     if (write_models(&j, fits, nfits, s) == 0 && write_diffs(&j, fits, nfits) == 0)
@@ -325,6 +328,7 @@ static int write_renders(const out_dir *dir, const brdffit_table *table, const r
 done:
     brdffit_flip_ref_free(flip);
     free(ref_l);
+    free(raw);
     free(j.ref);
     free(j.img);
     free(j.rgb8);

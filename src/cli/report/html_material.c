@@ -194,8 +194,8 @@ static void comparisons(xml_writer *w, const rp_material *m)
                   "|\xce\x94L*| over them, rounded up), so that their images compare. Black: "
                   "off the sphere. Reference pixels whose table lookups met a masked bin (the "
                   "thin arc where the rim light's terminator crosses bins the table leaves "
-                  "unmeasured) take the mean of their measured neighbours within 2 pixels; "
-                  "any with none would be grey.");
+                  "unmeasured) take the mean of their measured neighbours within 2 pixels, so a "
+                  "faint trace of the arc can remain; any with none would be grey.");
     }
     figures(w, m, "diff", NULL);
     figures(w, m, "flipbar",

@@ -71,7 +71,7 @@ def test_render_image_errors_are_nvidias_flip(brdffit, cli, flip_python, tmp_pat
 
 
 def synthetic_pairs(rng):
-    y, x = np.mgrid[0:64, 0:80] / 64.0
+    y, x = np.mgrid[0:61, 0:77] / 64.0  # a width not a multiple of the vector lanes
     ref = np.stack([0.5 + 0.4 * np.sin(7 * x), y % 1.0, 0.3 + 0.5 * ((x * 8).astype(int) % 2)],
                    -1).clip(0, 1)
     noisy = (ref + rng.normal(0, 0.08, ref.shape)).clip(0, 1)

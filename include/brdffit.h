@@ -790,6 +790,34 @@ brdffit_status brdffit_image_error(const float *ref, const float *img, int width
                                    size_t stride, double *error, size_t *covered,
                                    brdffit_error *err);
 
+/* LDR FLIP (Andersson et al., "FLIP: A Difference Evaluator for Alternating
+ * Images", HPG 2020), the perceptual difference of test from ref as NVIDIA's
+ * reference implementation (github.com/NVlabs/flip) defines it: both images
+ * sRGB-encoded RGB in [0, 1] (clamped), 3 floats a pixel, width x height,
+ * the same stride (floats from one row to the next; 0: 3 width); viewed at
+ * ppd pixels per degree (0: BRDFFIT_FLIP_PPD, a 0.7 m wide 3840-pixel display
+ * at 0.7 m; else 1..1000).  map (may be NULL; width x height floats, row-major)
+ * gets the per-pixel FLIP in [0, 1] (0: no visible difference); mean the mean
+ * over all pixels, what NVIDIA's tool and the flip-evaluator package report.
+ * BRDFFIT_E_INVALID_ARGUMENT
+ * for a non-finite value (the pixel is named) or bad sizes; BRDFFIT_E_NO_MEMORY. */
+#define BRDFFIT_FLIP_PPD 67.0206432
+brdffit_status brdffit_flip(const float *ref, const float *test, int width, int height,
+                            size_t stride, double ppd, float *map, double *mean,
+                            brdffit_error *err);
+
+/* The same against one reference many times: brdffit_flip_ref_create does
+ * the reference's half of the work once (its arguments as brdffit_flip's;
+ * *out NULL on failure); brdffit_flip_compare then takes a test image of the
+ * reference's size (stride 0: 3 width), and may be called from several
+ * threads at once; brdffit_flip_ref_free (NULL: nothing) releases it. */
+typedef struct brdffit_flip_ref brdffit_flip_ref;
+brdffit_status brdffit_flip_ref_create(const float *ref, int width, int height, size_t stride,
+                                       double ppd, brdffit_flip_ref **out, brdffit_error *err);
+brdffit_status brdffit_flip_compare(const brdffit_flip_ref *ref, const float *test, size_t stride,
+                                    float *map, double *mean, brdffit_error *err);
+void brdffit_flip_ref_free(brdffit_flip_ref *ref);
+
 /* ------------------------------------------------------------------ incidence-plane curves
  *
  * For each incidence angle theta_i (degrees), wi = (-sin ti, 0, cos ti) in

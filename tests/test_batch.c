@@ -424,6 +424,8 @@ static void check_batch_pages(const char *out)
         "src=\"reference.png\"", "src=\"ward.png\"", "src=\"ward-diff.png\"",
         "src=\"blinn-phong.png\"", "src=\"plot-measured.svg\"", "src=\"plot-ward.svg\"",
         "src=\"plot-blinn-phong.svg\"", "href=\"reference.exr\"", "href=\"ward.exr\"",
+        "src=\"ward-flip.png\"", "src=\"diff-scale.svg\"", "src=\"flip-scale.svg\"",
+        "Blue: the model is darker than the reference", "Its mean over the image is the image error",
     };
     for (size_t i = 0; i < sizeof linked / sizeof linked[0]; i++)
         ck_assert_msg(strstr(page, linked[i]), "chrome's page has no %s", linked[i]);

@@ -53,7 +53,7 @@ from .curves import incidence_curves
 from .evaluate import eval  # noqa: A004 (the C API's name)
 from .fitting import AtBound, Context, FitFlag, FitResult, error_of, fit
 from .models import Model, Param, Params, metric_name, model, models
-from .render import COVERAGE_MASKED, Light, default_lights, image_error, render
+from .render import COVERAGE_MASKED, Light, default_lights, flip, image_error, render
 from .samples import Sample, Samples
 from .table import Table, scale_factors
 
@@ -89,7 +89,7 @@ __all__ = [
     "Light", "Model", "NoDeviceError", "NoSamplesError", "OpenCLError", "OptionsSizeError",
     "OutOfMemoryError", "Param", "ParamRangeError", "Params", "Sample", "Samples", "Status", "Table",
     "TooFewSamplesError", "UnknownModelError", "ValueRangeError", "__version__",
-    "default_lights", "error_of", "eval", "fit", "image_error", "incidence_curves",
+    "default_lights", "error_of", "eval", "fit", "flip", "image_error", "incidence_curves",
     "library_version", "load_library", "metric_name", "model", "models", "release_memory", "render",
     "scale_factors", "version",
 ]

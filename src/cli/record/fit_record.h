@@ -72,7 +72,7 @@ typedef struct fit_record {
     long long samples;              /* -1: not known                        */
     char backend[16];               /* "opencl" | "host" | ""               */
     char backend_description[256];
-    char assets_key[BJ_MSG_MAX];    /* FR_ASSETS: what was drawn ("rf1:render=1,plot=1:ward,he") */
+    char assets_key[BJ_MSG_MAX];    /* FR_ASSETS: what was drawn ("rf2:render=1,plot=1:ward,he") */
     char assets[BJ_ASSETS_MAX];     /* FR_ASSETS: lines "kind<TAB>file<TAB>caption"   */
     int origin;                     /* not written: which journal it came from        */
     int line;                       /* not written: its line in that journal (1..)    */

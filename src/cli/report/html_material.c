@@ -204,7 +204,8 @@ static void params_table(xml_writer *w, const rp_report *rep, const rp_material 
     xml_close(w);
 }
 
-/* The figures of one kind ("image", "plot") from the assets list. */
+/* The figures of one kind ("image", "plot") from the assets list, under the
+ * heading title (none: NULL) when there is one. */
 static void figures(xml_writer *w, const rp_material *m, const char *kind, const char *title)
 {
     if (!m->assets)
@@ -223,7 +224,7 @@ static void figures(xml_writer *w, const rp_material *m, const char *kind, const
         *t1 = *t2 = '\0';
         if (strcmp(line, kind) != 0)
             continue;
-        if (!any++)
+        if (!any++ && title)
             xml_element_text(w, "h2", title);
         rp_url_segment(href, sizeof href, t1 + 1);
         if (strcmp(kind, "data") == 0) {
@@ -241,6 +242,42 @@ static void figures(xml_writer *w, const rp_material *m, const char *kind, const
         xml_element_text(w, "figcaption", t2 + 1);
         xml_close(w);
     }
+}
+
+static void legend(xml_writer *w, const char *text)
+{
+    xml_open(w, "p");
+    xml_attr(w, "class", "note");
+    xml_text(w, text);
+    xml_close(w);
+}
+
+/* The difference images and FLIP maps, each kind under its colour bar and a
+ * legend saying what the colours mean. */
+static void comparisons(xml_writer *w, const rp_material *m)
+{
+    figures(w, m, "diffbar",
+            "Differences from the reference: lightness of each model's PNG minus the reference's");
+    if (m->assets && strstr(m->assets->assets, "diffbar\t")) {
+        legend(w, "Blue: the model is darker than the reference there; red: brighter; white: "
+                  "the same. \xce\x94L* is CIE lightness (0 black, 100 white) of the PNGs "
+                  "above; one scale for all models of this material (the 95th percentile of "
+                  "|\xce\x94L*| over them, rounded up), so that their images compare. Black: "
+                  "off the sphere. Reference pixels whose table lookups met a masked bin (the "
+                  "thin arc where the rim light's terminator crosses bins the table leaves "
+                  "unmeasured) take the mean of their measured neighbours within 2 pixels, so a "
+                  "faint trace of the arc can remain; any with none would be grey.");
+    }
+    figures(w, m, "diff", NULL);
+    figures(w, m, "flipbar",
+            "\xea\x9f\xbbLIP: the difference a viewer sees, per pixel (the image error is its mean)");
+    if (m->assets && strstr(m->assets->assets, "flipbar\t"))
+        legend(w, "\xea\x9f\xbbLIP (Andersson et al. 2020; NVIDIA's definition, LDR) of each "
+                  "model's PNG against the reference's, viewed at 67 pixels per degree (a 0.7 m "
+                  "wide 4K display at 0.7 m); black: no visible difference, yellow-white: the "
+                  "most. Its mean over the image is the image error in renders.json; the same "
+                  "number as NVIDIA's flip tool on these PNGs.");
+    figures(w, m, "flip", NULL);
 }
 
 int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
@@ -291,7 +328,7 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
         rp_gltf_section(&w, rep, m);
         rp_mitsuba_section(&w, rep, m);
         figures(&w, m, "image", "Renders (reference and each model, same exposure)");
-        figures(&w, m, "diff", "Differences from the reference");
+        comparisons(&w, m);
         figures(&w, m, "plot", "Incidence-plane plots (cube root)");
         figures(&w, m, "data", "Data: linear images (OpenEXR, alpha = coverage), render settings");
     }

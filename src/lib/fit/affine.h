@@ -41,6 +41,12 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
                               const double (*pts)[AF_NP], int np, const double *inv_h, af_mom *m,
                               brdffit_error *err);
 
+/* fn on each of njobs jobs of size bytes from jobs, on the pass workers (at
+ * most nworkers threads, made once a process) while the caller waits, or in
+ * the calling thread when the workers are in use or cannot be made
+ * (affine_pool.c). */
+void bf_affine_run(void (*fn)(void *), void *jobs, size_t size, int njobs, int nworkers);
+
 /* From a pass's sums m: r^T r, H = J^T J and g = J^T r in the first nx
  * coordinates (nx x nx, nx) at the best base colours (into base; each
  * solved in [0, 1], a colour inside projected out of H), and hdiag, H's

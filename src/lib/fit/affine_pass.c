@@ -13,7 +13,6 @@
 #include "subsets.h"
 #include "bf_gltf.h"
 
-#include <pthread.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -179,14 +178,13 @@ AF_CLONES static void rr_range(af_job *jb)
     jb->rr = rr;
 }
 
-static void *af_run(void *arg)
+static void af_run(void *arg)
 {
     af_job *jb = arg;
     if (jb->params)
         rr_range(jb);
     else
         pass_range(jb);
-    return NULL;
 }
 
 static int af_threads(size_t n)
@@ -197,28 +195,18 @@ static int af_threads(size_t n)
     return t < 1 ? 1 : t > AF_MAX_THREADS ? AF_MAX_THREADS : (int)t;
 }
 
-/* Run the jobs (their sample ranges filled in here, in whole tiles), one
- * in the calling thread and the others in threads of their own. */
+/* Run the jobs, their sample ranges filled in here in whole tiles, on the
+ * pass workers (affine_pool.c). */
 static void run_jobs(const brdffit_samples *s, af_job *jobs, int nt)
 {
-    pthread_t tid[AF_MAX_THREADS];
     const size_t tile = AF_T * AF_L, tiles = (s->n + tile - 1) / tile;
-    int started = 0;
     for (int k = 0; k < nt; k++) {
         jobs[k].i0 = tile * (tiles * (size_t)k / (size_t)nt);
         jobs[k].i1 = tile * (tiles * (size_t)(k + 1) / (size_t)nt);
         if (jobs[k].i1 > s->n)
             jobs[k].i1 = s->n;
-        if (k > 0 && pthread_create(&tid[k], NULL, af_run, &jobs[k]) == 0)
-            started |= 1 << k;
     }
-    af_run(&jobs[0]);
-    for (int k = 1; k < nt; k++) {
-        if (started & (1 << k))
-            pthread_join(tid[k], NULL);
-        else
-            af_run(&jobs[k]); /* no thread: run it here */
-    }
+    bf_affine_run(af_run, jobs, sizeof *jobs, nt, af_threads(~(size_t)0 >> 1));
 }
 
 /* The index of sum y_a y_c (a <= c) among ny rows' sums. */

@@ -53,15 +53,15 @@ AF_INLINE void load_block(const brdffit_samples *s, size_t i, size_t end, af_blo
     static const int fields[8] = { BF_F_IZ, BF_F_OZ, BF_F_NH, BF_F_VH,
                                    BF_F_R,  BF_F_G,  BF_F_B,  BF_F_A2 };
     double *dst[8] = { b->iz, b->oz, b->nh, b->vh, b->rho[0], b->rho[1], b->rho[2], b->w };
+    const size_t nl = i < end ? end - i : 0; /* lanes in the run */
     for (int k = 0; k < 8; k++) {
-        const double *src = s->data + (size_t)fields[k] * s->npad + i;
-        if (end - i >= AF_L) { /* a whole block: one vector */
-            memcpy(dst[k], src, AF_L * sizeof(double));
+        const double *field = s->data + (size_t)fields[k] * s->npad;
+        if (nl >= AF_L) { /* a whole block: one vector */
+            memcpy(dst[k], field + i, AF_L * sizeof(double));
             continue;
         }
-        const double *last = s->data + (size_t)fields[k] * s->npad + (end - 1);
         for (size_t l = 0; l < AF_L; l++)
-            dst[k][l] = i + l < end ? src[l] : k == 7 ? 0.0 : *last;
+            dst[k][l] = l < nl ? field[i + l] : k == 7 ? 0.0 : field[end - 1];
     }
 }
 

@@ -16,8 +16,8 @@
  * interval. */
 #define MODEL_NPHI_MAX 24
 #define MODEL_ORDER 8
-#define TABLE_NPHI 96
-#define TABLE_ORDER 3
+#define TABLE_NPHI 48
+#define TABLE_ORDER 2
 #define MIN_WIDTH 1e-7
 
 static double clampd(double v, double lo, double hi)
@@ -189,13 +189,14 @@ static void table_albedo(const brdffit_table *table, brdffit_scale scale, brdffi
     double acc[3] = { 0, 0, 0 }, all = 0, hit = 0;
     for (size_t q = 0; q < np; q++) {
         double f[3];
-        int bad = brdffit_table_lookup(table, pts[q].wi, wo, scale, interp, f, NULL) != BRDFFIT_OK;
+        if (brdffit_table_lookup(table, pts[q].wi, wo, scale, interp, f, NULL) != BRDFFIT_OK)
+            f[0] = f[1] = f[2] = -1.0; /* no value: as masked (not met above the horizon) */
+        int bad = 0;
         for (int c = 0; c < 3; c++) {
-            if (bad || f[c] < 0) {
+            if (f[c] < 0)
                 bad = 1;
-                continue;
-            }
-            acc[c] += pts[q].w * f[c];
+            else
+                acc[c] += pts[q].w * f[c];
         }
         all += pts[q].w;
         hit += bad ? pts[q].w : 0.0;

@@ -51,7 +51,7 @@ size_t aq_max_points(const aq_rule *rule);
  * (aq_max_points of them at most); returns their number. */
 size_t aq_points(const aq_rule *rule, const double wo[3], aq_point *pts);
 
-/* Gauss-Legendre nodes x and weights w of order n (1..64) on [-1, 1]. */
+/* Gauss-Legendre nodes x and weights w of order n (1..128) on [-1, 1]. */
 void aq_gauss_legendre(int n, double *x, double *w);
 
 /* brdffit_albedo_model with nphi points in phi (0: the public function's,

@@ -10,7 +10,7 @@
 #define MAX_POLE_LEVELS 48
 /* Intervals graded toward the horizon end: halvings of the radial range. */
 #define END_LEVELS 4
-#define MAX_ORDER 64
+#define MAX_ORDER 128
 /* Intervals of [1/2, 3/4] of the radial range (where kinks of a lobe's
  * shadowing term lie for broad lobes). */
 #define MID_STEPS 2

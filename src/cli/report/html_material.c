@@ -216,6 +216,7 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
                          "table, ratio = Error / published Error (below 1: this fit is closer)");
         xml_close(&w);
         rp_gltf_section(&w, rep, m);
+        rp_energy_section(&w, rep, m);
         figures(&w, m, "image", "Renders (reference and each model, same exposure)");
         figures(&w, m, "diff", "Differences from the reference");
         figures(&w, m, "plot", "Incidence-plane plots (cube root)");

@@ -37,6 +37,8 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
 int rp_write_gltf_files(const rp_report *rep, const rp_material *m, const out_dir *dir,
                         brdffit_error *err);
 void rp_gltf_section(xml_writer *w, const rp_report *rep, const rp_material *m);
+/* html_energy.c: the energy section of m's page (each fit's albedo, flags, plots). */
+void rp_energy_section(xml_writer *w, const rp_report *rep, const rp_material *m);
 
 /* ---- html_index.c: DIR/ ---- */
 

@@ -55,8 +55,8 @@ size_t aq_points(const aq_rule *rule, const double wo[3], aq_point *pts);
 void aq_gauss_legendre(int n, double *x, double *w);
 
 /* brdffit_albedo_model with nphi points in phi (0: the public function's,
- * which depend on theta_o) and order per radial interval (the public
- * function's: albedo.c's MODEL_ORDER): for the tests' convergence checks. */
+ * which depend on theta_o) and order points per radial interval (0: the
+ * public function's, which depend on the model): for convergence checks. */
 #include "brdffit.h"
 brdffit_status bf_albedo_model_rule(brdffit_model model, const brdffit_params *params, size_t n,
                                     const double *theta_o_deg, double *rgb, int nphi, int order,

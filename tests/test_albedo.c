@@ -6,6 +6,8 @@
  * model's bounds. */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
+#include "batch.h"
+#include "html_report.h"
 
 #include <check.h>
 #include <math.h>
@@ -379,6 +381,177 @@ START_TEST(refuses_bad_input)
 }
 END_TEST
 
+
+/* ---- the program: the fit records' energy fields, the report's section */
+
+static double max_of(const double a[FR_ALBEDO_N][3], double *where)
+{
+    double best = -1;
+    for (int k = 0; k < FR_ALBEDO_N; k++)
+        for (int c = 0; c < 3; c++)
+            if (a[k][c] > best) {
+                best = a[k][c];
+                *where = 5.0 * k;
+            }
+    return best;
+}
+
+/* `fit --json` records carry the model's albedo (as the library gives it at
+ * the record's parameters), its maximum and where, the table's albedo and the
+ * departure as docs/fit-record.md defines it. */
+START_TEST(records_carry_albedo)
+{
+    char args[2048];
+    snprintf(args, sizeof args, "fit '%s' --model blinn-phong,ward-duer --starts 1 --json",
+             tu_table_fixture());
+    tu_run_out r = tu_run_cli("", args);
+    TU_EXPECT_STATUS(r, 0, args);
+    static fit_record rec;
+    int n = 0;
+    brdffit_table *t = NULL;
+    ck_assert_int_eq(brdffit_table_read(tu_table_fixture(), &t, NULL), BRDFFIT_OK);
+    double measured[54];
+    ck_assert_int_eq(brdffit_albedo_table(t, BRDFFIT_SCALE_STANDARD, BRDFFIT_INTERP_TRILINEAR, 18,
+                                          GRID, measured, NULL, NULL),
+                     BRDFFIT_OK);
+    brdffit_table_free(t);
+    for (char *save = NULL, *line = strtok_r(r.out, "\n", &save); line;
+         line = strtok_r(NULL, "\n", &save), n++) {
+        ck_assert_msg(strstr(line, "\"albedo\":[") && strstr(line, "\"albedo_max_theta_o\":"),
+                      "%s", line);
+        ck_assert_int_eq(fr_read_json(line, &rec, FR_NEED_FIT), 0);
+        ck_assert(rec.has_albedo && rec.has_albedo_measured);
+        brdffit_model m;
+        ck_assert_int_eq(brdffit_model_from_name(rec.model, &m, NULL), BRDFFIT_OK);
+        double a[54], where = -1;
+        ck_assert_int_eq(brdffit_albedo_model(m, &rec.params, 18, GRID, a, NULL), BRDFFIT_OK);
+        for (int k = 0; k < 54; k++) {
+            ck_assert(fabs(rec.albedo[k / 3][k % 3] - a[k]) <= 1e-5 * a[k] + 1e-12);
+            ck_assert(fabs(rec.albedo_measured[k / 3][k % 3] - measured[k]) <= 1e-5 * measured[k] + 1e-12);
+        }
+        ck_assert(fabs(rec.albedo_max - max_of(rec.albedo, &where)) < 1e-12);
+        ck_assert(rec.albedo_max_theta_o == where);
+        double worst = -1, at = -1;
+        for (int k = 0; k < 17; k++) { /* theta_o <= the cutoff, 80 */
+            double ym = 0.2126 * a[3 * k] + 0.7152 * a[3 * k + 1] + 0.0722 * a[3 * k + 2];
+            double yt = 0.2126 * measured[3 * k] + 0.7152 * measured[3 * k + 1] +
+                        0.0722 * measured[3 * k + 2];
+            double d = fabs(ym - yt) / fmax(yt, 0.01);
+            if (d > worst) {
+                worst = d;
+                at = 5.0 * k;
+            }
+        }
+        ck_assert_msg(fabs(rec.albedo_departure - worst) < 1e-4, "%s: %g, here %g", rec.model,
+                      rec.albedo_departure, worst);
+        ck_assert(rec.albedo_departure_theta_o == at);
+        ck_assert(rec.seconds_albedo >= 0 && rec.seconds_albedo < 1);
+        /* the table is a Ward-Duer lobe: its own model's fit stays close */
+        if (m == BRDFFIT_WARD_DUER)
+            ck_assert_msg(!fr_albedo_departs(&rec), "departure %g", rec.albedo_departure);
+    }
+    ck_assert_int_eq(n, 2);
+    tu_run_free(&r);
+}
+END_TEST
+
+static void curve_fill(double a[FR_ALBEDO_N][3], double v)
+{
+    for (int k = 0; k < FR_ALBEDO_N; k++)
+        a[k][0] = a[k][1] = a[k][2] = v;
+}
+
+/* The flags: a fit above 1 exceeds, one 20% off the table departs, one 5%
+ * off neither; each has its plot; a record that failed has none. */
+START_TEST(energy_section_flags)
+{
+    static fit_record rec[4];
+    const char *names[4] = { "ward", "ggx", "blinn-phong", "he" };
+    const double model_value[3] = { 0.5, 0.36, 0.315 };
+    for (int i = 0; i < 4; i++) {
+        fr_init(&rec[i], FR_FIT);
+        snprintf(rec[i].model, sizeof rec[i].model, "%s", names[i]);
+        rec[i].settings.cutoff_deg = 80;
+        rec[i].has_params = i < 3;
+        rec[i].status = i < 3 ? BRDFFIT_OK : BRDFFIT_E_FIT_FAILED;
+        if (i == 3)
+            continue;
+        rec[i].has_albedo = rec[i].has_albedo_measured = 1;
+        curve_fill(rec[i].albedo, model_value[i]);
+        curve_fill(rec[i].albedo_measured, 0.3);
+        rec[i].albedo_max = model_value[i];
+        rec[i].albedo_max_theta_o = 0;
+        rec[i].albedo_departure = (model_value[i] - 0.3) / 0.3;
+        rec[i].albedo_departure_theta_o = 0;
+    }
+    rec[0].albedo[17][0] = 1.2; /* red above 1 at 85 deg */
+    rec[0].albedo_max = 1.2;
+    rec[0].albedo_max_theta_o = 85;
+    ck_assert(fr_albedo_exceeds(&rec[0]) && !fr_albedo_exceeds(&rec[1]));
+    ck_assert(fr_albedo_departs(&rec[1]) && !fr_albedo_departs(&rec[2]));
+    rp_report rep;
+    bj_settings set;
+    memset(&set, 0, sizeof set);
+    const brdffit_model models[4] = { BRDFFIT_WARD, BRDFFIT_GGX, BRDFFIT_BLINN_PHONG, BRDFFIT_HE };
+    ck_assert_int_eq(rp_init(&rep, models, 4, &set), 0);
+    rp_material m;
+    memset(&m, 0, sizeof m);
+    for (int i = 0; i < 4; i++)
+        m.fit[i] = &rec[i];
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    ck_assert_ptr_nonnull(f);
+    xml_writer w;
+    xml_init(&w, f, XML_MODE_HTML);
+    xml_open(&w, "body");
+    rp_energy_section(&w, &rep, &m);
+    xml_close(&w);
+    ck_assert_int_eq(xml_finish(&w), 0);
+    ck_assert_int_eq(fclose(f), 0);
+    ck_assert_msg(strstr(text, "Energy: directional albedo"), "%.300s", text);
+    int svgs = 0;
+    for (const char *p = text; (p = strstr(p, "<svg")); p++)
+        svgs++;
+    ck_assert_int_eq(svgs, 3);
+    static const char *const captions[3] = {
+        "max 1.200 at 85 deg; departs 66.7% at 0 deg \xe2\x9a\xa0 exceeds 1 \xe2\x9a\xa0 departs &gt; 10%</figcaption>",
+        "max 0.360 at 0 deg; departs 20.0% at 0 deg \xe2\x9a\xa0 departs &gt; 10%</figcaption>",
+        "max 0.315 at 0 deg; departs 5.0% at 0 deg</figcaption>",
+    };
+    for (int i = 0; i < 3; i++)
+        ck_assert_msg(strstr(text, captions[i]), "no caption %s", captions[i]);
+    free(text);
+    rp_free(&rep);
+}
+END_TEST
+
+/* A record's albedo is judged as the program writes it. */
+START_TEST(record_check_judges_albedo)
+{
+    static fit_record r;
+    char line[] = "{\"kind\":\"fit\",\"material\":\"m\",\"model\":\"ward\",\"status_code\":0,"
+                  "\"albedo\":[1,2,3]}";
+    ck_assert_int_eq(fr_read_json(line, &r, FR_NEED_FIT), -1); /* 3 numbers, not 54 */
+    fr_init(&r, FR_FIT);
+    snprintf(r.material, sizeof r.material, "m");
+    snprintf(r.id.path, sizeof r.id.path, "/data/m.binary");
+    r.id.size = 34992012;
+    snprintf(r.id.hash, sizeof r.id.hash, "0123456789abcdef");
+    snprintf(r.settings.version, sizeof r.settings.version, "%s", brdffit_version());
+    snprintf(r.settings.scale, sizeof r.settings.scale, "standard");
+    r.settings.cutoff_deg = 80;
+    snprintf(r.model, sizeof r.model, "ward");
+    r.status = BRDFFIT_E_FIT_FAILED;
+    snprintf(r.message, sizeof r.message, "failed");
+    char why[256];
+    ck_assert_ptr_null(fr_check(&r, why, sizeof why));
+    r.has_albedo = 1; /* a failed fit with an albedo */
+    const char *bad = fr_check(&r, why, sizeof why);
+    ck_assert_msg(bad && strstr(bad, "albedo"), "%s", bad ? bad : "(accepted)");
+}
+END_TEST
+
 Suite *albedo_suite(void)
 {
     Suite *s = suite_create("albedo");
@@ -397,5 +570,12 @@ Suite *albedo_suite(void)
     tcase_add_test(tc, finite_at_bounds);
     tcase_add_test(tc, refuses_bad_input);
     suite_add_tcase(s, tc);
+    TCase *tp = tcase_create("program");
+    tcase_set_timeout(tp, 300);
+    tcase_add_unchecked_fixture(tp, tu_table_fixture_make, tu_table_fixture_remove);
+    tcase_add_test(tp, records_carry_albedo);
+    tcase_add_test(tp, energy_section_flags);
+    tcase_add_test(tp, record_check_judges_albedo);
+    suite_add_tcase(s, tp);
     return s;
 }

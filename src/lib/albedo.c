@@ -19,7 +19,7 @@
 /* He's lobe is smooth in theta_h and costs ~1 us an evaluation: 4 points an
  * interval keep it within the accuracy of 8 (its limit is phi's) at half the cost. */
 #define HE_ORDER 4
-#define TABLE_NPHI 48
+#define TABLE_NPHI 24
 #define TABLE_ORDER 2
 #define MIN_WIDTH 1e-7
 

@@ -857,6 +857,37 @@ brdffit_status brdffit_curve_table(const brdffit_table *table, const brdffit_cur
 brdffit_status brdffit_curve_model(brdffit_model model, const brdffit_params *params,
                                    const brdffit_curve_options *opt, double *rgb, size_t stride,
                                    brdffit_error *err);
+/* ------------------------------------------------------------------ directional albedo
+ *
+ * a_c(theta_o) = integral over the hemisphere of f_c(wi, wo) cos theta_i d wi,
+ * wo = (sin theta_o, 0, cos theta_o): the share of light from wo (or, by
+ * reciprocity, toward it) that the surface reflects, per channel.  A
+ * Lambertian term d gives d exactly; an energy-conserving BRDF gives at most
+ * 1.  theta_o_deg: n angles in [0, 90) degrees; rgb: 3n doubles (R, G, B
+ * per angle).  The sums are in double; no accepted input gives NaN or inf.
+ *
+ * Models (brdffit_albedo_model): d_c + s_c times the lobe's integral (the
+ * d/pi term exactly), or f's integral for the glTF models.  The quadrature
+ * is Gauss-Legendre over the half vector (theta_h graded geometrically down
+ * to the lobe's width: alpha, m, sqrt(2 / (n + 2)) of a cos^n lobe, ...;
+ * Lafortune about its lobe's axis), only where wi is above the horizon:
+ * within 1e-4 of the integral (relative to max(1, a)) over the registry's
+ * bounds for theta_o in 0..85 deg (docs/library.md states what is tested).
+ * Parameters as brdffit_params_check; a d or s so large that the albedo
+ * overflows is BRDFFIT_E_VALUE_RANGE.
+ *
+ * Tables (brdffit_albedo_table): the same integral of the table's lookups
+ * (brdffit_table_lookup at scale and interp), with the theta_h intervals its
+ * bins'.  A channel whose lookup is masked (-1) counts 0 there, as in the
+ * renders, so the albedo is then a lower bound; masked (may be NULL) gets,
+ * per angle, the share of the cosine-weighted hemisphere where some channel
+ * was masked (0..1). */
+brdffit_status brdffit_albedo_model(brdffit_model model, const brdffit_params *params, size_t n,
+                                    const double *theta_o_deg, double *rgb, brdffit_error *err);
+brdffit_status brdffit_albedo_table(const brdffit_table *table, brdffit_scale scale,
+                                    brdffit_interp interp, size_t n, const double *theta_o_deg,
+                                    double *rgb, double *masked, brdffit_error *err);
+
 #if defined(__GNUC__)
 #pragma GCC visibility pop
 #endif

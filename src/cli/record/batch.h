@@ -83,8 +83,8 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
 
 typedef enum jr_type { JR_NULL = 0, JR_BOOL, JR_NUMBER, JR_STRING, JR_ARRAY, JR_OBJECT } jr_type;
 
-#define JR_MAX_MEMBERS 48
-#define JR_MAX_ARRAY 16
+#define JR_MAX_MEMBERS 64
+#define JR_MAX_ARRAY 64
 
 /* A flat JSON object: members whose values are null, true/false, numbers,
  * strings, arrays of up to JR_MAX_ARRAY numbers, or a flat object (settings). */

@@ -96,6 +96,22 @@ static const char *check_result(const fit_record *r, const brdffit_model_info *m
     return NULL;
 }
 
+/* The energy fields: a successful fit's only, curves of numbers >= 0. */
+static const char *check_albedo(const fit_record *r)
+{
+    int ok_fit = r->kind == FR_FIT && r->status == BRDFFIT_OK;
+    if ((r->has_albedo || r->has_albedo_measured) && !ok_fit)
+        return "an albedo where no fit succeeded";
+    for (int k = 0; k < FR_ALBEDO_N; k++)
+        for (int c = 0; c < 3; c++)
+            if ((r->has_albedo && !(r->albedo[k][c] >= 0)) ||
+                (r->has_albedo_measured && !(r->albedo_measured[k][c] >= 0)))
+                return "an albedo below 0";
+    if (!isnan(r->seconds_albedo) && !(r->seconds_albedo >= 0 && r->has_albedo))
+        return "seconds_albedo without an albedo, or below 0";
+    return NULL;
+}
+
 static const char *check_failed(const fit_record *r)
 {
     if (!r->message[0])
@@ -108,6 +124,8 @@ static const char *check_failed(const fit_record *r)
 const char *fr_check(const fit_record *r, char *why, size_t len)
 {
     const char *bad = check_key(r);
+    if (!bad)
+        bad = check_albedo(r);
     if (bad)
         return bad;
     const brdffit_model_info *mi = NULL;

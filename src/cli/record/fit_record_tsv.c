@@ -52,8 +52,10 @@ void fr_write_tsv_header(FILE *f)
 {
     fputs("material\tmodel\td_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\tp3\terror\tstatus\tstatus_code"
           "\titerations\tpasses\tcminpack_info\tseconds\tsamples\tat_bound\tflags\tbackend"
-          "\tpublished_error\tratio\tfile\tsize\thash\tmessage\n",
+          "\tpublished_error\tratio\tfile\tsize\thash\tmessage",
           f);
+    fr_albedo_tsv_header(f);
+    putc('\n', f);
 }
 
 void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub)
@@ -107,5 +109,6 @@ void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub)
     putc('\t', f);
     if (r->message[0]) /* "" when the record did not fail */
         fr_write_tsv_text(f, r->message);
+    fr_albedo_tsv_row(f, r);
     putc('\n', f);
 }

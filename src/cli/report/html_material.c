@@ -327,6 +327,7 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
         xml_close(&w);
         rp_gltf_section(&w, rep, m);
         rp_mitsuba_section(&w, rep, m);
+        rp_energy_section(&w, rep, m);
         figures(&w, m, "image", "Renders (reference and each model, same exposure)");
         comparisons(&w, m);
         figures(&w, m, "plot", "Incidence-plane plots (cube root)");

@@ -47,6 +47,8 @@ void rp_gltf_section(xml_writer *w, const rp_report *rep, const rp_material *m);
 int rp_write_mitsuba_files(const rp_report *rep, const rp_material *m, const out_dir *dir,
                            brdffit_error *err);
 void rp_mitsuba_section(xml_writer *w, const rp_report *rep, const rp_material *m);
+/* html_energy.c: the energy section of m's page (each fit's albedo, flags, plots). */
+void rp_energy_section(xml_writer *w, const rp_report *rep, const rp_material *m);
 
 /* ---- html_index.c: DIR/ ---- */
 

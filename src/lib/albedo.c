@@ -20,8 +20,10 @@
  * interval keep it within the accuracy of 8 (its limit is phi's) at half the cost. */
 #define HE_ORDER 4
 /* He's lobe at a high refractive index and sigma0 near the wavelength varies
- * across phi more than the others' below theta_o 32.5 deg: 16 points there. */
+ * across phi more than the others': 16 points in phi below theta_o 57.5 deg,
+ * 32 above. */
 #define HE_NPHI_MIN 16
+#define HE_NPHI_MAX 32
 #define TABLE_NPHI 24
 #define TABLE_ORDER 2
 #define MIN_WIDTH 1e-7
@@ -121,8 +123,8 @@ static void model_rule(brdffit_model model, const brdffit_params *params, double
         he_levels(params, rule);
     if (nphi <= 0) {
         nphi = default_nphi(theta_o_deg);
-        if (model == BRDFFIT_HE && nphi > 1 && nphi < HE_NPHI_MIN)
-            nphi = HE_NPHI_MIN;
+        if (model == BRDFFIT_HE && nphi > 1)
+            nphi = nphi < MODEL_NPHI_MAX ? HE_NPHI_MIN : HE_NPHI_MAX;
     }
     if (order <= 0)
         order = model == BRDFFIT_HE ? HE_ORDER : MODEL_ORDER;
@@ -198,7 +200,7 @@ brdffit_status bf_albedo_model_rule(brdffit_model model, const brdffit_params *p
         return st;
     aq_rule rule;
     double wo[3] = { 0, 0, 1 }, lam[3];
-    model_rule(model, params, 0, wo, nphi > 0 ? nphi : MODEL_NPHI_MAX, order, &rule);
+    model_rule(model, params, 0, wo, nphi > 0 ? nphi : HE_NPHI_MAX, order, &rule);
     size_t cap = aq_max_points(&rule);
     aq_point *pts = malloc(cap * sizeof *pts);
     if (!pts)

@@ -24,6 +24,9 @@
  * 32 above. */
 #define HE_NPHI_MIN 16
 #define HE_NPHI_MAX 32
+/* He's blend kinks (he_levels) are sought for lobes at least this wide: a
+ * narrower lobe is ~0 where they lie, and seeking them costs ~2x. */
+#define HE_LEVEL_WIDTH 0.025
 #define TABLE_NPHI 24
 #define TABLE_ORDER 2
 #define MIN_WIDTH 1e-7
@@ -119,8 +122,6 @@ static void model_rule(brdffit_model model, const brdffit_params *params, double
 {
     rule->kink_q = NULL;
     rule->nlevels = 0;
-    if (model == BRDFFIT_HE)
-        he_levels(params, rule);
     if (nphi <= 0) {
         nphi = default_nphi(theta_o_deg);
         if (model == BRDFFIT_HE && nphi > 1)
@@ -134,6 +135,8 @@ static void model_rule(brdffit_model model, const brdffit_params *params, double
     if (model == BRDFFIT_LAFORTUNE)
         lafortune_axis(params->p, wo, rule->pole);
     rule->width = clampd(lobe_width(model, params), MIN_WIDTH, 1.0);
+    if (model == BRDFFIT_HE && rule->width >= HE_LEVEL_WIDTH)
+        he_levels(params, rule);
     rule->nphi = nphi;
     rule->order = order;
 }

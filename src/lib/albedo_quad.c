@@ -16,6 +16,8 @@
 #define MID_STEPS 2
 /* The most kinks a line of phi has (albedo.h). */
 #define MAX_KINKS 16
+/* Intervals of the radial range on which level crossings are sought. */
+#define LEVEL_SAMPLES 8
 /* Phis where kinks meet (kink_phis) and the most phi panels. */
 #define AQ_MAX_PHI_KINKS 3
 #define AQ_MAX_PANELS (3 + AQ_MAX_PHI_KINKS)
@@ -128,7 +130,7 @@ static double crossing(const aq_rule *rule, const double wo[3], double cphi, dou
                        double level, double a, double b, double fa, double fb)
 {
     int side = 0;
-    for (int it = 0; it < 40 && b - a > 1e-10; it++) {
+    for (int it = 0; it < 40 && b - a > 1e-7; it++) {
         double c = (a * fb - b * fa) / (fb - fa);
         if (!(c > a && c < b))
             c = 0.5 * (a + b);
@@ -151,14 +153,16 @@ static double crossing(const aq_rule *rule, const double wo[3], double cphi, dou
 }
 
 /* Adds the crossings of the rule's levels (albedo.h) between t[0] and t[n-1]
- * to the breakpoints; returns the new count. */
+ * to the breakpoints, sought on LEVEL_SAMPLES equal intervals (a crossing
+ * pair closer than that is missed: its kinks bound a thin sliver); returns
+ * the new count. */
 static int level_breakpoints(const aq_rule *rule, const double wo[3], double cphi, double sphi,
                              double *t, int n)
 {
-    double s[2 * (MAX_POLE_LEVELS + END_LEVELS + MID_STEPS + MAX_KINKS) + 4], q[sizeof s / sizeof *s];
-    int ns = 0, added = 0;
-    for (int k = 0; k < n; k++)
-        s[ns++] = t[k];
+    double s[LEVEL_SAMPLES + 1], q[LEVEL_SAMPLES + 1];
+    int ns = LEVEL_SAMPLES + 1, added = 0;
+    for (int k = 0; k < ns; k++)
+        s[k] = t[0] + (t[n - 1] - t[0]) * k / LEVEL_SAMPLES;
     for (int k = 0; k < ns; k++)
         q[k] = level_gap(rule, wo, s[k], cphi, sphi, 0.0);
     for (int l = 0; l < rule->nlevels; l++)

@@ -21,9 +21,9 @@
 /* Phis where kinks meet (kink_phis) and the most phi panels. */
 #define AQ_MAX_PHI_KINKS 3
 #define AQ_MAX_PANELS (3 + AQ_MAX_PHI_KINKS)
-#ifndef AQ_MIN_PANEL
+/* The fewest phi points a panel split at a kink's phi takes; the panels'
+ * sum is then at most nphi + (AQ_MIN_PANEL + 1) AQ_MAX_PANELS. */
 #define AQ_MIN_PANEL 4
-#endif
 
 void aq_gauss_legendre(int n, double *x, double *w)
 {
@@ -61,7 +61,7 @@ static int pole_levels(double len, double width)
 size_t aq_max_points(const aq_rule *rule)
 {
     size_t per = rule->kind == AQ_TABLE ? TABLE_BINS + 1 : MAX_POLE_LEVELS + END_LEVELS + MID_STEPS + MAX_KINKS + 2;
-    return ((size_t)rule->nphi + AQ_MIN_PANEL * AQ_MAX_PANELS) * (size_t)rule->order * per;
+    return ((size_t)rule->nphi + (AQ_MIN_PANEL + 1) * AQ_MAX_PANELS) * (size_t)rule->order * per;
 }
 
 /* The table's theta_h bin edges below hi, then hi. */

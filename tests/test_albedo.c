@@ -250,6 +250,78 @@ START_TEST(models_against_brute_force)
 }
 END_TEST
 
+/* ---- the broadest lobes at grazing view, where the integrands' kinks (the
+ * shadowing term's min, max(cos ti, cos to), He's blend of series and limit)
+ * cross the quadrature: against a brute-force reference accurate to ~1e-6,
+ * Richardson's extrapolation of the midpoint rule on grids of n and 2n in
+ * (cos theta_i, phi_i in [0, pi]) (the integrands are symmetric in y), to 1e-4. */
+
+static void midpoint_half(brdffit_model m, const brdffit_params *pa, double theta_o, int n,
+                          double out[3])
+{
+    size_t count = (size_t)n * n;
+    double *wi = malloc(3 * count * sizeof *wi), *wo = malloc(3 * count * sizeof *wo);
+    double *f = malloc(3 * count * sizeof *f), t = theta_o * M_PI / 180;
+    ck_assert(wi && wo && f);
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++) {
+            size_t q = (size_t)a * n + b;
+            double mu = (a + 0.5) / n, phi = M_PI * (b + 0.5) / n, st = sqrt(1 - mu * mu);
+            double v[3] = { st * cos(phi), st * sin(phi), mu }, o[3] = { sin(t), 0, cos(t) };
+            memcpy(wi + 3 * q, v, sizeof v);
+            memcpy(wo + 3 * q, o, sizeof o);
+        }
+    brdffit_error err;
+    ck_assert_msg(brdffit_eval_batch(m, pa, count, wi, wo, f, &err) == BRDFFIT_OK, "%s",
+                  err.message);
+    double acc[3] = { 0, 0, 0 };
+    for (size_t q = 0; q < count; q++)
+        for (int c = 0; c < 3; c++)
+            acc[c] += fmax(f[3 * q + c], 0) * wi[3 * q + 2];
+    for (int c = 0; c < 3; c++)
+        out[c] = acc[c] * (2 * M_PI / ((double)n * n));
+    free(wi);
+    free(wo);
+    free(f);
+}
+
+#define GRAZING_N 300
+
+static const struct {
+    brdffit_model model;
+    double p[3];
+    double theta_o[3];
+} GRAZING[] = {
+    { BRDFFIT_COOK_TORRANCE, { 1, 1 }, { 65, 70, 75 } },
+    { BRDFFIT_COOK_TORRANCE, { 1, 2 }, { 70, 75, 85 } },
+    { BRDFFIT_ASHIKHMIN_SHIRLEY, { 1, 10 }, { 65, 75, 85 } },
+    { BRDFFIT_ASHIKHMIN_SHIRLEY, { 1, 30 }, { 65, 70, 80 } },
+    { BRDFFIT_HE, { 1, 0.1, 30 }, { 65, 70, 75 } },
+    { BRDFFIT_HE, { 1, 0.173205, 30 }, { 28, 30, 65 } },
+};
+
+START_TEST(broad_lobes_at_grazing_view)
+{
+    brdffit_model m = GRAZING[_i].model;
+    brdffit_params pa = params_of(m, 0, 1, GRAZING[_i].p);
+    double got[9];
+    ck_assert_int_eq(brdffit_albedo_model(m, &pa, 3, GRAZING[_i].theta_o, got, NULL), BRDFFIT_OK);
+    for (int k = 0; k < 3; k++) {
+        double coarse[3], fine[3];
+        midpoint_half(m, &pa, GRAZING[_i].theta_o[k], GRAZING_N, coarse);
+        midpoint_half(m, &pa, GRAZING[_i].theta_o[k], 2 * GRAZING_N, fine);
+        for (int c = 0; c < 3; c++) {
+            double ref = (4 * fine[c] - coarse[c]) / 3;
+            ck_assert_msg(fabs(fine[c] - coarse[c]) < 3e-5, "the reference has not converged");
+            ck_assert_msg(fabs(got[3 * k + c] - ref) < 1e-4,
+                          "%s (%g, %g, %g) theta_o %g channel %d: %.7f, reference %.7f",
+                          brdffit_model_get(m)->name, GRAZING[_i].p[0], GRAZING[_i].p[1],
+                          GRAZING[_i].p[2], GRAZING[_i].theta_o[k], c, got[3 * k + c], ref);
+        }
+    }
+}
+END_TEST
+
 /* A measured table's albedo against the brute-force sum of its lookups, and
  * the model's it was filled from (the table holds the model at the bins'
  * directions: the same to the interpolation's error). */
@@ -565,6 +637,7 @@ Suite *albedo_suite(void)
     tcase_add_test(tc, ward_duer_one_dimensional_at_normal);
     tcase_add_loop_test(tc, models_against_brute_force, 0,
                         (int)(sizeof SAMPLED / sizeof SAMPLED[0]));
+    tcase_add_loop_test(tc, broad_lobes_at_grazing_view, 0, sizeof GRAZING / sizeof GRAZING[0]);
     tcase_add_test(tc, table_against_brute_force);
     tcase_add_test(tc, table_lambertian_and_masked);
     tcase_add_test(tc, finite_at_bounds);

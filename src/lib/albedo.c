@@ -19,6 +19,14 @@
 /* He's lobe is smooth in theta_h and costs ~1 us an evaluation: 4 points an
  * interval keep it within the accuracy of 8 (its limit is phi's) at half the cost. */
 #define HE_ORDER 4
+/* He's lobe at a high refractive index and sigma0 near the wavelength varies
+ * across phi more than the others': 16 points in phi below theta_o 57.5 deg,
+ * 32 above. */
+#define HE_NPHI_MIN 16
+#define HE_NPHI_MAX 32
+/* He's blend kinks (he_levels) are sought for lobes at least this wide: a
+ * narrower lobe is ~0 where they lie, and seeking them costs ~2x. */
+#define HE_LEVEL_WIDTH 0.025
 #define TABLE_NPHI 24
 #define TABLE_ORDER 2
 #define MIN_WIDTH 1e-7
@@ -83,17 +91,52 @@ static int default_nphi(double theta_o_deg)
     return theta_o_deg == 0 ? 1 : theta_o_deg < 32.5 ? 8 : theta_o_deg < 57.5 ? 16 : MODEL_NPHI_MAX;
 }
 
+/* He's sigma (cos ti + cos to), whose values sqrt(g) lam / (2 pi) at g = 18
+ * and 19 bound the blend of its series and its limit (bf_he_D): kinks. */
+static double he_sigma_vz(const void *ctx, const double wi[3], const double wo[3])
+{
+    const double *p = ctx;
+    bf_geom g = { wi[0], wi[1], wi[2], wo[0], wo[1], wo[2], 0, 0 };
+    bf_geom_derive(&g);
+    bf_he_angles d;
+    bf_he_angles_make(&g, &d);
+    return bf_he_sigma(&g, p[0], p[1]) * d.vz;
+}
+
+static void he_levels(const brdffit_params *params, aq_rule *rule)
+{
+    double lam[3];
+    bf_lambdas(params, lam);
+    if (2.0 * params->p[1] < sqrt(BF_HE_G_LO) * fmin(lam[0], fmin(lam[1], lam[2])) / (2.0 * BF_PI))
+        return; /* sigma <= sigma0, cos ti + cos to <= 2: g < 18 everywhere */
+    rule->kink_q = he_sigma_vz;
+    rule->kink_ctx = params->p;
+    rule->nlevels = 0;
+    for (int c = 0; c < 3; c++)
+        for (int k = 0; k < 2; k++)
+            rule->kink_level[rule->nlevels++] = sqrt(BF_HE_G_LO + k) * lam[c] / (2.0 * BF_PI);
+}
+
 static void model_rule(brdffit_model model, const brdffit_params *params, double theta_o_deg,
                        const double wo[3], int nphi, int order, aq_rule *rule)
 {
-    if (nphi <= 0)
+    rule->kink_q = NULL;
+    rule->nlevels = 0;
+    if (nphi <= 0) {
         nphi = default_nphi(theta_o_deg);
+        if (model == BRDFFIT_HE && nphi > 1)
+            nphi = nphi < MODEL_NPHI_MAX ? HE_NPHI_MIN : HE_NPHI_MAX;
+    }
     if (order <= 0)
         order = model == BRDFFIT_HE ? HE_ORDER : MODEL_ORDER;
     rule->kind = model == BRDFFIT_LAFORTUNE ? AQ_POLE : AQ_HALF;
+    rule->kinks = model == BRDFFIT_ASHIKHMIN_SHIRLEY ? AQ_KINK_MIRROR
+                : model == BRDFFIT_COOK_TORRANCE ? AQ_KINK_MIRROR | AQ_KINK_SHADOW : 0;
     if (model == BRDFFIT_LAFORTUNE)
         lafortune_axis(params->p, wo, rule->pole);
     rule->width = clampd(lobe_width(model, params), MIN_WIDTH, 1.0);
+    if (model == BRDFFIT_HE && rule->width >= HE_LEVEL_WIDTH)
+        he_levels(params, rule);
     rule->nphi = nphi;
     rule->order = order;
 }
@@ -160,7 +203,7 @@ brdffit_status bf_albedo_model_rule(brdffit_model model, const brdffit_params *p
         return st;
     aq_rule rule;
     double wo[3] = { 0, 0, 1 }, lam[3];
-    model_rule(model, params, 0, wo, nphi > 0 ? nphi : MODEL_NPHI_MAX, order, &rule);
+    model_rule(model, params, 0, wo, nphi > 0 ? nphi : HE_NPHI_MAX, order, &rule);
     size_t cap = aq_max_points(&rule);
     aq_point *pts = malloc(cap * sizeof *pts);
     if (!pts)
@@ -225,7 +268,7 @@ brdffit_status brdffit_albedo_table(const brdffit_table *table, brdffit_scale sc
         st = angles_check(fn, n, theta_o_deg, rgb, err);
     if (st != BRDFFIT_OK)
         return st;
-    aq_rule rule = { AQ_TABLE, { 0, 0, 1 }, MIN_WIDTH, TABLE_NPHI, TABLE_ORDER };
+    aq_rule rule = { .kind = AQ_TABLE, .pole = { 0, 0, 1 }, .width = MIN_WIDTH, .nphi = TABLE_NPHI, .order = TABLE_ORDER };
     size_t cap = aq_max_points(&rule);
     aq_point *pts = malloc(cap * sizeof *pts);
     if (!pts)

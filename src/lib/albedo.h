@@ -28,8 +28,31 @@
 
 typedef enum aq_kind { AQ_HALF = 0, AQ_POLE = 1, AQ_TABLE = 2 } aq_kind;
 
+/* Kinks of an integrand along a line of phi (AQ_HALF), where the quadrature
+ * splits its radial intervals: with psi as above, cos theta_i = R cos(2 r -
+ * psi), R = |(sin to cos phi, cos to)|, so
+ *   AQ_KINK_MIRROR: cos theta_i = cos theta_o at r = psi (max or min of the
+ *                   two: Ashikhmin-Shirley, Cook-Torrance's G);
+ *   AQ_KINK_SHADOW: 2 N.H cos theta_o = V.H at r = pi/2 - psi and
+ *                   2 N.H cos theta_i = V.H at r = (psi + pi/2) / 3 (where
+ *                   Cook-Torrance's G = min(1, ...) switches branch). */
+enum { AQ_KINK_MIRROR = 1, AQ_KINK_SHADOW = 2 };
+
+/* A kink known only as a level crossing: where kink_q(kink_ctx, wi, wo)
+ * equals one of kink_level[0..nlevels-1] (He's blend of its series and its
+ * limit, at fixed values of sigma (cos ti + cos to)), found along each line
+ * of phi from a sign change between the radial breakpoints (or their
+ * midpoints) and refined by regula falsi. */
+#define AQ_MAX_LEVELS 6
+typedef double (*aq_kink_fn)(const void *ctx, const double wi[3], const double wo[3]);
+
 typedef struct aq_rule {
     aq_kind kind;
+    unsigned kinks;   /* AQ_KINK_* (AQ_HALF)                                 */
+    aq_kink_fn kink_q;      /* NULL: none (AQ_HALF)                          */
+    const void *kink_ctx;
+    double kink_level[AQ_MAX_LEVELS];
+    int nlevels;
     double pole[3];   /* AQ_POLE: unit, pole[1] = 0                          */
     double width;     /* the finest radial scale the lobe has (radians)      */
     int nphi;         /* Gauss-Legendre points in phi on [0, pi]             */

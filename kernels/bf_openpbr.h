@@ -14,12 +14,13 @@
  *   eta'        = (1 + sqrt F0') / (1 - sqrt F0')          modulated IOR
  *   F_d(c)      = the exact unpolarised dielectric Fresnel at eta'
  *   F_m(c)      = clamp(F82-tint(base_color, specular_color, c), 0, 1)
- *   E(mu; F0)   = (F0 A(mu, alpha) + B(mu, alpha)) comp   GGX albedo, Schlick
- *                 Fresnel split (A, B tabulated: bf_openpbr_albedo_ab)
- *   comp        = 1 + Fss (1 - Ess) / Ess,  Ess = A + B,  Fss = F0 + (1 - F0) / 21
- *                 multiple-scattering compensation (Turquin)
+ *   comp        = 1 + Fss (1 - Ess) / Ess,  Fss = F0 + (1 - F0) / 21
+ *                 multiple-scattering compensation (Turquin), Ess the
+ *                 lobe's albedo with F = 1
+ *   E_d         = min(comp_d E(N.V; F0'), 1): the dielectric lobe's albedo,
+ *                 E with the exact Fresnel F_d (bf_openpbr_albedo)
  *   dielectric  = specular_color D Vis F_d(V.H) comp_d
- *                 + (1 - E(N.V; F0')) base_color / pi      albedo scaling
+ *                 + (1 - E_d) base_color / pi              albedo scaling
  *   metal       = specular_weight D Vis F_m(V.H) comp_m
  *   f_c         = (1 - base_metalness) dielectric + base_metalness metal
  *
@@ -46,11 +47,11 @@
 /* F82-tint's angle: cos = 1/7. */
 #define BF_OPENPBR_MU_BAR (1.0 / 7.0)
 
-/* The GGX lobe's directional albedo with a Schlick Fresnel F0 + (1 - F0)
- * (1 - V.H)^5, split as F0 A + B, at cos theta_V = mu and roughness r
- * (alpha = r^2): interpolated in a table made once per process
- * (src/lib/openpbr_albedo.c). */
-void bf_openpbr_albedo_ab(double mu, double r, double *A, double *B);
+/* The GGX lobe's directional albedo with the exact dielectric Fresnel of
+ * reflectance f0 at normal incidence, E, and with F = 1, Ess, at cos theta_V
+ * = mu and roughness r (alpha = r^2): interpolated in a table made once per
+ * process (src/lib/openpbr_albedo.c). */
+void bf_openpbr_albedo(double mu, double r, double f0, double *E, double *Ess);
 
 /* F0' = specular_weight F_s, clamped to [0, BF_OPENPBR_F0_MAX]. */
 BF_FN double bf_openpbr_f0(double ior, double weight)
@@ -112,14 +113,13 @@ BF_FN void bf_openpbr_lobe_at(const bf_geom *g, const double *p, bf_openpbr_lobe
 {
     double r = fmax(p[1], BF_GLTF_ROUGHNESS_MIN);
     double u = 1.0 - g->vh, u2 = u * u;
-    double Ab, Bb;
-    bf_openpbr_albedo_ab(g->oz, r, &Ab, &Bb);
-    double ess = Ab + Bb, f0 = bf_openpbr_f0(p[2], p[3]);
+    double f0 = bf_openpbr_f0(p[2], p[3]), e, ess;
+    bf_openpbr_albedo(g->oz, r, f0, &e, &ess);
     L->spec = bf_gltf_specular(g, p[1]);
     L->fw = u2 * u2 * u;
     L->fd = bf_openpbr_fresnel_dielectric(g->vh, bf_openpbr_eta(f0));
     L->comp_d = bf_openpbr_comp(f0, ess);
-    L->ed = (f0 * Ab + Bb) * L->comp_d;
+    L->ed = fmin(e * L->comp_d, 1.0);
     L->ess = ess;
     L->k = (1.0 - ess) / ess;
 }

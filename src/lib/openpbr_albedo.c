@@ -1,24 +1,25 @@
 /* SPDX-License-Identifier: MIT */
-/* openpbr_albedo.c -- the GGX lobe's directional albedo that the openpbr
- * model's layering and multiple-scattering compensation take
- * (kernels/bf_openpbr.h): with a Schlick Fresnel F0 + (1 - F0) (1 - V.H)^5
- * the albedo is F0 A(mu, alpha) + B(mu, alpha), where
+/* openpbr_albedo.c -- the directional albedo of the openpbr model's GGX
+ * lobe with the exact dielectric Fresnel (kernels/bf_openpbr.h): at view
+ * cosine mu, roughness r (alpha = r^2) and normal-incidence reflectance F0
+ * (IOR (1 + sqrt F0) / (1 - sqrt F0)),
  *
- *   A = int D(H) G2(L, V) (1 - (1 - V.H)^5) (V.H) / mu dH,   B the same with (1 - V.H)^5,
+ *   E = int D(H) G2(L, V) F(V.H) (V.H) / mu dH,
  *
- * over the half vectors H whose reflected L is above the horizon (dL = 4 (V.H)
- * dH), D Trowbridge-Reitz and G2 the height-correlated Smith function.
- * A and B are tabulated once per process on 33 x 33 nodes over s = sqrt(mu)
- * and the roughness r (alpha = r^2).  Each entry is a product
- * Gauss-Legendre quadrature: in t = atan(tan(theta_H) / alpha), where D's
- * mass is spread evenly, split where the reflected directions start to
- * fall below the horizon (theta_H = pi/4 -+ theta_V / 2, from 2 (N.H) (V.H)
- * = N.V), and in the azimuth over the range that stays above it
- * (cos phi > (mu / (2 cos theta_H) - mu cos theta_H) / (sin theta_V sin
- * theta_H)).  Every integrand is then smooth: 32 x 16 nodes a piece give A
- * and B to 1e-4.  A lookup interpolates bicubically (Catmull-Rom); its
- * error against a direct integration over the hemisphere is measured by the
- * tests (docs/openpbr.md, The albedo table). */
+ * over the half vectors H whose reflected L is above the horizon (dL = 4
+ * (V.H) dH), D Trowbridge-Reitz and G2 the height-correlated Smith function;
+ * at F0 = 1 (F = 1) it is the lobe's own albedo Ess.  E is tabulated once
+ * per process on 33 x 33 x 17 nodes over s = sqrt(mu), r and q = sqrt(F0).
+ * Each (s, r) column is a product Gauss-Legendre quadrature, its nodes
+ * shared by the 17 F0: in t = atan(tan(theta_H) / alpha), where D's mass is
+ * spread evenly, split where the reflected directions start to fall below
+ * the horizon (theta_H = pi/4 -+ theta_V / 2, from 2 (N.H) (V.H) = N.V), and
+ * in the azimuth over the range that stays above it (cos phi > (mu / (2 cos
+ * theta_H) - mu cos theta_H) / (sin theta_V sin theta_H)).  Every integrand
+ * is then smooth: 32 x 16 nodes a piece give E to 1e-4.  A lookup
+ * interpolates tricubically (Catmull-Rom); its error against a direct
+ * integration over the hemisphere is measured by the tests (docs/openpbr.md,
+ * The albedo table). */
 #define _DEFAULT_SOURCE /* M_PI */
 #include "bf_openpbr.h"
 
@@ -26,11 +27,12 @@
 #include <pthread.h>
 
 #define AL_NS 33 /* table nodes in s = sqrt(mu): 0, 1/32, ..., 1 */
-#define AL_NR 33 /* and in the roughness */
+#define AL_NR 33 /* in the roughness */
+#define AL_NQ 17 /* in q = sqrt(F0): 0, 1/16, ..., 1 */
 #define AL_NT 32 /* Gauss-Legendre nodes a piece in t */
 #define AL_NPHI 16 /* and in the azimuth */
 
-static double table_a[AL_NR][AL_NS], table_b[AL_NR][AL_NS];
+static double table_e[AL_NR][AL_NS][AL_NQ];
 static pthread_once_t table_once = PTHREAD_ONCE_INIT;
 
 /* Gauss-Legendre nodes x[i] in (0, 1) and weights w[i] summing to 1. */
@@ -76,9 +78,18 @@ static double phi_max(double vx, double vz, double st, double ct)
     return acos(fmin(fmax(num / den, -1.0), 1.0));
 }
 
-/* A and B over t in [t0, t1] at mu (> 0) and alpha. */
+/* The IOR of each q node (0: q = 1, F = 1). */
+static void node_etas(double *eta)
+{
+    for (int k = 0; k < AL_NQ; k++) {
+        double q = (double)k / (AL_NQ - 1);
+        eta[k] = k == AL_NQ - 1 ? 0.0 : (1.0 + q) / (1.0 - q);
+    }
+}
+
+/* E at every q node, over t in [t0, t1], at mu (> 0) and alpha, added to e. */
 static void albedo_piece(const al_quad *q, double mu, double alpha, double t0, double t1,
-                         double *A, double *B)
+                         const double *eta, double *e)
 {
     const double a2 = alpha * alpha, vx = sqrt(fmax(1.0 - mu * mu, 0.0)), vz = mu;
     const double lv = smith_lambda(mu, a2);
@@ -90,13 +101,12 @@ static void albedo_piece(const al_quad *q, double mu, double alpha, double t0, d
         double pm = phi_max(vx, vz, st, ct);
         double w = q->tw[i] * (t1 - t0) * dth * st * d * 2.0 * pm / mu;
         for (int j = 0; j < AL_NPHI && pm > 0.0; j++) {
-            double vh = vx * st * cos(pm * q->px[j]) + vz * ct, lz = 2.0 * vh * ct - vz;
-            if (!(lz > 0.0))
+            double vh = fmin(vx * st * cos(pm * q->px[j]) + vz * ct, 1.0), lz = 2.0 * vh * ct - vz;
+            if (!(lz > 0.0) || !(vh > 0.0))
                 continue;
-            double g = 1.0 / (1.0 + lv + smith_lambda(lz, a2));
-            double u = 1.0 - fmin(vh, 1.0), fw = u * u * u * u * u;
-            *A += w * q->pw[j] * g * vh * (1.0 - fw);
-            *B += w * q->pw[j] * g * vh * fw;
+            double g = w * q->pw[j] * vh / (1.0 + lv + smith_lambda(lz, a2));
+            for (int k = 0; k < AL_NQ; k++)
+                e[k] += g * (eta[k] > 0.0 ? bf_openpbr_fresnel_dielectric(vh, eta[k]) : 1.0);
         }
     }
 }
@@ -107,13 +117,15 @@ static double t_of(double th, double alpha)
     return th >= 0.5 * M_PI ? 0.5 * M_PI : atan(tan(th) / alpha);
 }
 
-static void albedo_integrate(const al_quad *q, double mu, double alpha, double *A, double *B)
+static void albedo_integrate(const al_quad *q, double mu, double alpha, const double *eta,
+                             double *e)
 {
     double tv = acos(mu), t1 = t_of(0.25 * M_PI - 0.5 * tv, alpha);
     double t2 = t_of(0.25 * M_PI + 0.5 * tv, alpha);
-    *A = *B = 0.0;
-    albedo_piece(q, mu, alpha, 0.0, t1, A, B);
-    albedo_piece(q, mu, alpha, t1, t2, A, B);
+    for (int k = 0; k < AL_NQ; k++)
+        e[k] = 0.0;
+    albedo_piece(q, mu, alpha, 0.0, t1, eta, e);
+    albedo_piece(q, mu, alpha, t1, t2, eta, e);
 }
 
 /* The grid's nodes: s and r at i / 32; mu = s^2 and r floored at
@@ -133,64 +145,66 @@ static double node_r(int j)
 static void table_make(void)
 {
     al_quad q;
+    double eta[AL_NQ];
     gauss_legendre01(AL_NT, q.tx, q.tw);
     gauss_legendre01(AL_NPHI, q.px, q.pw);
+    node_etas(eta);
     for (int j = 0; j < AL_NR; j++) {
         double r = node_r(j);
         for (int i = 0; i < AL_NS; i++)
-            albedo_integrate(&q, node_mu(i), r * r, &table_a[j][i], &table_b[j][i]);
+            albedo_integrate(&q, node_mu(i), r * r, eta, table_e[j][i]);
     }
 }
 
-/* Catmull-Rom weights at t in [0, 1] for the nodes -1, 0, 1, 2. */
-static void cr_weights(double t, double *w)
-{
-    double t2 = t * t, t3 = t2 * t;
-    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
-    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
-    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
-    w[3] = 0.5 * (t3 - t2);
-}
-
-/* The cell of x in [0, 1] on n nodes, and the offset t in it. */
-static int cell(double x, int n, double *t)
+/* Catmull-Rom weights w[0..3] on the nodes i - 1 .. i + 2 around x in [0,
+ * 1] on n nodes (*i0 = i - 1); a node beyond an end is the linear
+ * extrapolation of the two inside, its weight moved onto them. */
+static void axis(double x, int n, int *i0, double *w)
 {
     double s = fmin(fmax(x, 0.0), 1.0) * (n - 1);
     int i = (int)s;
     if (i > n - 2)
         i = n - 2;
-    *t = s - i;
-    return i;
+    double t = s - i, t2 = t * t, t3 = t2 * t;
+    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+    w[3] = 0.5 * (t3 - t2);
+    if (i == 0) { /* node -1 = 2 v0 - v1 */
+        w[1] += 2.0 * w[0];
+        w[2] -= w[0];
+        w[0] = 0.0;
+    }
+    if (i + 2 > n - 1) { /* node n = 2 v(n-1) - v(n-2) */
+        w[2] += 2.0 * w[3];
+        w[1] -= w[3];
+        w[3] = 0.0;
+    }
+    *i0 = i - 1;
 }
 
-/* Table value at node (j, i), a node beyond an end extrapolated linearly. */
-static double at(double tab[AL_NR][AL_NS], int j, int i)
-{
-    if (i < 0)
-        return 2.0 * at(tab, j, 0) - at(tab, j, 1);
-    if (i >= AL_NS)
-        return 2.0 * at(tab, j, AL_NS - 1) - at(tab, j, AL_NS - 2);
-    if (j < 0)
-        return 2.0 * tab[0][i] - tab[1][i];
-    if (j >= AL_NR)
-        return 2.0 * tab[AL_NR - 1][i] - tab[AL_NR - 2][i];
-    return tab[j][i];
-}
-
-void bf_openpbr_albedo_ab(double mu, double r, double *A, double *B)
+void bf_openpbr_albedo(double mu, double r, double f0, double *E, double *Ess)
 {
     pthread_once(&table_once, table_make);
-    double tm, tr, wm[4], wr[4];
-    int i = cell(sqrt(fmax(mu, 0.0)), AL_NS, &tm), j = cell(r, AL_NR, &tr);
-    cr_weights(tm, wm);
-    cr_weights(tr, wr);
-    double a = 0.0, b = 0.0;
-    for (int q = 0; q < 4; q++)
-        for (int k = 0; k < 4; k++) {
-            double w = wr[q] * wm[k];
-            a += w * at(table_a, j - 1 + q, i - 1 + k);
-            b += w * at(table_b, j - 1 + q, i - 1 + k);
+    int j0, i0, k0;
+    double wr[4], ws[4], wq[4];
+    axis(r, AL_NR, &j0, wr);
+    axis(sqrt(fmax(mu, 0.0)), AL_NS, &i0, ws);
+    axis(sqrt(fmax(f0, 0.0)), AL_NQ, &k0, wq);
+    double e = 0.0, ess = 0.0;
+    for (int a = 0; a < 4; a++) {
+        if (wr[a] == 0.0)
+            continue;
+        for (int b = 0; b < 4; b++) {
+            double w = wr[a] * ws[b];
+            if (w == 0.0)
+                continue;
+            const double *col = table_e[j0 + a][i0 + b];
+            ess += w * col[AL_NQ - 1];
+            for (int c = 0; c < 4; c++)
+                e += w * wq[c] * (wq[c] != 0.0 ? col[k0 + c] : 0.0);
         }
-    *A = a;
-    *B = b;
+    }
+    *E = e;
+    *Ess = ess;
 }

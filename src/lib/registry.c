@@ -79,8 +79,8 @@ static const brdffit_param_info gltf_ext_params[] = {
 
 /* OpenPBR Surface's base and specular parameters, in its names
  * (kernels/bf_openpbr.h); the ranges are the specification's, specular_ior's
- * widened past its soft [1, 3] to 100 (F_s 0.96), where a metal-like
- * dielectric lobe takes it.  The fit holds specular_weight at 1
+ * widened past its soft [1, 3] to 10 (F_s 0.67), as far as the albedo
+ * table holds its accuracy (docs/openpbr.md).  The fit holds specular_weight at 1
  * (bf_model_def.held): for a dielectric only specular_weight F_s counts,
  * so it and specular_ior trade off exactly (docs/openpbr.md). */
 static const brdffit_param_info openpbr_params[] = {
@@ -88,7 +88,7 @@ static const brdffit_param_info openpbr_params[] = {
       "fraction of the surface that is metal: 0 dielectric, 1 metal" },
     { "specular_roughness", "", 0, 1, 0.3, BRDFFIT_MAP_LINEAR,
       "roughness of the specular lobe, alpha = roughness^2" },
-    { "specular_ior", "", 1, 100, 1.5, BRDFFIT_MAP_LOG,
+    { "specular_ior", "", 1, 10, 1.5, BRDFFIT_MAP_LOG,
       "index of refraction of the dielectric base" },
     { "specular_weight", "", 0, 1, 1, BRDFFIT_MAP_LINEAR,
       "multiplier of the dielectric's F0 (through its IOR) and of the metal's Fresnel" },

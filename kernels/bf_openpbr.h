@@ -53,6 +53,19 @@
  * process (src/lib/openpbr_albedo.c). */
 void bf_openpbr_albedo(double mu, double r, double f0, double *E, double *Ess);
 
+/* The table's nodes in sqrt(mu). */
+#define BF_OPENPBR_ALBEDO_NS 33
+
+/* The table interpolated at one roughness r and f0, over its nodes in
+ * sqrt(mu): what a pass at one point looks up per sample (the tricubic
+ * interpolation is separable, so bf_openpbr_slice_at gives
+ * bf_openpbr_albedo's E and Ess up to rounding). */
+typedef struct bf_openpbr_slice {
+    double e[BF_OPENPBR_ALBEDO_NS], ess[BF_OPENPBR_ALBEDO_NS];
+} bf_openpbr_slice;
+void bf_openpbr_albedo_slice(double r, double f0, bf_openpbr_slice *sl);
+void bf_openpbr_slice_at(const bf_openpbr_slice *sl, double mu, double *E, double *Ess);
+
 /* F0' = specular_weight F_s, clamped to [0, BF_OPENPBR_F0_MAX]. */
 BF_FN double bf_openpbr_f0(double ior, double weight)
 {
@@ -109,12 +122,11 @@ typedef struct bf_openpbr_lobe {
     double k;      /* (1 - Ess) / Ess                        */
 } bf_openpbr_lobe;
 
-BF_FN void bf_openpbr_lobe_at(const bf_geom *g, const double *p, bf_openpbr_lobe *L)
+/* The lobe at g and p, its albedos E(N.V; F0') and Ess(N.V) given. */
+BF_FN void bf_openpbr_lobe_with(const bf_geom *g, const double *p, double e, double ess,
+                                bf_openpbr_lobe *L)
 {
-    double r = fmax(p[1], BF_GLTF_ROUGHNESS_MIN);
-    double u = 1.0 - g->vh, u2 = u * u;
-    double f0 = bf_openpbr_f0(p[2], p[3]), e, ess;
-    bf_openpbr_albedo(g->oz, r, f0, &e, &ess);
+    double u = 1.0 - g->vh, u2 = u * u, f0 = bf_openpbr_f0(p[2], p[3]);
     L->spec = bf_gltf_specular(g, p[1]);
     L->fw = u2 * u2 * u;
     L->fd = bf_openpbr_fresnel_dielectric(g->vh, bf_openpbr_eta(f0));
@@ -122,6 +134,13 @@ BF_FN void bf_openpbr_lobe_at(const bf_geom *g, const double *p, bf_openpbr_lobe
     L->ed = fmin(e * L->comp_d, 1.0);
     L->ess = ess;
     L->k = (1.0 - ess) / ess;
+}
+
+BF_FN void bf_openpbr_lobe_at(const bf_geom *g, const double *p, bf_openpbr_lobe *L)
+{
+    double e, ess;
+    bf_openpbr_albedo(g->oz, fmax(p[1], BF_GLTF_ROUGHNESS_MIN), bf_openpbr_f0(p[2], p[3]), &e, &ess);
+    bf_openpbr_lobe_with(g, p, e, ess, L);
 }
 
 /* f_c for base colour base[c], specular colour col[c] and p. */
@@ -143,15 +162,21 @@ BF_FN void bf_openpbr(const bf_geom *g, const double *p, const double *base, con
  * (the same A, B, Q in every channel).  F_m = C (1 - fw) + fw (F82-tint
  * with tint 1 is Schlick's, inside [0, 1]) and comp_m = 1 + (C 20/21 +
  * 1/21) k. */
+BF_FN void bf_openpbr_form_of(const bf_openpbr_lobe *L, const double *p, double *A, double *B,
+                              double *Q)
+{
+    const double m = p[0], ms = m * p[3] * L->spec;
+    const double k0 = 1.0 + L->k * (1.0 / 21.0), k1 = L->k * (20.0 / 21.0);
+    *A = (1.0 - m) * L->spec * L->fd * L->comp_d + ms * L->fw * k0;
+    *B = (1.0 - m) * (1.0 - L->ed) * (1.0 / BF_PI) + ms * ((1.0 - L->fw) * k0 + L->fw * k1);
+    *Q = ms * (1.0 - L->fw) * k1;
+}
+
 BF_FN void bf_openpbr_form(const bf_geom *g, const double *p, double *A, double *B, double *Q)
 {
     bf_openpbr_lobe L;
     bf_openpbr_lobe_at(g, p, &L);
-    const double m = p[0], ms = m * p[3] * L.spec;
-    const double k0 = 1.0 + L.k * (1.0 / 21.0), k1 = L.k * (20.0 / 21.0);
-    *A = (1.0 - m) * L.spec * L.fd * L.comp_d + ms * L.fw * k0;
-    *B = (1.0 - m) * (1.0 - L.ed) * (1.0 / BF_PI) + ms * ((1.0 - L.fw) * k0 + L.fw * k1);
-    *Q = ms * (1.0 - L.fw) * k1;
+    bf_openpbr_form_of(&L, p, A, B, Q);
 }
 
 #endif /* BF_OPENPBR_H */

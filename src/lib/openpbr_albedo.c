@@ -26,7 +26,7 @@
 #include <math.h>
 #include <pthread.h>
 
-#define AL_NS 33 /* table nodes in s = sqrt(mu): 0, 1/32, ..., 1 */
+#define AL_NS BF_OPENPBR_ALBEDO_NS /* table nodes in s = sqrt(mu): 0, 1/32, ..., 1 */
 #define AL_NR 33 /* in the roughness */
 #define AL_NQ 17 /* in q = sqrt(F0): 0, 1/16, ..., 1 */
 #define AL_NT 32 /* Gauss-Legendre nodes a piece in t */
@@ -156,6 +156,14 @@ static void table_make(void)
     }
 }
 
+/* An interpolated albedo kept where albedos lie, 0 <= E <= Ess <= 1 (the
+ * cubic overshoots by ~1e-3 near grazing, where the table is coarse). */
+static void clamp_albedo(double e, double ess, double *E, double *Ess)
+{
+    *Ess = fmin(fmax(ess, 1e-6), 1.0);
+    *E = fmin(fmax(e, 0.0), *Ess);
+}
+
 /* Catmull-Rom weights w[0..3] on the nodes i - 1 .. i + 2 around x in [0,
  * 1] on n nodes (*i0 = i - 1); a node beyond an end is the linear
  * extrapolation of the two inside, its weight moved onto them. */
@@ -205,6 +213,40 @@ void bf_openpbr_albedo(double mu, double r, double f0, double *E, double *Ess)
                 e += w * wq[c] * (wq[c] != 0.0 ? col[k0 + c] : 0.0);
         }
     }
-    *E = e;
-    *Ess = ess;
+    clamp_albedo(e, ess, E, Ess);
+}
+
+void bf_openpbr_albedo_slice(double r, double f0, bf_openpbr_slice *sl)
+{
+    pthread_once(&table_once, table_make);
+    int j0, k0;
+    double wr[4], wq[4];
+    axis(r, AL_NR, &j0, wr);
+    axis(sqrt(fmax(f0, 0.0)), AL_NQ, &k0, wq);
+    for (int i = 0; i < AL_NS; i++) {
+        double e = 0.0, ess = 0.0;
+        for (int a = 0; a < 4; a++) {
+            if (wr[a] == 0.0)
+                continue;
+            const double *col = table_e[j0 + a][i];
+            ess += wr[a] * col[AL_NQ - 1];
+            for (int c = 0; c < 4; c++)
+                e += wr[a] * wq[c] * (wq[c] != 0.0 ? col[k0 + c] : 0.0);
+        }
+        sl->e[i] = e;
+        sl->ess[i] = ess;
+    }
+}
+
+void bf_openpbr_slice_at(const bf_openpbr_slice *sl, double mu, double *E, double *Ess)
+{
+    int i0;
+    double ws[4], e = 0.0, ess = 0.0;
+    axis(sqrt(fmax(mu, 0.0)), AL_NS, &i0, ws);
+    for (int b = 0; b < 4; b++)
+        if (ws[b] != 0.0) {
+            e += ws[b] * sl->e[i0 + b];
+            ess += ws[b] * sl->ess[i0 + b];
+        }
+    clamp_albedo(e, ess, E, Ess);
 }

@@ -63,6 +63,8 @@ static void af_add(af_mom *m, double a2, const double *rho, const double *bv, co
 typedef struct af_job {
     const brdffit_samples *samples;
     int openpbr;                       /* the model: OpenPBR (else glTF) */
+    const bf_openpbr_slice *slices;    /* OpenPBR: the albedo at each point */
+    int same_lobe[AF_NP];              /* OpenPBR: neighbour j's lobe is p_0's */
     const double (*pts)[AF_NP];
     const double *inv_h;
     size_t i0, i1;
@@ -81,13 +83,27 @@ static double af_step(const double *dX, const double *coef)
 }
 
 /* OpenPBR's bases A, B, Q at p_0 and their forward differences to the
- * neighbours (its albedo is a table: no partials in closed form). */
+ * neighbours (its albedo is a table: no partials in closed form), the
+ * albedo looked up in each point's slice; a neighbour that differs in
+ * base_metalness alone has p_0's lobe. */
 static void openpbr_steps(const af_job *jb, const bf_geom *g, double *bv, double *dv)
 {
-    bf_openpbr_form(g, jb->pts[0], &bv[0], &bv[1], &bv[2]);
+    bf_openpbr_lobe L0;
+    double e, ess;
+    bf_openpbr_slice_at(&jb->slices[0], g->oz, &e, &ess);
+    bf_openpbr_lobe_with(g, jb->pts[0], e, ess, &L0);
+    bf_openpbr_form_of(&L0, jb->pts[0], &bv[0], &bv[1], &bv[2]);
     for (int j = 0; j < jb->m.np; j++) {
+        const double *pj = jb->pts[1 + j];
         double b[3];
-        bf_openpbr_form(g, jb->pts[1 + j], &b[0], &b[1], &b[2]);
+        if (jb->same_lobe[j]) {
+            bf_openpbr_form_of(&L0, pj, &b[0], &b[1], &b[2]);
+        } else {
+            bf_openpbr_lobe L;
+            bf_openpbr_slice_at(&jb->slices[1 + j], g->oz, &e, &ess);
+            bf_openpbr_lobe_with(g, pj, e, ess, &L);
+            bf_openpbr_form_of(&L, pj, &b[0], &b[1], &b[2]);
+        }
         for (int x = 0; x < 3; x++)
             dv[3 * j + x] = (b[x] - bv[x]) * jb->inv_h[j];
     }
@@ -150,13 +166,24 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
 {
     af_job jobs[AF_MAX_THREADS];
     pthread_t tid[AF_MAX_THREADS];
+    bf_openpbr_slice slices[1 + AF_NP];
+    int same_lobe[AF_NP] = { 0 };
+    const int openpbr = brdffit_model_get(model)->colour_form == BRDFFIT_COLOUR_OPENPBR;
+    for (int k = 0; openpbr && k <= np; k++)
+        bf_openpbr_albedo_slice(fmax(pts[k][1], BF_GLTF_ROUGHNESS_MIN), bf_openpbr_f0(pts[k][2], pts[k][3]),
+                                &slices[k]);
+    for (int j = 0; openpbr && j < np; j++)
+        same_lobe[j] = pts[1 + j][1] == pts[0][1] && pts[1 + j][2] == pts[0][2] &&
+                       pts[1 + j][3] == pts[0][3];
     const int nt = af_threads(samples->n);
     int started = 0;
     for (int k = 0; k < nt; k++) {
         af_job *jb = &jobs[k];
         memset(jb, 0, sizeof *jb);
         jb->samples = samples;
-        jb->openpbr = brdffit_model_get(model)->colour_form == BRDFFIT_COLOUR_OPENPBR;
+        jb->openpbr = openpbr;
+        jb->slices = slices;
+        memcpy(jb->same_lobe, same_lobe, sizeof same_lobe);
         jb->pts = pts;
         jb->inv_h = inv_h;
         jb->m.np = np;

@@ -136,6 +136,20 @@ BF_FN void bf_openpbr_lobe_with(const bf_geom *g, const double *p, double e, dou
     L->k = (1.0 - ess) / ess;
 }
 
+/* The lobe at p whose roughness is L0's (D Vis and (1 - V.H)^5 its), at
+ * the albedos e, ess: what changes with specular_ior and specular_weight. */
+BF_FN void bf_openpbr_lobe_f0(const bf_openpbr_lobe *L0, const bf_geom *g, const double *p,
+                              double e, double ess, bf_openpbr_lobe *L)
+{
+    double f0 = bf_openpbr_f0(p[2], p[3]);
+    *L = *L0;
+    L->fd = bf_openpbr_fresnel_dielectric(g->vh, bf_openpbr_eta(f0));
+    L->comp_d = bf_openpbr_comp(f0, ess);
+    L->ed = fmin(e * L->comp_d, 1.0);
+    L->ess = ess;
+    L->k = (1.0 - ess) / ess;
+}
+
 BF_FN void bf_openpbr_lobe_at(const bf_geom *g, const double *p, bf_openpbr_lobe *L)
 {
     double e, ess;

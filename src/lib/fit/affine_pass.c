@@ -64,7 +64,8 @@ typedef struct af_job {
     const brdffit_samples *samples;
     int openpbr;                       /* the model: OpenPBR (else glTF) */
     const bf_openpbr_slice *slices;    /* OpenPBR: the albedo at each point */
-    int same_lobe[AF_NP];              /* OpenPBR: neighbour j's lobe is p_0's */
+    int same_lobe[AF_NP];              /* OpenPBR: neighbour j's lobe is p_0's (2),
+                                        * has its roughness (1), or neither (0) */
     const double (*pts)[AF_NP];
     const double *inv_h;
     size_t i0, i1;
@@ -85,7 +86,7 @@ static double af_step(const double *dX, const double *coef)
 /* OpenPBR's bases A, B, Q at p_0 and their forward differences to the
  * neighbours (its albedo is a table: no partials in closed form), the
  * albedo looked up in each point's slice; a neighbour that differs in
- * base_metalness alone has p_0's lobe. */
+ * base_metalness alone has p_0's lobe, one of p_0's roughness its D Vis. */
 static void openpbr_steps(const af_job *jb, const bf_geom *g, double *bv, double *dv)
 {
     bf_openpbr_lobe L0;
@@ -96,12 +97,15 @@ static void openpbr_steps(const af_job *jb, const bf_geom *g, double *bv, double
     for (int j = 0; j < jb->m.np; j++) {
         const double *pj = jb->pts[1 + j];
         double b[3];
-        if (jb->same_lobe[j]) {
+        if (jb->same_lobe[j] == 2) {
             bf_openpbr_form_of(&L0, pj, &b[0], &b[1], &b[2]);
         } else {
             bf_openpbr_lobe L;
             bf_openpbr_slice_at(&jb->slices[1 + j], g->oz, &e, &ess);
-            bf_openpbr_lobe_with(g, pj, e, ess, &L);
+            if (jb->same_lobe[j] == 1)
+                bf_openpbr_lobe_f0(&L0, g, pj, e, ess, &L);
+            else
+                bf_openpbr_lobe_with(g, pj, e, ess, &L);
             bf_openpbr_form_of(&L, pj, &b[0], &b[1], &b[2]);
         }
         for (int x = 0; x < 3; x++)
@@ -173,8 +177,9 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
         bf_openpbr_albedo_slice(fmax(pts[k][1], BF_GLTF_ROUGHNESS_MIN), bf_openpbr_f0(pts[k][2], pts[k][3]),
                                 &slices[k]);
     for (int j = 0; openpbr && j < np; j++)
-        same_lobe[j] = pts[1 + j][1] == pts[0][1] && pts[1 + j][2] == pts[0][2] &&
-                       pts[1 + j][3] == pts[0][3];
+        same_lobe[j] = pts[1 + j][1] != pts[0][1]                                    ? 0
+                       : pts[1 + j][2] == pts[0][2] && pts[1 + j][3] == pts[0][3] ? 2
+                                                                                      : 1;
     const int nt = af_threads(samples->n);
     int started = 0;
     for (int k = 0; k < nt; k++) {

@@ -215,7 +215,7 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
             xml_text(&w, "; published Error = the Error of the published parameters on this "
                          "table, ratio = Error / published Error (below 1: this fit is closer)");
         xml_close(&w);
-        rp_gltf_section(&w, rep, m);
+        rp_export_sections(&w, rep, m);
         figures(&w, m, "image", "Renders (reference and each model, same exposure)");
         figures(&w, m, "diff", "Differences from the reference");
         figures(&w, m, "plot", "Incidence-plane plots (cube root)");

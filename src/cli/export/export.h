@@ -107,9 +107,9 @@ const char *mtlx_material_check(const mtlx_material *m, char *why, size_t len);
  * specular_color, p = base_metalness, specular_roughness, specular_ior,
  * specular_weight) into m (its name left NULL): NULL, or why not. */
 const char *mtlx_material_of(const fit_record *r, mtlx_material *m, char *why, size_t len);
-/* A MaterialX element name made of prefix and name into out: every byte of
- * name but [A-Za-z0-9_] written '_', and '_' first when, without a prefix,
- * name begins with a digit. */
+/* A MaterialX element name made of prefix and name into out: each run of
+ * bytes of name not in [A-Za-z0-9_] written as one '_', and '_' first when,
+ * without a prefix, name begins with a digit. */
 void mtlx_element_name(char *out, size_t len, const char *name, const char *prefix);
 /* The open_pbr_surface node and the surfacematerial using it, indented by
  * depth (two spaces a level): what a document's <materialx> holds, and what

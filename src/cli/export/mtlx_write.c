@@ -9,8 +9,8 @@
  *
  * Names: MaterialX element names are letters, digits and '_' (':' separates
  * namespaces), so the element names are made from MATERIAL-MODEL by writing
- * every other byte as '_' (and '_' before a leading digit); the name itself
- * is kept, XML-escaped, in the material's doc attribute. */
+ * each run of other bytes as one '_' (and '_' before a leading digit); the
+ * name itself is kept, XML-escaped, in the material's doc attribute. */
 #include "export.h"
 #include "svg.h"
 
@@ -81,10 +81,15 @@ void mtlx_element_name(char *out, size_t len, const char *name, const char *pref
         out[n++] = *p;
     if (n == 0 && name[0] >= '0' && name[0] <= '9' && n + 1 < len)
         out[n++] = '_';
+    int run = 0; /* in a run of bytes written as one '_' */
     for (const unsigned char *p = (const unsigned char *)name; *p && n + 1 < len; p++) {
         int ok = (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') ||
                  (*p >= '0' && *p <= '9') || *p == '_';
-        out[n++] = ok ? (char)*p : '_';
+        if (ok)
+            out[n++] = (char)*p;
+        else if (!run)
+            out[n++] = '_';
+        run = !ok;
     }
     out[n] = '\0';
 }

@@ -41,10 +41,10 @@ static int material_of(const rp_report *rep, const rp_material *m, int k, export
     char why[256];
     if (!f || !fr_ok(f) || !export_takes(fmt, mi->name))
         return 0;
-    fit_record named = *f; /* the page's names, whatever the record holds */
-    snprintf(named.material, sizeof named.material, "%s", m->name);
-    snprintf(named.model, sizeof named.model, "%s", mi->name);
-    return export_material_of(fmt, &named, x, why, sizeof why) == NULL;
+    if (export_material_of(fmt, f, x, why, sizeof why) != NULL)
+        return 0;
+    snprintf(x->name, sizeof x->name, "%s-%s", m->name, mi->name); /* the page's names */
+    return 1;
 }
 
 int rp_write_export_files(const rp_report *rep, const rp_material *m, const out_dir *dir,

@@ -466,7 +466,7 @@ brdffit_status bf_affine_fit(brdffit_context *ctx, const brdffit_samples *sample
     (void)ctx;
     const bf_model_def *def = bf_model_def_get(model);
     const brdffit_samples *mirror = NULL, *subset = NULL;
-    brdffit_status st = bf_samples_mirror_kept(samples, &mirror, err);
+    brdffit_status st = bf_affine_all(samples, model, &mirror, err);
     if (st == BRDFFIT_OK)
         st = bf_affine_subset(mirror, model, &subset, err);
     if (st != BRDFFIT_OK)

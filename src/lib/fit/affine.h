@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* affine.h -- the fit of a model whose colour enters affinely (colour_form
- * BRDFFIT_COLOUR_GLTF): f_c = A(p) + x_c B(p), x_c the base colour of channel
+ * BRDFFIT_COLOUR_GLTF, and BRDFFIT_COLOUR_OPENPBR by its chord:
+ * kernels/bf_openpbr.h): f_c = A(p) + x_c B(p), x_c the base colour of channel
  * c in [0, 1], A and B the same in every channel (the fit holds the specular
  * colour white: kernels/bf_gltf.h, docs/fitting.md "The glTF models").
  *
@@ -46,6 +47,12 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
  * either colour form. */
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,
                    const brdffit_params *params);
+
+/* The samples a fit and brdffit_error_of take for such a model: the mirror
+ * set of samples (kept with it), or samples itself for a model that is not
+ * reciprocal (bf_model_def.nonreciprocal), whose merged pairs would differ. */
+brdffit_status bf_affine_all(const brdffit_samples *samples, brdffit_model model,
+                             const brdffit_samples **out, brdffit_error *err);
 
 /* The subset the affine fit screens its starts on: every screen_stride-th
  * sample of the mirror set (kept with it), or the mirror set itself when

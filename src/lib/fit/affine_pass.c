@@ -2,14 +2,15 @@
 /* affine_pass.c -- the data pass of the affine engine (affine.h): the sums
  * of the bases A, B and their forward differences at one lobe point over a
  * sample set, in double, split over threads; and the Error of a model's
- * parameters summed directly.  A host loop: the glTF models have no OpenCL
- * kernel (docs/fitting.md, "The glTF models"). */
+ * parameters summed directly.  A host loop: the glTF and OpenPBR models
+ * have no OpenCL kernel (docs/fitting.md, "The glTF models"). */
 #define _DEFAULT_SOURCE
 #include "affine.h"
 
 #include "samples.h"
 #include "subsets.h"
 #include "bf_gltf.h"
+#include "bf_openpbr.h"
 
 #include <pthread.h>
 #include <string.h>
@@ -72,6 +73,7 @@ static void af_add(af_mom *m, double a2, const double *rho, double A, double B, 
 
 typedef struct af_job {
     const brdffit_samples *samples;
+    int openpbr;                       /* the model: OpenPBR (else glTF) */
     const double (*pts)[AF_NP];
     const double *inv_h;
     size_t i0, i1;
@@ -89,6 +91,29 @@ static double af_step(const double *dX, const double *coef)
     return v;
 }
 
+/* OpenPBR's f = A + C B + C^2 Q taken by its chord over C in [0, 1]: A and
+ * B + Q (exact at C = 0 and 1; docs/openpbr.md, The fit). */
+static void openpbr_chord(const bf_geom *g, const double *p, double *A, double *B)
+{
+    double Q;
+    bf_openpbr_form(g, p, A, B, &Q);
+    *B += Q;
+}
+
+/* OpenPBR's A, B at p_0 and their forward differences to the neighbours
+ * (its albedo is a table: no partials in closed form). */
+static void openpbr_steps(const af_job *jb, const bf_geom *g, double *A, double *B, double *dA,
+                          double *dB)
+{
+    openpbr_chord(g, jb->pts[0], A, B);
+    for (int j = 0; j < jb->m.np; j++) {
+        double Aj, Bj;
+        openpbr_chord(g, jb->pts[1 + j], &Aj, &Bj);
+        dA[j] = (Aj - *A) * jb->inv_h[j];
+        dB[j] = (Bj - *B) * jb->inv_h[j];
+    }
+}
+
 static void *af_run(void *arg)
 {
     af_job *jb = arg;
@@ -101,6 +126,11 @@ static void *af_run(void *arg)
         bf_geom g;
         double rho[3], A, B, pA[AF_NP], pB[AF_NP], dA[AF_NP], dB[AF_NP];
         double a2 = sample_at(jb->samples, i, &g, rho);
+        if (jb->openpbr) {
+            openpbr_steps(jb, &g, &A, &B, dA, dB);
+            af_add(&jb->m, a2, rho, A, B, dA, dB);
+            continue;
+        }
         bf_gltf_affine_grad(&g, jb->pts[0], &A, &B, pA, pB);
         for (int j = 0; j < np; j++) {
             dA[j] = af_step(pA, coef[j]);
@@ -133,7 +163,6 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
                               const double (*pts)[AF_NP], int np, const double *inv_h, af_mom *m,
                               brdffit_error *err)
 {
-    (void)model; /* one affine model today: the glTF BRDF */
     af_job jobs[AF_MAX_THREADS];
     pthread_t tid[AF_MAX_THREADS];
     const int nt = af_threads(samples->n);
@@ -142,6 +171,7 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
         af_job *jb = &jobs[k];
         memset(jb, 0, sizeof *jb);
         jb->samples = samples;
+        jb->openpbr = brdffit_model_get(model)->colour_form == BRDFFIT_COLOUR_OPENPBR;
         jb->pts = pts;
         jb->inv_h = inv_h;
         jb->m.np = np;
@@ -165,6 +195,16 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
         m->rr[c] += samples->pair_see[c];
     (void)err;
     return BRDFFIT_OK;
+}
+
+brdffit_status bf_affine_all(const brdffit_samples *samples, brdffit_model model,
+                             const brdffit_samples **out, brdffit_error *err)
+{
+    if (bf_model_def_get(model)->nonreciprocal) {
+        *out = samples;
+        return BRDFFIT_OK;
+    }
+    return bf_samples_mirror_kept(samples, out, err);
 }
 
 brdffit_status bf_affine_subset(const brdffit_samples *mirror, brdffit_model model,

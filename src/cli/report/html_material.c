@@ -207,8 +207,9 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
         xml_open(&w, "p");
         xml_attr(&w, "class", "note");
         xml_text(&w, "d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s, "
-                     "p0..p3 the lobe parameters in the paper's units (gltf, gltf-ext: "
-                     "d = base_color, s = specular_color, linear sRGB; p in glTF's names); "
+                     "p0..p3 the lobe parameters in the paper's units (gltf, gltf-ext, openpbr: "
+                     "d = base_color, s = specular_color, linear sRGB; p in glTF's and "
+                     "OpenPBR's names); "
                      "Error = ngan-l2 (1/sr); "
                      "\xe2\x98\x85 the lowest Error");
         if (rep->have_published)

@@ -139,14 +139,12 @@ START_TEST(recovery)
     if (mi->colour_form != BRDFFIT_COLOUR_DS) {
         /* a glTF or OpenPBR material: Ward's d as the base colour (within
          * [0, 1]), a white specular colour (the core glTF material's, what
-         * the OpenPBR fit holds) */
+         * the OpenPBR fit holds), part metal */
         for (int c = 0; c < 3; c++) {
             truth.d[c] = fmin(4 * truth.d[c], 1.0);
             truth.s[c] = 1.0;
         }
-        /* part metal (OpenPBR: a dielectric; its metal recovery is
-         * tests/test_openpbr_fit.c's) */
-        truth.p[0] = mi->colour_form == BRDFFIT_COLOUR_GLTF ? 0.4 : 0.0;
+        truth.p[0] = 0.4; /* part metal */
     }
     brdffit_context *ctx = make_context();
     double rms;

@@ -136,10 +136,12 @@ START_TEST(pass_sums)
         dbdb += a2 * db1 * db1;
         rda += a2 * f[BF_F_B * n + i] * da0;
     }
-    ck_assert_msg(tu_reldiff(m.bb, bb) < 1e-12, "bb %.17g vs %.17g", m.bb, bb);
-    ck_assert_msg(tu_reldiff(m.rb[1], rb) < 1e-12, "rb %.17g vs %.17g", m.rb[1], rb);
-    ck_assert_msg(tu_reldiff(m.dbdb[1][1], dbdb) < 1e-3, "dbdb %.17g vs %.17g", m.dbdb[1][1], dbdb);
-    ck_assert_msg(tu_reldiff(m.rda[2][0], rda) < 1e-3, "rda %.17g vs %.17g", m.rda[2][0], rda);
+    /* the bases X = A, B (nb = 2); the difference of X to neighbour j at row 2 j + X */
+    ck_assert_int_eq(m.nb, 2);
+    ck_assert_msg(tu_reldiff(m.gg[1][1], bb) < 1e-12, "bb %.17g vs %.17g", m.gg[1][1], bb);
+    ck_assert_msg(tu_reldiff(m.rg[1][1], rb) < 1e-12, "rb %.17g vs %.17g", m.rg[1][1], rb);
+    ck_assert_msg(tu_reldiff(m.dd[3][3], dbdb) < 1e-3, "dbdb %.17g vs %.17g", m.dd[3][3], dbdb);
+    ck_assert_msg(tu_reldiff(m.rd[2][0], rda) < 1e-3, "rda %.17g vs %.17g", m.rd[2][0], rda);
     brdffit_samples_free(s);
 }
 END_TEST

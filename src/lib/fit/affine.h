@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* affine.h -- the fit of a model whose colour enters affinely (colour_form
- * BRDFFIT_COLOUR_GLTF, and BRDFFIT_COLOUR_OPENPBR by its chord:
+/* affine.h -- the fit of a model whose colour enters affinely or as a
+ * quadratic (colour_form BRDFFIT_COLOUR_GLTF, BRDFFIT_COLOUR_OPENPBR:
  * kernels/bf_openpbr.h): f_c = A(p) + x_c B(p), x_c the base colour of channel
  * c in [0, 1], A and B the same in every channel (the fit holds the specular
  * colour white: kernels/bf_gltf.h, docs/fitting.md "The glTF models").
  *
+ * (OpenPBR adds x_c^2 Q(p): its metal's compensation).
  * At every point p of the lobe parameters the best x_c is solved exactly
  * (a bounded one-unknown least-squares problem per channel) and LM moves only
  * the lobe coordinates u, as the d/pi + s K models' fit does with d and s
@@ -19,19 +20,23 @@
 
 #define AF_NP BRDFFIT_MAX_LOBE_PARAMS
 
-/* The sums of one pass at a point p_0 and its np neighbours p_j (all sums
- * weighted by a^2; dX_j = dX/dp . (p_j - p_0) / h_j, the partials' first-order
- * step to the neighbour, bf_gltf_affine_grad). */
+/* The bases of f: A, B and, for OpenPBR, Q (f_c = A + x_c B + x_c^2 Q). */
+#define AF_NB 3
+#define AF_ND (AF_NP * AF_NB)
+
+/* The sums of one pass at a point p_0 and its np neighbours p_j, all
+ * weighted by a^2, over the model's nb bases X = A, B (, Q) and their
+ * differences dX_j = dX/dp . (p_j - p_0) / h_j (the partials' first-order
+ * step to the neighbour: bf_gltf_affine_grad, or OpenPBR's forward
+ * differences), the difference of base X to neighbour j at row j nb + X. */
 typedef struct af_mom {
-    int np;
-    double aa, ab, bb;                 /* sum A A, A B, B B                   */
-    double daa[AF_NP], dab[AF_NP];     /* sum dA_j A, dA_j B                  */
-    double dba[AF_NP], dbb[AF_NP];     /* sum dB_j A, dB_j B                  */
-    double dada[AF_NP][AF_NP];         /* sum dA_j dA_l                       */
-    double dadb[AF_NP][AF_NP];         /* sum dA_j dB_l                       */
-    double dbdb[AF_NP][AF_NP];         /* sum dB_j dB_l                       */
-    double rr[3], ra[3], rb[3];        /* per channel: sum rho rho, rho A, rho B */
-    double rda[3][AF_NP], rdb[3][AF_NP]; /* sum rho dA_j, rho dB_j           */
+    int np, nb;
+    double gg[AF_NB][AF_NB];           /* sum X Y (X <= Y)                     */
+    double dg[AF_ND][AF_NB];           /* sum dX_j Y                           */
+    double dd[AF_ND][AF_ND];           /* sum dX_j dY_l (row <= column)        */
+    double rr[3];                      /* per channel: sum rho rho            */
+    double rg[3][AF_NB];               /* sum rho X                           */
+    double rd[3][AF_ND];               /* sum rho dX_j                        */
 } af_mom;
 
 /* The sums of a pass on samples at points pts[0..np] (pts[0] = p_0), with

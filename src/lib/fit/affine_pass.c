@@ -35,39 +35,28 @@ static double sample_at(const brdffit_samples *s, size_t i, bf_geom *g, double *
     return f[BF_F_A2 * n + i];
 }
 
-/* Add one sample (weight a2, values rho) with bases A, B at p_0 and their
- * differences dA, dB to m. */
-static void af_add(af_mom *m, double a2, const double *rho, double A, double B, const double *dA,
-                   const double *dB)
+/* Add one sample (weight a2, values rho) with bases bv[X] at p_0 and their
+ * differences dv[j nb + X] to m. */
+static void af_add(af_mom *m, double a2, const double *rho, const double *bv, const double *dv)
 {
-    const int np = m->np;
-    double aA = a2 * A, aB = a2 * B;
-    m->aa += aA * A;
-    m->ab += aA * B;
-    m->bb += aB * B;
-    for (int j = 0; j < np; j++) {
-        double adA = a2 * dA[j], adB = a2 * dB[j];
-        m->daa[j] += adA * A;
-        m->dab[j] += adA * B;
-        m->dba[j] += adB * A;
-        m->dbb[j] += adB * B;
-        for (int l = 0; l < np; l++) {
-            m->dadb[j][l] += adA * dB[l];
-            if (l >= j) {
-                m->dada[j][l] += adA * dA[l];
-                m->dbdb[j][l] += adB * dB[l];
-            }
-        }
+    const int nb = m->nb, nd = m->np * nb;
+    for (int x = 0; x < nb; x++)
+        for (int y = x; y < nb; y++)
+            m->gg[x][y] += a2 * bv[x] * bv[y];
+    for (int f = 0; f < nd; f++) {
+        double adf = a2 * dv[f];
+        for (int y = 0; y < nb; y++)
+            m->dg[f][y] += adf * bv[y];
+        for (int h = f; h < nd; h++)
+            m->dd[f][h] += adf * dv[h];
     }
     for (int c = 0; c < 3; c++) {
         double ar = a2 * rho[c];
         m->rr[c] += ar * rho[c];
-        m->ra[c] += ar * A;
-        m->rb[c] += ar * B;
-        for (int j = 0; j < np; j++) {
-            m->rda[c][j] += ar * dA[j];
-            m->rdb[c][j] += ar * dB[j];
-        }
+        for (int x = 0; x < nb; x++)
+            m->rg[c][x] += ar * bv[x];
+        for (int f = 0; f < nd; f++)
+            m->rd[c][f] += ar * dv[f];
     }
 }
 
@@ -91,26 +80,28 @@ static double af_step(const double *dX, const double *coef)
     return v;
 }
 
-/* OpenPBR's f = A + C B + C^2 Q taken by its chord over C in [0, 1]: A and
- * B + Q (exact at C = 0 and 1; docs/openpbr.md, The fit). */
-static void openpbr_chord(const bf_geom *g, const double *p, double *A, double *B)
+/* OpenPBR's bases A, B, Q at p_0 and their forward differences to the
+ * neighbours (its albedo is a table: no partials in closed form). */
+static void openpbr_steps(const af_job *jb, const bf_geom *g, double *bv, double *dv)
 {
-    double Q;
-    bf_openpbr_form(g, p, A, B, &Q);
-    *B += Q;
+    bf_openpbr_form(g, jb->pts[0], &bv[0], &bv[1], &bv[2]);
+    for (int j = 0; j < jb->m.np; j++) {
+        double b[3];
+        bf_openpbr_form(g, jb->pts[1 + j], &b[0], &b[1], &b[2]);
+        for (int x = 0; x < 3; x++)
+            dv[3 * j + x] = (b[x] - bv[x]) * jb->inv_h[j];
+    }
 }
 
-/* OpenPBR's A, B at p_0 and their forward differences to the neighbours
- * (its albedo is a table: no partials in closed form). */
-static void openpbr_steps(const af_job *jb, const bf_geom *g, double *A, double *B, double *dA,
-                          double *dB)
+/* glTF's bases A, B at p_0 and their steps to the neighbours. */
+static void gltf_steps(const af_job *jb, const bf_geom *g, const double (*coef)[AF_NP],
+                       double *bv, double *dv)
 {
-    openpbr_chord(g, jb->pts[0], A, B);
+    double pA[AF_NP], pB[AF_NP];
+    bf_gltf_affine_grad(g, jb->pts[0], &bv[0], &bv[1], pA, pB);
     for (int j = 0; j < jb->m.np; j++) {
-        double Aj, Bj;
-        openpbr_chord(g, jb->pts[1 + j], &Aj, &Bj);
-        dA[j] = (Aj - *A) * jb->inv_h[j];
-        dB[j] = (Bj - *B) * jb->inv_h[j];
+        dv[2 * j] = af_step(pA, coef[j]);
+        dv[2 * j + 1] = af_step(pB, coef[j]);
     }
 }
 
@@ -124,19 +115,13 @@ static void *af_run(void *arg)
             coef[j][k] = (jb->pts[1 + j][k] - jb->pts[0][k]) * jb->inv_h[j];
     for (size_t i = jb->i0; i < jb->i1; i++) {
         bf_geom g;
-        double rho[3], A, B, pA[AF_NP], pB[AF_NP], dA[AF_NP], dB[AF_NP];
+        double rho[3], bv[AF_NB], dv[AF_ND];
         double a2 = sample_at(jb->samples, i, &g, rho);
-        if (jb->openpbr) {
-            openpbr_steps(jb, &g, &A, &B, dA, dB);
-            af_add(&jb->m, a2, rho, A, B, dA, dB);
-            continue;
-        }
-        bf_gltf_affine_grad(&g, jb->pts[0], &A, &B, pA, pB);
-        for (int j = 0; j < np; j++) {
-            dA[j] = af_step(pA, coef[j]);
-            dB[j] = af_step(pB, coef[j]);
-        }
-        af_add(&jb->m, a2, rho, A, B, dA, dB);
+        if (jb->openpbr)
+            openpbr_steps(jb, &g, bv, dv);
+        else
+            gltf_steps(jb, &g, (const double (*)[AF_NP])coef, bv, dv);
+        af_add(&jb->m, a2, rho, bv, dv);
     }
     return NULL;
 }
@@ -144,9 +129,9 @@ static void *af_run(void *arg)
 /* m += t (the sums of one thread's run). */
 static void af_sum(af_mom *m, const af_mom *t)
 {
-    const double *src = &t->aa;
-    double *dst = &m->aa;
-    const size_t n = (sizeof *m - offsetof(af_mom, aa)) / sizeof(double);
+    const double *src = &t->gg[0][0];
+    double *dst = &m->gg[0][0];
+    const size_t n = (sizeof *m - offsetof(af_mom, gg)) / sizeof(double);
     for (size_t k = 0; k < n; k++)
         dst[k] += src[k];
 }
@@ -175,6 +160,7 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
         jb->pts = pts;
         jb->inv_h = inv_h;
         jb->m.np = np;
+        jb->m.nb = jb->openpbr ? 3 : 2;
         jb->i0 = samples->n * (size_t)k / (size_t)nt;
         jb->i1 = samples->n * (size_t)(k + 1) / (size_t)nt;
         if (k > 0 && pthread_create(&tid[k], NULL, af_run, jb) == 0)
@@ -189,6 +175,7 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
     }
     memset(m, 0, sizeof *m);
     m->np = np;
+    m->nb = jobs[0].m.nb;
     for (int k = 0; k < nt; k++)
         af_sum(m, &jobs[k].m);
     for (int c = 0; c < 3; c++)

@@ -456,9 +456,10 @@ static brdffit_status af_pinned(afstate *all, afstate *sub, const brdffit_fit_op
     unsigned pins = pin_ends(&all->fm, best->u);
     for (;;) {
         set_active(all, pins);
-        int done = all->nx == 0;
-        brdffit_status st = done || all->nx > AF_GN_MAX_NX ? BRDFFIT_OK
-                                                           : af_newton(all, o, best, base, &done);
+        int done = all->nx == 0; /* every coordinate pinned: the colours at that point */
+        brdffit_status st = done                     ? value_at(all, best->u, &best->rr, base)
+                            : all->nx > AF_GN_MAX_NX ? BRDFFIT_OK
+                                                     : af_newton(all, o, best, base, &done);
         if (st == BRDFFIT_OK && !done)
             st = af_lm(all, o, best, base, solver_s);
         if (st != BRDFFIT_OK || pins == 0)

@@ -57,6 +57,10 @@
  *     gltf-ext [metallic, roughness, ior, specular]  the same with
  *                            KHR_materials_ior and KHR_materials_specular
  *                            (s = specularColorFactor): kernels/bf_gltf.h
+ *     openpbr [base_metalness, specular_roughness, specular_ior, specular_weight]
+ *                            OpenPBR Surface 1.1's base and specular layers
+ *                            (d = base_color, s = specular_color, each in
+ *                            [0, 1]; alpha = roughness^2): kernels/bf_openpbr.h
  *     F(F0, c) = F0 + (1 - F0)(1 - c)^5 (Schlick).
  *   The Lafortune lobe depends on (Cxy, Cz) only through their direction;
  *   fits report them scaled to 2 Cxy^2 + Cz^2 = 1.
@@ -220,9 +224,10 @@ typedef enum brdffit_model {
     BRDFFIT_HE = 6,
     BRDFFIT_GGX = 7,
     BRDFFIT_GLTF = 8,     /* glTF 2.0 metallic-roughness, core: what every viewer shows */
-    BRDFFIT_GLTF_EXT = 9  /* the same with KHR_materials_ior and KHR_materials_specular */
+    BRDFFIT_GLTF_EXT = 9, /* the same with KHR_materials_ior and KHR_materials_specular */
+    BRDFFIT_OPENPBR = 10  /* OpenPBR Surface 1.1, base and specular layers */
 } brdffit_model;
-#define BRDFFIT_MODEL_COUNT 10
+#define BRDFFIT_MODEL_COUNT 11
 
 #define BRDFFIT_MAX_LOBE_PARAMS 4
 
@@ -263,7 +268,11 @@ typedef struct brdffit_model_info {
      * paper's models, GGX), or BRDFFIT_COLOUR_GLTF, the glTF BRDF, where
      * brdffit_params.d is the base colour (each in [0, 1]) and .s the
      * specular colour (KHR_materials_specular; the core `gltf` takes 1, 1, 1),
-     * and p = metallic, roughness, ior, specular (docs/conventions.md). */
+     * and p = metallic, roughness, ior, specular (docs/conventions.md);
+     * or BRDFFIT_COLOUR_OPENPBR, the OpenPBR Surface BRDF, where d is
+     * base_color and s specular_color (each in [0, 1]) and p =
+     * base_metalness, specular_roughness, specular_ior, specular_weight
+     * (docs/openpbr.md). */
     int colour_form;
     const char *colour_names[2]; /* the names of d and s: "d", "s" or
                                     "base_color", "specular_color"            */
@@ -273,7 +282,7 @@ typedef struct brdffit_model_info {
                                     "all" (their fits take longer: no kernel) */
 } brdffit_model_info;
 
-enum { BRDFFIT_COLOUR_DS = 0, BRDFFIT_COLOUR_GLTF = 1 };
+enum { BRDFFIT_COLOUR_DS = 0, BRDFFIT_COLOUR_GLTF = 1, BRDFFIT_COLOUR_OPENPBR = 2 };
 
 /* The number of models the library has (ids 0 .. count-1). */
 int brdffit_model_count(void);

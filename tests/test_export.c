@@ -1,12 +1,18 @@
 /* SPDX-License-Identifier: MIT */
-/* test_export.c -- `brdffit export --format gltf|mitsuba` run as a program (under the
- * sanitizers in `make sanitize`): the .gltf of a core and an extended fit is
- * one strict JSON object with the record's material, the extensions only in
- * the extended one and never required; a value outside glTF's ranges is
- * refused naming its line.  python/tests/test_export_gltf.py reads the
- * files in depth (the buffer, pygltflib, Blender). */
+/* test_export.c -- `brdffit export` run as a program (under the sanitizers
+ * in `make sanitize`): the .gltf of a core and an extended fit is one strict
+ * JSON object with the record's material, the extensions only in the
+ * extended one and never required; a value outside glTF's ranges is refused
+ * naming its line.  The .mtlx of an openpbr fit holds the record's inputs
+ * with 9 significant digits under names MaterialX takes; one outside
+ * OpenPBR's ranges is refused.  --format mitsuba writes a scene of any
+ * model's fit.  python/tests/test_export_gltf.py, test_export_mtlx.py and
+ * test_mitsuba.py read the files in depth (the buffer, pygltflib, Blender;
+ * MaterialX's validation and shader generators; Mitsuba's renders). */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
+
+#include "export.h"
 
 #include <check.h>
 #include <math.h>
@@ -146,6 +152,102 @@ START_TEST(export_writes_mitsuba_scenes)
 }
 END_TEST
 
+static const char opbr[] = RECORD("alum-bronze", "openpbr", "[0.123456789012,0.5,0.0125]",
+                                  "[0.9,0.8,1]", "[0.25,0.45,1.55,0.8]");
+
+/* The lines of the .mtlx of opbr, its inputs in the order written. */
+static const char *const mtlx_lines[] = {
+    "<materialx version=\"1.39\" colorspace=\"lin_rec709\">\n",
+    "  <open_pbr_surface name=\"SR_alum_bronze_openpbr\" type=\"surfaceshader\" "
+    "nodedef=\"ND_open_pbr_surface_surfaceshader\">\n"
+    "    <input name=\"base_weight\" type=\"float\" value=\"1\" />\n"
+    "    <input name=\"base_color\" type=\"color3\" value=\"0.123456789, 0.5, 0.0125\" />\n"
+    "    <input name=\"base_metalness\" type=\"float\" value=\"0.25\" />\n"
+    "    <input name=\"base_diffuse_roughness\" type=\"float\" value=\"0\" />\n"
+    "    <input name=\"specular_weight\" type=\"float\" value=\"0.8\" />\n"
+    "    <input name=\"specular_color\" type=\"color3\" value=\"0.9, 0.8, 1\" />\n"
+    "    <input name=\"specular_roughness\" type=\"float\" value=\"0.45\" />\n"
+    "    <input name=\"specular_ior\" type=\"float\" value=\"1.55\" />\n"
+    "  </open_pbr_surface>\n",
+    "  <surfacematerial name=\"alum_bronze_openpbr\" type=\"material\" "
+    "nodedef=\"ND_surfacematerial\" doc=\"alum-bronze-openpbr\">\n"
+    "    <input name=\"surfaceshader\" type=\"surfaceshader\" "
+    "nodename=\"SR_alum_bronze_openpbr\" />\n"
+    "  </surfacematerial>\n</materialx>\n",
+};
+
+START_TEST(export_writes_mtlx)
+{
+    static const char hot[] = RECORD("hot", "openpbr", "[0.5,0.5,0.5]", "[1,1,1]",
+                                     "[0,0.5,0.8,1]");
+    char fits[128], args[512], path[256], text[2048];
+    make_dir();
+    snprintf(text, sizeof text, "%s%s%s%s", core, opbr, ward, hot);
+    put("fits.jsonl", text, fits, sizeof fits);
+    snprintf(args, sizeof args, "export %s --format mtlx --out %s/out", fits, dir);
+    tu_run_out r = tu_run_cli("", args);
+    TU_EXPECT_STATUS(r, 1, args); /* hot is refused */
+    ck_assert_msg(strstr(r.err, "line 4: hot, openpbr: specular_ior = 0.8 is not a number >= 1") !=
+                      NULL, "%s", r.err);
+    ck_assert_msg(strstr(r.err, "gltf: not an OpenPBR model; fit --model openpbr (1 fit") &&
+                      strstr(r.err, "ward: not an OpenPBR model"), "%s", r.err);
+    snprintf(path, sizeof path, "%s/out/alum-bronze-openpbr.mtlx", dir);
+    ck_assert_msg(strcmp(r.out, path) == 0 || (strncmp(r.out, path, strlen(path)) == 0 &&
+                                               strcmp(r.out + strlen(path), "\n") == 0),
+                  "%s", r.out);
+    char *doc = tu_slurp(path);
+    ck_assert_ptr_nonnull(doc);
+    ck_assert(strncmp(doc, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!-- ", 44) == 0);
+    const char *at = doc;
+    for (size_t k = 0; k < sizeof mtlx_lines / sizeof mtlx_lines[0]; k++) {
+        const char *hit = strstr(at, mtlx_lines[k]);
+        ck_assert_msg(hit != NULL, "%s: no %s after %s", path, mtlx_lines[k], at);
+        at = hit + strlen(mtlx_lines[k]);
+    }
+    ck_assert_str_eq(at, "");
+    free(doc);
+    tu_run_free(&r);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(mtlx_names_and_escapes)
+{
+    char out[64];
+    mtlx_element_name(out, sizeof out, "alum-bronze-openpbr", "SR_");
+    ck_assert_str_eq(out, "SR_alum_bronze_openpbr");
+    mtlx_element_name(out, sizeof out, "9 a:b.\xc3\xa9_c", ""); /* é: two bytes, one run */
+    ck_assert_str_eq(out, "_9_a_b__c");
+    mtlx_element_name(out, 8, "abcdefghij", "SR_");
+    ck_assert_str_eq(out, "SR_abcd");
+    mtlx_material m = { .name = "a \"b\" <&>\t\xc3\xa9-openpbr",
+                        .base_color = { 0.5, 0.25, 0 },
+                        .specular_color = { 1, 1, 1 },
+                        .specular_roughness = 0.5,
+                        .specular_ior = 1.5,
+                        .specular_weight = 1 };
+    char why[128], *buf = NULL;
+    size_t len = 0;
+    ck_assert_ptr_null(mtlx_material_check(&m, why, sizeof why));
+    FILE *f = open_memstream(&buf, &len);
+    ck_assert_ptr_nonnull(f);
+    mtlx_write_elements(f, &m, 0);
+    ck_assert_int_eq(fclose(f), 0);
+    ck_assert_msg(strstr(buf, " doc=\"a &quot;b&quot; &lt;&amp;&gt;&#9;\xc3\xa9-openpbr\">") &&
+                      strstr(buf, "<surfacematerial name=\"a_b_openpbr\"") &&
+                      strstr(buf, "value=\"0.5, 0.25, 0\""),
+                  "%s", buf);
+    free(buf);
+    m.specular_weight = -0.5;
+    ck_assert_str_eq(mtlx_material_check(&m, why, sizeof why),
+                     "specular_weight = -0.5 is not a number >= 0");
+    m.specular_weight = 1;
+    m.base_metalness = NAN;
+    ck_assert_str_eq(mtlx_material_check(&m, why, sizeof why),
+                     "base_metalness = nan is not in [0, 1]");
+}
+END_TEST
+
 Suite *export_suite(void)
 {
     Suite *s = suite_create("export");
@@ -156,5 +258,9 @@ Suite *export_suite(void)
     TCase *mi = tcase_create("mitsuba");
     tcase_add_test(mi, export_writes_mitsuba_scenes);
     suite_add_tcase(s, mi);
+    tc = tcase_create("mtlx");
+    tcase_add_test(tc, export_writes_mtlx);
+    tcase_add_test(tc, mtlx_names_and_escapes);
+    suite_add_tcase(s, tc);
     return s;
 }

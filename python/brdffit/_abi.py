@@ -188,7 +188,7 @@ FIT_FLAG_BITS = {"LIMIT": 1 << 0}
 
 # brdffit_param_map (pinned values).
 PARAM_MAPS = {0: "log", 1: "linear", 2: "direction"}
-COLOUR_FORMS = {0: "ds", 1: "gltf"}  # brdffit_model_info.colour_form (BRDFFIT_COLOUR_*)
+COLOUR_FORMS = {0: "ds", 1: "gltf", 2: "openpbr"}  # brdffit_model_info.colour_form (BRDFFIT_COLOUR_*)
 
 # brdffit_scale, brdffit_interp, brdffit_backend (pinned values).
 SCALES = {"standard": 0, "flat": 1}

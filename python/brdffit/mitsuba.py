@@ -12,7 +12,7 @@ register() adds two BSDF plugins to the variant in use:
 
 - ``brdffit``: a model at given parameters.  ``<string name="model">`` (a
   registry name), the colours ``<rgb name="d">`` and ``<rgb name="s">``
-  (for the glTF models also by their names ``base_color``,
+  (for the glTF and OpenPBR models also by their names ``base_color``,
   ``specular_color``), each lobe parameter as ``<float>`` under its registry
   name (``alpha``, ``F0``, ``Cxy``, ``sigma0``...; missing: the registry's
   typical value) and, for He, ``<rgb name="lambda_um">``.
@@ -68,6 +68,7 @@ LOBE_ALPHA = {
     "ggx": lambda p: p["alpha"],
     "gltf": lambda p: p["roughness"] ** 2,
     "gltf-ext": lambda p: p["roughness"] ** 2,
+    "openpbr": lambda p: p["specular_roughness"] ** 2,
 }
 
 
@@ -80,11 +81,16 @@ def lobe_alpha(model_name, values):
 
 def lobe_weight(model_name, d, s, values):
     """The share of samples the GGX lobe takes: the specular colour's share
-    of the colours (for the glTF models, metallic and the dielectric's
-    Fresnel), in [W_MIN, W_MAX]."""
+    of the colours (for the glTF and OpenPBR models, the metalness and the
+    dielectric's Fresnel), in [W_MIN, W_MAX]."""
     if model_name in ("gltf", "gltf-ext"):
         m = values["metallic"]
         ls = m * float(np.mean(d)) + (1 - m) * 0.04 * values.get("specular", 1.0)
+        ld = (1 - m) * float(np.mean(d))
+    elif model_name == "openpbr":
+        m, ior = values["base_metalness"], values["specular_ior"]
+        f0 = values.get("specular_weight", 1.0) * ((ior - 1) / (ior + 1)) ** 2
+        ls = m * float(np.mean(d)) + (1 - m) * f0 * float(np.mean(s))
         ld = (1 - m) * float(np.mean(d))
     else:
         ls, ld = float(np.mean(s)), float(np.mean(d))

@@ -35,9 +35,10 @@ class Model:
     ("cook-torrance"), ``title`` ("Cook-Torrance"), its lobe ``params`` and
     whether its lobe differs per channel (``chromatic``), the number of
     starting points a fit screens by default (``default_starts``), how the
-    two colours of a Params enter (``colour_form``: "ds", f = d/pi + s K, or
-    "gltf", the glTF material) and their names (``colour_names``: ("d", "s"),
-    or ("base_color", "specular_color") for the glTF models)."""
+    two colours of a Params enter (``colour_form``: "ds", f = d/pi + s K,
+    "gltf", the glTF material, or "openpbr", OpenPBR Surface's base and
+    specular layers) and their names (``colour_names``: ("d", "s"), or
+    ("base_color", "specular_color") for the glTF and OpenPBR models)."""
 
     id: int
     name: str
@@ -137,7 +138,9 @@ class Params:
     coefficient ``s`` (R, G, B), lobe parameters ``p`` in the paper's units,
     and for He the wavelengths ``lambda_um`` (0 = the defaults).  For the glTF
     models ``d`` is the base colour, ``s`` the specular colour and ``p``
-    metallic, roughness, ior, specular (Model.colour_names, param_names).
+    metallic, roughness, ior, specular; for OpenPBR ``d`` is base_color, ``s``
+    specular_color and ``p`` base_metalness, specular_roughness,
+    specular_ior, specular_weight (Model.colour_names, param_names).
 
     Params(d, s, p) or Params.from_vector([d_r, d_g, d_b, s_r, s_g, s_b, p0, ...]).
     A single number for d or s means the same for the three channels."""

@@ -43,12 +43,13 @@ static const cli_command commands[] = {
     { "score", cmd_score, "TABLE --model M --params d_r,...,p0[,p1,p2,p3] | --fits FILE",
       "print the Error of given parameters on a table",
       "print the Error of given parameters on a table", { cli_score_help, cli_options_help } },
-    { "export", cmd_export, "FITS... --out DIR [--format gltf|mitsuba]",
-      "write fits as .gltf files or Mitsuba 3 scenes (a sphere each)",
+    { "export", cmd_export, "FITS... --out DIR [--format gltf|mtlx|mitsuba]",
+      "write fits as .gltf, MaterialX or Mitsuba 3 files",
       "write each fit of model gltf or gltf-ext as a glTF 2.0 file:\n"
       "the material on a sphere, DIR/MATERIAL-MODEL.gltf; with --format\n"
-      "mitsuba each fit of any model as a Mitsuba 3 scene of render's\n"
-      "sphere, DIR/MATERIAL-MODEL.xml",
+      "mtlx each fit of model openpbr as a MaterialX document,\n"
+      "DIR/MATERIAL-MODEL.mtlx; with --format mitsuba each fit of any\n"
+      "model as a Mitsuba 3 scene of render's sphere, DIR/MATERIAL-MODEL.xml",
       { cli_export_help } },
 };
 static const int ncommands = (int)(sizeof commands / sizeof commands[0]);

@@ -6,7 +6,8 @@
  *   commands/     one cmd_NAME.c per subcommand: fit and demo, models, eval,
  *                 batch, report, render, plot, score, export
  *   export/       the files export writes: glTF 2.0 (gltf_write.c, the
- *                 sphere gltf_mesh.c), the files of fits it reads (fits_read.c)
+ *                 sphere gltf_mesh.c), MaterialX (mtlx_write.c), the formats
+ *                 by name (format.c), the files of fits it reads (fits_read.c)
  *   usage/        the command line: strict number parsing and usage errors
  *                 (args.c), the options of fit and demo (options.c), the help
  *                 text (usage.c) and the manual page (man.c) from one table,

@@ -5,6 +5,7 @@
 #include "registry.h"
 
 #include "bf_gltf.h"
+#include "bf_openpbr.h"
 #include "bf_lobe.h"
 
 #include <math.h>
@@ -25,14 +26,19 @@ void bf_model_value(brdffit_model model, const bf_geom *g, const brdffit_params 
         bf_gltf(g, params->p, params->d, params->s, rgb);
         return;
     }
+    if (mi && mi->colour_form == BRDFFIT_COLOUR_OPENPBR) {
+        bf_openpbr(g, params->p, params->d, params->s, rgb);
+        return;
+    }
     double K[3];
     bf_lobe((int)model, g, params->p, lam, K);
     for (int c = 0; c < 3; c++)
         rgb[c] = params->d[c] / BF_PI + params->s[c] * K[c];
 }
 
-/* The glTF models' colours: the base colour in [0, 1], the specular colour
- * >= 0 (the core model: 1, its value there). */
+/* The glTF and OpenPBR models' colours: the base colour in [0, 1], the
+ * specular colour >= 0 (the core glTF model: 1, its value there; OpenPBR:
+ * at most 1, its specification's range). */
 static brdffit_status gltf_colours_check(const brdffit_model_info *mi,
                                          const brdffit_params *params, brdffit_error *err)
 {
@@ -49,6 +55,9 @@ static brdffit_status gltf_colours_check(const brdffit_model_info *mi,
         if (!(isfinite(sc) && sc >= 0))
             return bf_fail(err, BRDFFIT_E_PARAM_RANGE,
                            "%s: specular_color_%c = %g must be finite and >= 0", mi->name, ch[c], sc);
+        if (mi->colour_form == BRDFFIT_COLOUR_OPENPBR && sc > 1)
+            return bf_fail(err, BRDFFIT_E_PARAM_RANGE, "%s: specular_color_%c = %g outside [0, 1]",
+                           mi->name, ch[c], sc);
     }
     return BRDFFIT_OK;
 }
@@ -62,7 +71,7 @@ brdffit_status brdffit_params_check(brdffit_model model, const brdffit_params *p
     if (!params)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "params is NULL");
     static const char ch[3] = { 'R', 'G', 'B' };
-    if (mi->colour_form == BRDFFIT_COLOUR_GLTF) {
+    if (mi->colour_form != BRDFFIT_COLOUR_DS) {
         brdffit_status st = gltf_colours_check(mi, params, err);
         if (st != BRDFFIT_OK)
             return st;

@@ -77,9 +77,28 @@ static const brdffit_param_info gltf_ext_params[] = {
       "strength of the dielectric specular (KHR_materials_specular specularFactor)" },
 };
 
+/* OpenPBR Surface's base and specular parameters, in its names
+ * (kernels/bf_openpbr.h); the ranges are the specification's, specular_ior's
+ * widened past its soft [1, 3] to 10 (F_s 0.67), as far as the albedo
+ * table holds its accuracy (docs/openpbr.md).  The fit holds specular_weight at 1
+ * (bf_model_def.held): for a dielectric only specular_weight F_s counts,
+ * so it and specular_ior trade off exactly (docs/openpbr.md). */
+static const brdffit_param_info openpbr_params[] = {
+    { "base_metalness", "", 0, 1, 0, BRDFFIT_MAP_LINEAR,
+      "fraction of the surface that is metal: 0 dielectric, 1 metal" },
+    { "specular_roughness", "", 0, 1, 0.3, BRDFFIT_MAP_LINEAR,
+      "roughness of the specular lobe, alpha = roughness^2" },
+    { "specular_ior", "", 1, 10, 1.5, BRDFFIT_MAP_LOG,
+      "index of refraction of the dielectric base" },
+    { "specular_weight", "", 0, 1, 1, BRDFFIT_MAP_LINEAR,
+      "multiplier of the dielectric's F0 (through its IOR) and of the metal's Fresnel" },
+};
+
 #define DS_COLOURS .colour_form = BRDFFIT_COLOUR_DS, .colour_names = { "d", "s" }, \
     .in_default_set = 1
 #define GLTF_COLOURS .colour_form = BRDFFIT_COLOUR_GLTF, \
+    .colour_names = { "base_color", "specular_color" }
+#define OPENPBR_COLOURS .colour_form = BRDFFIT_COLOUR_OPENPBR, \
     .colour_names = { "base_color", "specular_color" }
 
 #define PARAMS(a) .nparams = (int)(sizeof a / sizeof a[0]), .params = a
@@ -175,6 +194,20 @@ static const bf_model_def registry[] = {
                   NO_ROUNDS },
         .screen_stride = 8,
     },
+    /* OpenPBR by the affine engine as glTF: base_color solved exactly,
+     * base_metalness, specular_roughness and specular_ior by LM, specular_weight
+     * held at 1 and the specular colour white (docs/openpbr.md).  Its
+     * albedo scaling is not reciprocal: the fit takes every sample, not the
+     * mirror set's merged pairs. */
+    [BRDFFIT_OPENPBR] = {
+        .info = { BRDFFIT_OPENPBR, "openpbr", "OpenPBR Surface (base + specular)",
+                  PARAMS(openpbr_params), .chromatic = 0, .default_starts = 8, OPENPBR_COLOURS },
+        .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.1, .hi = 0.8, .period = 4,
+                  NO_ROUNDS },
+        .screen_stride = 8,
+        .held = 1 << 3,
+        .nonreciprocal = 1,
+    },
 };
 
 #define NMODELS (int)(sizeof registry / sizeof registry[0])
@@ -243,8 +276,8 @@ int bf_model_coord_param(brdffit_model model, int j)
     if (!mi)
         return -1;
     for (int k = 0, c = 0; k < mi->nparams; k++, c++) {
-        if (mi->params[k].lower == mi->params[k].upper) {
-            c--; /* held at its one value: not a coordinate */
+        if (mi->params[k].lower == mi->params[k].upper || (registry[model].held >> k & 1)) {
+            c--; /* held at its one value (or its start): not a coordinate */
             continue;
         }
         if (c == j)

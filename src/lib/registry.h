@@ -63,6 +63,13 @@ typedef struct bf_model_def {
                                   * parameter rough_param is at or above
                                   * rough_from goes on from its start instead */
     double rough_from;
+    unsigned held;               /* bit k: the fit holds parameter k at its
+                                  * start (a parameter that trades off
+                                  * exactly with others), though the model
+                                  * takes any value in its bounds          */
+    int nonreciprocal;           /* 1: f(wi, wo) != f(wo, wi), so a fit and
+                                  * brdffit_error_of take every sample, not
+                                  * the mirror set's merged pairs           */
 } bf_model_def;
 
 /* The registry entry of a model, or NULL for an id out of range. */

@@ -43,8 +43,9 @@ brdffit_status brdffit_samples_prepare(const brdffit_samples *samples, brdffit_m
     if (!brdffit_model_get(model))
         return bf_fail(err, BRDFFIT_E_UNKNOWN_MODEL, "model id %d is not a model", (int)model);
     const brdffit_samples *sets[3] = { NULL, NULL, NULL }; /* all samples' mirror set, subsets */
-    brdffit_status st = bf_samples_mirror_kept(samples, &sets[0], err);
-    if (st == BRDFFIT_OK && !bf_model_has_lobe(model)) /* the glTF models (fit/affine.c) */
+    brdffit_status st = bf_model_has_lobe(model) ? bf_samples_mirror_kept(samples, &sets[0], err)
+                                                 : bf_affine_all(samples, model, &sets[0], err);
+    if (st == BRDFFIT_OK && !bf_model_has_lobe(model)) /* the glTF, OpenPBR models (fit/affine.c) */
         st = bf_affine_subset(sets[0], model, &sets[1], err);
     else if (st == BRDFFIT_OK)
         st = bf_screen_subsets(samples, model, &sets[1], &sets[2], err);

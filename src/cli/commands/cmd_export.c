@@ -1,12 +1,13 @@
 /* SPDX-License-Identifier: MIT */
-/* cmd_export.c -- `brdffit export FITS... --out DIR [--format gltf|mitsuba]`:
- * each fit of model gltf or gltf-ext in the files of fits (the JSON Lines of
- * `fit --json`, a batch's fits.tsv) as DIR/MATERIAL-MODEL.gltf, the material
- * on a sphere (export/gltf_write.c); with --format mitsuba each fit of any
- * model as DIR/MATERIAL-MODEL.xml, a Mitsuba 3 scene of the render sphere
- * (export/mitsuba_write.c).  Fits of other models and fits that failed are
- * skipped with a line on stderr; a record whose values are not a material's
- * is refused naming its file and line. */
+/* cmd_export.c -- `brdffit export FITS... --out DIR [--format gltf|mtlx|mitsuba]`:
+ * each fit in the files of fits (the JSON Lines of `fit --json`, a batch's
+ * fits.tsv) of a model the format takes as DIR/MATERIAL-MODEL.EXT: gltf
+ * (models gltf, gltf-ext) the material on a sphere in a .gltf
+ * (export/gltf_write.c), mtlx (model openpbr) a MaterialX document .mtlx
+ * (export/mtlx_write.c), mitsuba (any model) a Mitsuba 3 scene .xml of the
+ * render sphere (export/mitsuba_write.c).  Fits of other models and fits
+ * that failed are skipped with a line on stderr; a record whose values are
+ * not the format's material's is refused naming its file and line. */
 #define _POSIX_C_SOURCE 200809L
 #include "batch.h"
 #include "cli.h"
@@ -16,23 +17,27 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define EXPORT_FORMATS "gltf, mitsuba"
+#define EXPORT_FORMATS "gltf, mtlx, mitsuba"
 #define MAX_OTHER_MODELS 16
 
 const cli_help_block *cli_export_help(void)
 {
     static const cli_help_item items[] = {
         { "FITS...", "files of fits: the JSON Lines of `brdffit fit --json`,\n"
-                     "or a batch's fits.tsv; each fit of model gltf or gltf-ext\n"
-                     "that succeeded (status ok or limit) is written, the\n"
-                     "others skipped" },
+                     "or a batch's fits.tsv; each fit of a model the format\n"
+                     "takes that succeeded (status ok or limit) is written,\n"
+                     "the others skipped" },
         { "--out DIR", "where the files go (made when missing):\n"
-                       "DIR/MATERIAL-MODEL.gltf (.xml for mitsuba)" },
-        { "--format gltf", "the file format (default gltf): glTF 2.0, one .gltf a\n"
-                           "fit, the material on a sphere, the buffer embedded;\n"
-                           "a gltf-ext fit adds KHR_materials_ior and\n"
-                           "KHR_materials_specular (a viewer without them shows\n"
-                           "the core material)" },
+                       "DIR/MATERIAL-MODEL.gltf, .mtlx or .xml (mitsuba)" },
+        { "--format gltf", "(the default) glTF 2.0, fits of model gltf or\n"
+                           "gltf-ext: one .gltf a fit, the material on a sphere,\n"
+                           "the buffer embedded; a gltf-ext fit adds\n"
+                           "KHR_materials_ior and KHR_materials_specular (a viewer\n"
+                           "without them shows the core material)" },
+        { "--format mtlx", "MaterialX 1.39, fits of model openpbr: one .mtlx a\n"
+                           "fit, an open_pbr_surface node with the fitted base and\n"
+                           "specular inputs and a surfacematerial using it,\n"
+                           "colours in lin_rec709 (linear sRGB)" },
         { "--format mitsuba", "a Mitsuba 3 scene XML a fit, of any model: render's\n"
                               "sphere, camera and lights with a BSDF of type brdffit\n"
                               "(the Python package's plugin, brdffit.mitsuba)" },
@@ -50,7 +55,8 @@ const cli_help_block *cli_export_help(void)
 typedef struct export_run {
     const char *out;
     const char *path;              /* the file of fits being read             */
-    gltf_mesh mesh;
+    export_format fmt;             /* --format (not mitsuba)                  */
+    gltf_mesh mesh;                /* the sphere (format gltf)                */
     int mitsuba;                   /* --format mitsuba                        */
     mitsuba_scene scene;
     int made_out;                  /* DIR is open (dir)                       */
@@ -61,7 +67,7 @@ typedef struct export_run {
     int nother[MAX_OTHER_MODELS], nothers;
 } export_run;
 
-/* A fit of a model that is not a glTF one: counted, named at the end. */
+/* A fit of a model the format does not take: counted, named at the end. */
 static void note_other_model(export_run *X, const char *model)
 {
     for (int k = 0; k < X->nothers; k++)
@@ -82,7 +88,7 @@ static int name_ok(const char *name)
 }
 
 
-static int write_file(export_run *X, const char *file, const gltf_material *m,
+static int write_file(export_run *X, const char *file, const export_material *m,
                       const fit_record *r)
 {
     brdffit_error err;
@@ -103,7 +109,7 @@ static int write_file(export_run *X, const char *file, const gltf_material *m,
     if (X->mitsuba)
         mitsuba_write(o.f, r, m->name, &X->scene);
     else
-        gltf_write(o.f, m, &X->mesh);
+        export_write_file(o.f, m, &X->mesh);
     if (out_commit(&o, &err) != 0)
         goto fail;
     plain_string(stdout, path);
@@ -125,8 +131,7 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
     }
     if (r->kind != FR_FIT && r->kind != FR_FAILURE)
         return 0; /* a journal's published Errors and renders */
-    int ext = strcmp(r->model, "gltf-ext") == 0;
-    if (r->kind == FR_FIT && !X->mitsuba && !ext && strcmp(r->model, "gltf") != 0) {
+    if (r->kind == FR_FIT && !X->mitsuba && !export_takes(X->fmt, r->model)) {
         note_other_model(X, r->model);
         return 0;
     }
@@ -135,8 +140,8 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
                   r->model[0] ? ", " : "", r->model, r->message[0] ? r->message : fr_status_text(r));
         return 0;
     }
-    char name[BJ_NAME_MAX + BJ_MODEL_NAME_MAX + 8], reason[256];
-    gltf_material m;
+    char reason[256];
+    export_material m;
     if (!name_ok(r->material)) {
         cli_error("%s: line %ld: material '%s' (%s): its name is not a file name (empty, '.', "
                   "'..' or with '/'); not written",
@@ -144,19 +149,22 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
         X->refused++;
         return 0;
     }
-    memset(&m, 0, sizeof m);
-    const char *bad = X->mitsuba ? mitsuba_fit_check(r, reason, sizeof reason)
-                                 : gltf_material_of(r, ext, &m, reason, sizeof reason);
+    const char *bad;
+    if (X->mitsuba) {
+        memset(&m, 0, sizeof m);
+        snprintf(m.name, sizeof m.name, "%s-%s", r->material, r->model);
+        bad = mitsuba_fit_check(r, reason, sizeof reason);
+    } else {
+        bad = export_material_of(X->fmt, r, &m, reason, sizeof reason);
+    }
     if (bad) {
         cli_error("%s: line %ld: %s, %s: %s; not written", X->path, line, r->material, r->model,
                   bad);
         X->refused++;
         return 0;
     }
-    snprintf(name, sizeof name, "%s-%s", r->material, r->model);
-    m.name = name;
-    char file[sizeof name + 8];
-    snprintf(file, sizeof file, "%s.%s", name, X->mitsuba ? "xml" : "gltf");
+    char file[sizeof m.name + 8];
+    snprintf(file, sizeof file, "%s.%s", m.name, X->mitsuba ? "xml" : export_format_name(X->fmt));
     if (write_file(X, file, &m, r) != 0)
         X->refused++;
     else
@@ -194,7 +202,7 @@ static int parse(int argc, char **argv, export_run *X, char **files, int *nfiles
             files[(*nfiles)++] = argv[i];
     }
     X->mitsuba = strcmp(format, "mitsuba") == 0;
-    if (strcmp(format, "gltf") != 0 && !X->mitsuba)
+    if (!X->mitsuba && export_format_named(format, &X->fmt) != 0)
         return cli_usage_error("export: unknown format '%s' (formats: " EXPORT_FORMATS ")", format);
     if (scene_opts && !X->mitsuba)
         return cli_usage_error("export: --size, --spp, --light and --env are for --format mitsuba");
@@ -208,8 +216,9 @@ static int parse(int argc, char **argv, export_run *X, char **files, int *nfiles
 static void report_others(const export_run *X)
 {
     for (int k = 0; k < X->nothers; k++)
-        cli_error("%s: not a glTF model; fit --model gltf or gltf-ext (%d fit%s skipped)",
-                  X->other[k], X->nother[k], X->nother[k] == 1 ? "" : "s");
+        cli_error("%s: not %s; fit --model %s (%d fit%s skipped)", X->other[k],
+                  export_format_kind(X->fmt), export_format_models(X->fmt), X->nother[k],
+                  X->nother[k] == 1 ? "" : "s");
 }
 
 int cmd_export(int argc, char **argv)
@@ -222,7 +231,7 @@ int cmd_export(int argc, char **argv)
     if (!files)
         return CLI_FAILED;
     int rc = parse(argc, argv, &X, files, &nfiles);
-    if (rc == CLI_OK && !X.mitsuba && gltf_mesh_make(&X.mesh) != 0) {
+    if (rc == CLI_OK && !X.mitsuba && X.fmt == EXPORT_GLTF && gltf_mesh_make(&X.mesh) != 0) {
         cli_error("out of memory");
         rc = CLI_FAILED;
     }
@@ -237,13 +246,16 @@ int cmd_export(int argc, char **argv)
     }
     if (rc == CLI_OK) {
         report_others(&X);
-        if (X.written == 0)
-            cli_error(X.refused   ? "nothing written"
-                      : X.mitsuba ? "nothing written: no fit to export"
-                                  : "nothing written: no fit of model gltf or gltf-ext to export");
+        if (X.written == 0 && X.refused)
+            cli_error("nothing written");
+        else if (X.written == 0 && X.mitsuba)
+            cli_error("nothing written: no fit to export");
+        else if (X.written == 0)
+            cli_error("nothing written: no fit of model %s to export",
+                      export_format_models(X.fmt));
         rc = X.written == 0 || X.refused ? CLI_FAILED : CLI_OK;
     }
-    gltf_mesh_free(&X.mesh);
+    gltf_mesh_free(&X.mesh); /* nothing when it was not made */
     if (X.made_out)
         od_close(&X.dir);
     free(files);

@@ -7,7 +7,11 @@
  *                 triangles as glTF's little-endian buffer
  *   gltf_write.c  the glTF 2.0 file: one JSON text, the buffer embedded
  *   gltf_record.c a fit record of a glTF model as the material written
- *   mitsuba_write.c a fit as a Mitsuba 3 scene of the render sphere */
+ *   mitsuba_write.c a fit as a Mitsuba 3 scene of the render sphere
+ *   mitsuba_options.c its options (--size, --spp, --light, --env)
+ *   mtlx_write.c  a fit of model openpbr as a MaterialX document
+ *   format.c      the formats by name: which models each writes, its file,
+ *                 what the report shows to paste (cmd_export.c, the batch) */
 #ifndef BRDFFIT_EXPORT_H
 #define BRDFFIT_EXPORT_H
 
@@ -112,5 +116,65 @@ void mitsuba_options_done(mitsuba_scene *sc);
 const char *mitsuba_fit_check(const fit_record *r, char *why, size_t len);
 /* The scene XML of the fit in r (checked) onto f; name MATERIAL-MODEL. */
 void mitsuba_write(FILE *f, const fit_record *r, const char *name, const mitsuba_scene *sc);
+/* ---- mtlx_write.c ---- */
+
+/* The fitted inputs of an open_pbr_surface node (OpenPBR Surface's names). */
+typedef struct mtlx_material {
+    const char *name;          /* MATERIAL-MODEL: the doc string; the elements' names */
+    double base_color[3];      /* linear sRGB (lin_rec709)                            */
+    double specular_color[3];
+    double base_metalness, specular_roughness, specular_ior, specular_weight;
+} mtlx_material;
+
+/* NULL when the values are an OpenPBR material's (finite; colours,
+ * base_metalness and specular_roughness in [0, 1], specular_ior >= 1,
+ * specular_weight >= 0), else what is wrong, into why. */
+const char *mtlx_material_check(const mtlx_material *m, char *why, size_t len);
+/* The values of fit record r (model openpbr: d = base_color, s =
+ * specular_color, p = base_metalness, specular_roughness, specular_ior,
+ * specular_weight) into m (its name left NULL): NULL, or why not. */
+const char *mtlx_material_of(const fit_record *r, mtlx_material *m, char *why, size_t len);
+/* A MaterialX element name made of prefix and name into out: each run of
+ * bytes of name not in [A-Za-z0-9_] written as one '_', and '_' first when,
+ * without a prefix, name begins with a digit. */
+void mtlx_element_name(char *out, size_t len, const char *name, const char *prefix);
+/* The open_pbr_surface node and the surfacematerial using it, indented by
+ * depth (two spaces a level): what a document's <materialx> holds, and what
+ * the report shows to paste. */
+void mtlx_write_elements(FILE *f, const mtlx_material *m, int depth);
+/* The .mtlx document of m onto f. */
+void mtlx_write(FILE *f, const mtlx_material *m);
+
+/* ---- format.c ---- */
+
+typedef enum export_format { EXPORT_GLTF, EXPORT_MTLX, EXPORT_NFORMATS } export_format;
+
+/* A fit as the material of one format. */
+typedef struct export_material {
+    export_format format;
+    char name[BJ_NAME_MAX + BJ_MODEL_NAME_MAX + 8]; /* MATERIAL-MODEL            */
+    gltf_material gltf;                              /* format EXPORT_GLTF        */
+    mtlx_material mtlx;                              /* format EXPORT_MTLX        */
+} export_material;
+
+/* The format named name ("gltf", "mtlx"): 0, or -1 when there is none. */
+int export_format_named(const char *name, export_format *fmt);
+/* Its name, and its file name's ending ("gltf", "mtlx"). */
+const char *export_format_name(export_format fmt);
+/* The models it writes, in words ("gltf or gltf-ext", "openpbr"), and what
+ * they are ("a glTF model", "an OpenPBR model"). */
+const char *export_format_models(export_format fmt);
+const char *export_format_kind(export_format fmt);
+/* 1 when fits of model are written in format fmt. */
+int export_takes(export_format fmt, const char *model);
+/* The fit r (of a model fmt takes) as m, named MATERIAL-MODEL from r's
+ * material and model: NULL, or why not (into why). */
+const char *export_material_of(export_format fmt, const fit_record *r, export_material *m,
+                               char *why, size_t len);
+/* m's file onto f (mesh: the sphere a glTF material is shown on). */
+void export_write_file(FILE *f, const export_material *m, const gltf_mesh *mesh);
+/* What the report shows to paste: a glTF material object, the MaterialX
+ * elements. */
+void export_write_paste(FILE *f, const export_material *m);
 
 #endif

@@ -316,16 +316,16 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
         xml_open(&w, "p");
         xml_attr(&w, "class", "note");
         xml_text(&w, "d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s, "
-                     "then the lobe parameters by name, in the paper's units (gltf, gltf-ext: "
-                     "d = base_color, s = specular_color, linear sRGB; the parameters in glTF's "
-                     "names; brdffit models lists them); Error = ngan-l2 (1/sr); "
+                     "then the lobe parameters by name, in the paper's units (gltf, gltf-ext, "
+                     "openpbr: d = base_color, s = specular_color, linear sRGB; the parameters in "
+                     "glTF's and OpenPBR's names; brdffit models lists them); Error = ngan-l2 (1/sr); "
                      "\xe2\x98\x85 the lowest Error");
         if (rep->have_published)
             xml_text(&w, "; published = the published parameters and their Error, computed on "
                          "this table with this report's settings; ratio = Error / published "
                          "Error (below 1: this fit is closer)");
         xml_close(&w);
-        rp_gltf_section(&w, rep, m);
+        rp_export_sections(&w, rep, m);
         rp_mitsuba_section(&w, rep, m);
         rp_energy_section(&w, rep, m);
         figures(&w, m, "image", "Renders (reference and each model, same exposure)");

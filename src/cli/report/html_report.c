@@ -212,7 +212,7 @@ static int write_material(const rp_report *rep, int i, const out_dir *dir, brdff
     od_sweep(&mdir);
     int rc = copy_assets(m, &mdir, err) != 0 || rp_write_params_tsv(rep, m, &mdir, err) != 0 ||
                      rp_write_params_json(rep, m, &mdir, err) != 0 ||
-                     rp_write_gltf_files(rep, m, &mdir, err) != 0 ||
+                     rp_write_export_files(rep, m, &mdir, err) != 0 ||
                      rp_write_mitsuba_files(rep, m, &mdir, err) != 0 ||
                      rp_write_material_page(rep, m, rp_best(rep, i), &mdir, err) != 0
                  ? -1 : 0;

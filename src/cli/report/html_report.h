@@ -35,12 +35,13 @@ int rp_write_params_json(const rp_report *rep, const rp_material *m, const out_d
 int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
                            const out_dir *dir, brdffit_error *err);
 
-/* html_gltf.c: the .gltf file of each glTF fit of m into dir
- * (MATERIAL-MODEL.gltf, as `brdffit export` writes it), and their section
- * of m's page (the material to paste, its values in a line, the file). */
-int rp_write_gltf_files(const rp_report *rep, const rp_material *m, const out_dir *dir,
-                        brdffit_error *err);
-void rp_gltf_section(xml_writer *w, const rp_report *rep, const rp_material *m);
+/* html_export.c: the file of each fit of m a renderer takes into dir
+ * (MATERIAL-MODEL.gltf for gltf and gltf-ext, MATERIAL-MODEL.mtlx for
+ * openpbr, as `brdffit export` writes them), and their sections of m's page
+ * (a format each: the material to paste, its values in a line, the file). */
+int rp_write_export_files(const rp_report *rep, const rp_material *m, const out_dir *dir,
+                          brdffit_error *err);
+void rp_export_sections(xml_writer *w, const rp_report *rep, const rp_material *m);
 /* html_mitsuba.c: each ok fit of m as a Mitsuba 3 scene into dir
  * (MATERIAL-MODEL.xml, as `brdffit export --format mitsuba` writes it), and
  * the line of m's page linking them. */

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
-/* affine.c -- the fit of the glTF models (affine.h): the base colour solved
- * exactly at every lobe point, cminpack's lmder on the lobe coordinates
- * (metallic, roughness; gltf-ext also ior and specular), handed the reduced
+/* affine.c -- the fit of the glTF and OpenPBR models (affine.h): the base
+ * colour solved exactly at every lobe point, cminpack's lmder on the lobe
+ * coordinates (metallic, roughness; gltf-ext also ior and specular; openpbr
+ * base_metalness, specular_roughness, specular_ior), handed the reduced
  * problem as problem.c hands its own: from H = J^T J, g = J^T r and r^T r,
  * the residuals [z; t] = [R^-T g; sqrt(r^T r - |z|^2)] with Jacobian [R; 0],
  * R the Cholesky factor of H, whose steps and tests are the full problem's.
@@ -9,7 +10,8 @@
  * The stages: the starts (roughness over the registry's grid, metallic near
  * 0 and near 1 in turn, every other coordinate at its registry start, all
  * kept off their bounds, where the sine map has no slope) are screened by
- * their Error on every screen_stride-th sample of the mirror set; the best
+ * their Error on every screen_stride-th sample of the mirror set (of every
+ * sample for OpenPBR, which is not reciprocal: bf_affine_all); the best
  * (at least two, brdffit_fit_options.refine if more) are refined by LM on
  * that subset; the lowest end is refined on all samples (Gauss-Newton steps
  * with a secant along each when at most AF_GN_MAX_NX coordinates are free,
@@ -69,6 +71,7 @@ typedef struct afstate {
     double fjac[(AF_NP + 1) * AF_NP]; /* column-major, leading dimension nx + 1 */
     double rr;
     double base[3];             /* the best base colour at x */
+    int quad;                   /* OpenPBR's sums (colour as a quadratic) */
     int passes;
     double seconds_passes;
     brdffit_status st;
@@ -102,15 +105,29 @@ static void make_points(const afstate *S, const double *x, int np, double (*pts)
     }
 }
 
-/* One pass at active coordinates x (with its differences when np > 0) into m. */
-static brdffit_status af_pass(afstate *S, const double *x, int np, af_mom *m)
+/* One pass at active coordinates x (with its differences when np > 0) on
+ * the model's own pass (glTF's or OpenPBR's sums), reduced (bf_affine_reduce,
+ * first np coordinates) into *rr, H, g, hdiag and base. */
+static brdffit_status af_pass(afstate *S, const double *x, int np, double *rr, double H[][AF_NP],
+                              double *g, double *hdiag, double *base)
 {
     double pts[1 + AF_NP][AF_NP], inv_h[AF_NP];
     memset(pts, 0, sizeof pts);
     make_points(S, x, np, pts, inv_h);
     double t0 = bf_now();
-    brdffit_status st = bf_affine_pass(S->samples, S->fm.model, (const double (*)[AF_NP])pts, np,
-                                       inv_h, m, S->err);
+    brdffit_status st;
+    if (S->quad) {
+        af_qmom q;
+        st = bf_affine_pass_openpbr(S->samples, (const double (*)[AF_NP])pts, np, inv_h, &q, S->err);
+        if (st == BRDFFIT_OK)
+            bf_affine_reduce_q(&q, np, rr, H, g, hdiag, base);
+    } else {
+        af_mom m;
+        st = bf_affine_pass(S->samples, S->fm.model, (const double (*)[AF_NP])pts, np, inv_h, &m,
+                            S->err);
+        if (st == BRDFFIT_OK)
+            bf_affine_reduce(&m, np, rr, H, g, hdiag, base);
+    }
     S->seconds_passes += bf_now() - t0;
     S->passes++;
     return st;
@@ -121,12 +138,10 @@ static brdffit_status evaluate(afstate *S, const double *x)
 {
     if (S->valid && memcmp(S->x, x, (size_t)S->nx * sizeof *x) == 0)
         return BRDFFIT_OK;
-    af_mom m;
-    brdffit_status st = af_pass(S, x, S->nx, &m);
+    double H[AF_NP][AF_NP], g[AF_NP], hdiag[AF_NP], R[AF_NP][AF_NP], z[AF_NP];
+    brdffit_status st = af_pass(S, x, S->nx, &S->rr, H, g, hdiag, S->base);
     if (st != BRDFFIT_OK)
         return st;
-    double H[AF_NP][AF_NP], g[AF_NP], hdiag[AF_NP], R[AF_NP][AF_NP], z[AF_NP];
-    bf_affine_reduce(&m, S->nx, &S->rr, H, g, hdiag, S->base);
     bf_affine_chol(S->nx, H, g, hdiag, R, z);
     const int nx = S->nx, mres = nx + 1;
     double zz = 0.0;
@@ -341,14 +356,10 @@ static brdffit_status value_at(afstate *S, const double *u, double *rr, double *
     memcpy(S->ufix, u, sizeof S->ufix);
     const int nx = S->nx;
     S->nx = 0;
-    af_mom m;
-    brdffit_status st = af_pass(S, u, 0, &m);
-    S->nx = nx;
-    if (st != BRDFFIT_OK)
-        return st;
     double H[AF_NP][AF_NP], g[AF_NP], hdiag[AF_NP];
-    bf_affine_reduce(&m, 0, rr, H, g, hdiag, base);
-    return BRDFFIT_OK;
+    brdffit_status st = af_pass(S, u, 0, rr, H, g, hdiag, base);
+    S->nx = nx;
+    return st;
 }
 
 /* Screen the starts on S's samples; the best *nkeep (at most) into keep,
@@ -445,9 +456,10 @@ static brdffit_status af_pinned(afstate *all, afstate *sub, const brdffit_fit_op
     unsigned pins = pin_ends(&all->fm, best->u);
     for (;;) {
         set_active(all, pins);
-        int done = all->nx == 0;
-        brdffit_status st = done || all->nx > AF_GN_MAX_NX ? BRDFFIT_OK
-                                                           : af_newton(all, o, best, base, &done);
+        int done = all->nx == 0; /* every coordinate pinned: the colours at that point */
+        brdffit_status st = done                     ? value_at(all, best->u, &best->rr, base)
+                            : all->nx > AF_GN_MAX_NX ? BRDFFIT_OK
+                                                     : af_newton(all, o, best, base, &done);
         if (st == BRDFFIT_OK && !done)
             st = af_lm(all, o, best, base, solver_s);
         if (st != BRDFFIT_OK || pins == 0)
@@ -504,7 +516,7 @@ brdffit_status bf_affine_fit(brdffit_context *ctx, const brdffit_samples *sample
     (void)ctx;
     const bf_model_def *def = bf_model_def_get(model);
     const brdffit_samples *mirror = NULL, *subset = NULL;
-    brdffit_status st = bf_samples_mirror_kept(samples, &mirror, err);
+    brdffit_status st = bf_affine_all(samples, model, &mirror, err);
     if (st == BRDFFIT_OK)
         st = bf_affine_subset(mirror, model, &subset, err);
     if (st != BRDFFIT_OK)
@@ -513,6 +525,7 @@ brdffit_status bf_affine_fit(brdffit_context *ctx, const brdffit_samples *sample
     memset(&all, 0, sizeof all);
     all.samples = mirror;
     all.err = err;
+    all.quad = def->info.colour_form == BRDFFIT_COLOUR_OPENPBR;
     bf_fitmap_init(&all.fm, model);
     set_active(&all, 0);
     sub = all;

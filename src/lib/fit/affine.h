@@ -1,16 +1,19 @@
 /* SPDX-License-Identifier: MIT */
-/* affine.h -- the fit of a model whose colour enters affinely (colour_form
- * BRDFFIT_COLOUR_GLTF): f_c = A(p) + x_c B(p), x_c the base colour of channel
+/* affine.h -- the fit of a model whose colour enters affinely or as a
+ * quadratic (colour_form BRDFFIT_COLOUR_GLTF, BRDFFIT_COLOUR_OPENPBR:
+ * kernels/bf_openpbr.h): f_c = A(p) + x_c B(p), x_c the base colour of channel
  * c in [0, 1], A and B the same in every channel (the fit holds the specular
  * colour white: kernels/bf_gltf.h, docs/fitting.md "The glTF models").
  *
+ * (OpenPBR adds x_c^2 Q(p): its metal's compensation).
  * At every point p of the lobe parameters the best x_c is solved exactly
  * (a bounded one-unknown least-squares problem per channel) and LM moves only
  * the lobe coordinates u, as the d/pi + s K models' fit does with d and s
- * (linear.h).  A data pass (affine_pass.c) sums, over the samples, the
- * products of the weights a^2, the bases A, B and their derivatives dA_j,
- * dB_j in the coordinates u_j, and the measured values rho_c: every quantity the
- * reduced problem needs follows from them for any x (affine.c). */
+ * (linear.h).  A data pass (affine_pass.c; OpenPBR's affine_pass_openpbr.c)
+ * sums, over the samples, the products of the weights a^2, the bases A, B
+ * (, Q) and their derivatives dA_j, dB_j in the coordinates u_j, and the
+ * measured values rho_c: every quantity the reduced problem needs follows
+ * from them for any x (affine_reduce.c). */
 #ifndef BRDFFIT_AFFINE_H
 #define BRDFFIT_AFFINE_H
 
@@ -18,9 +21,9 @@
 
 #define AF_NP BRDFFIT_MAX_LOBE_PARAMS
 
-/* The sums of one pass at a point p_0 and its np neighbours p_j (all sums
- * weighted by a^2; dX_j = dX/dp . (p_j - p_0) / h_j, the partials' first-order
- * step to the neighbour, bf_gltf_affine_grad). */
+/* glTF's sums of one pass at a point p_0 and its np neighbours p_j (all
+ * sums weighted by a^2; dX_j = dX/dp . (p_j - p_0) / h_j, the partials'
+ * first-order step to the neighbour, bf_gltf_affine_grad_at). */
 typedef struct af_mom {
     int np;
     double aa, ab, bb;                 /* sum A A, A B, B B                   */
@@ -33,6 +36,25 @@ typedef struct af_mom {
     double rda[3][AF_NP], rdb[3][AF_NP]; /* sum rho dA_j, rho dB_j           */
 } af_mom;
 
+/* The bases of OpenPBR's f: A, B and Q (f_c = A + x_c B + x_c^2 Q). */
+#define AF_NB 3
+#define AF_ND (AF_NP * AF_NB)
+
+/* OpenPBR's sums of one pass at a point p_0 and its np neighbours p_j, all
+ * weighted by a^2, over the nb bases X = A, B (, Q) and their forward
+ * differences dX_j = (X(p_j) - X(p_0)) / h_j (its albedo is a table: no
+ * partials in closed form), the difference of base X to neighbour j at row
+ * j nb + X. */
+typedef struct af_qmom {
+    int np, nb;
+    double gg[AF_NB][AF_NB];           /* sum X Y (X <= Y)                     */
+    double dg[AF_ND][AF_NB];           /* sum dX_j Y                           */
+    double dd[AF_ND][AF_ND];           /* sum dX_j dY_l (row <= column)        */
+    double rr[3];                      /* per channel: sum rho rho            */
+    double rg[3][AF_NB];               /* sum rho X                           */
+    double rd[3][AF_ND];               /* sum rho dX_j                        */
+} af_qmom;
+
 /* The sums of a pass on samples at points pts[0..np] (pts[0] = p_0), with
  * 1 / h_j in inv_h, and the samples' pair_see added to rr.  Summed over the
  * samples in threads (at most the online CPUs), each its own run, added in
@@ -40,6 +62,11 @@ typedef struct af_mom {
 brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model model,
                               const double (*pts)[AF_NP], int np, const double *inv_h, af_mom *m,
                               brdffit_error *err);
+
+/* The same sums for OpenPBR (affine_pass_openpbr.c): each sample's bases
+ * evaluated at every point, on the pass workers. */
+brdffit_status bf_affine_pass_openpbr(const brdffit_samples *samples, const double (*pts)[AF_NP],
+                                      int np, const double *inv_h, af_qmom *m, brdffit_error *err);
 
 /* fn on each of njobs jobs of size bytes from jobs, on the pass workers (at
  * most nworkers threads, made once a process) while the caller waits, or in
@@ -54,16 +81,30 @@ void bf_affine_run(void (*fn)(void *), void *jobs, size_t size, int njobs, int n
 void bf_affine_reduce(const af_mom *m, int nx, double *rr, double H[][AF_NP], double *g,
                       double *hdiag, double *base);
 
+/* The same from OpenPBR's sums, each colour x_c the minimum over [0, 1] of
+ * its channel's r^T r, a quartic in x_c (affine_reduce.c). */
+void bf_affine_reduce_q(const af_qmom *m, int nx, double *rr, double H[][AF_NP], double *g,
+                        double *hdiag, double *base);
+
 /* H = R^T R (R upper) and z = R^-T g; a pivot that vanishes against hdiag
  * (a direction the data does not see) gives a zero row. */
 void bf_affine_chol(int nx, double H[][AF_NP], const double *g, const double *hdiag,
                     double R[][AF_NP], double *z);
 
 /* sum_s a^2 (rho_c - f_c)^2 over the three channels (with the samples'
- * pair_see) at params: the Error squared of a glTF model's parameters,
- * computed directly (the residuals, not the pass's sums). */
+ * pair_see) at params: the Error squared of a glTF or OpenPBR model's
+ * parameters, computed directly (the residuals, not the pass's sums). */
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,
                    const brdffit_params *params);
+
+/* bf_model_rr of an OpenPBR model (affine_pass_openpbr.c). */
+double bf_openpbr_rr(const brdffit_samples *samples, const brdffit_params *params);
+
+/* The samples a fit and brdffit_error_of take for such a model: the mirror
+ * set of samples (kept with it), or samples itself for a model that is not
+ * reciprocal (bf_model_def.nonreciprocal), whose merged pairs would differ. */
+brdffit_status bf_affine_all(const brdffit_samples *samples, brdffit_model model,
+                             const brdffit_samples **out, brdffit_error *err);
 
 /* The subset the affine fit screens its starts on: every screen_stride-th
  * sample of the mirror set (kept with it), or the mirror set itself when

@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /* affine_pass.c -- the data pass of the affine engine (affine.h): the sums
- * of the bases A, B and their first-order steps at one lobe point over a
- * sample set, in double, split over threads; and the Error of a model's
- * parameters summed directly.  A host loop (the glTF models have no OpenCL
- * kernel: docs/fitting.md, "The glTF models"), written in blocks of AF_L
+ * of the glTF bases A, B and their first-order steps at one lobe point over
+ * a sample set, in double, split over threads; and the Error of a model's
+ * parameters summed directly (OpenPBR's pass: affine_pass_openpbr.c).  A
+ * host loop (the glTF models have no OpenCL kernel: docs/fitting.md, "The
+ * glTF models"), written in blocks of AF_L
  * samples with every quantity an array over the block's lanes, so that the
  * compiler evaluates bf_gltf.h on a block as vectors (docs/performance.md). */
 #define _DEFAULT_SOURCE
@@ -254,7 +255,7 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
                               const double (*pts)[AF_NP], int np, const double *inv_h, af_mom *m,
                               brdffit_error *err)
 {
-    (void)model; /* one affine model today: the glTF BRDF */
+    (void)model; /* a glTF model (OpenPBR: bf_affine_pass_openpbr) */
     (void)err;
     af_job jobs[AF_MAX_THREADS];
     const int nt = af_threads(samples->n);
@@ -281,6 +282,16 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
     return BRDFFIT_OK;
 }
 
+brdffit_status bf_affine_all(const brdffit_samples *samples, brdffit_model model,
+                             const brdffit_samples **out, brdffit_error *err)
+{
+    if (bf_model_def_get(model)->nonreciprocal) {
+        *out = samples;
+        return BRDFFIT_OK;
+    }
+    return bf_samples_mirror_kept(samples, out, err);
+}
+
 brdffit_status bf_affine_subset(const brdffit_samples *mirror, brdffit_model model,
                                 const brdffit_samples **out, brdffit_error *err)
 {
@@ -294,7 +305,8 @@ brdffit_status bf_affine_subset(const brdffit_samples *mirror, brdffit_model mod
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,
                    const brdffit_params *params)
 {
-    (void)model; /* one affine model today: the glTF BRDF */
+    if (brdffit_model_get(model)->colour_form == BRDFFIT_COLOUR_OPENPBR)
+        return bf_openpbr_rr(samples, params);
     af_job jobs[AF_MAX_THREADS];
     const int nt = af_threads(samples->n);
     for (int k = 0; k < nt; k++) {

@@ -258,7 +258,7 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
         return st;
     if (!bf_model_has_lobe(model)) { /* summed directly (affine_pass.c) */
         const brdffit_samples *all = NULL;
-        st = bf_samples_mirror_kept(samples, &all, err);
+        st = bf_affine_all(samples, model, &all, err);
         if (st == BRDFFIT_OK) {
             *error = sqrt(fmax(bf_model_rr(all, model, params), 0.0));
             bf_ok(err);

@@ -245,7 +245,7 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
 void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
                 const brdffit_params *p, double error, const brdffit_fit_result *r);
 void report_row_failed(FILE *f, brdffit_model model, const brdffit_error *err);
-void report_legend(FILE *f, const brdffit_model *models, int nmodels);
+void report_legend(FILE *f, const brdffit_model *models, int nmodels, brdffit_metric metric);
 
 /* ---- json.c ---- */
 

@@ -221,7 +221,7 @@ static void fit_file(runner *R, const char *path, const char *next, int first)
     R->first = first;
     if (fit_material(R, &m, &src) != 0 || o->json)
         return;
-    report_legend(stdout, o->models, o->nmodels);
+    report_legend(stdout, o->models, o->nmodels, (brdffit_metric)o->fit.metric);
     print_best(R, brdffit_seconds() - t0);
 }
 
@@ -283,7 +283,7 @@ static int run_demo(const cli_options *o)
     }
     double total = brdffit_seconds() - t0;
     if (!o->json) {
-        report_legend(stdout, o->models, o->nmodels);
+        report_legend(stdout, o->models, o->nmodels, (brdffit_metric)o->fit.metric);
         printf("\nsummary: %d of %d models fitted in %.1f s on %s",
                R.fits_ok, o->nmodels, total,
                brdffit_context_backend(R.ctx) == BRDFFIT_BACKEND_OPENCL ? "OpenCL" : "the host");

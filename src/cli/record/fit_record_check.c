@@ -96,6 +96,34 @@ static const char *check_result(const fit_record *r, const brdffit_model_info *m
     return NULL;
 }
 
+/* A fit's metric is one of the metrics; its Errors under them, when the
+ * record has them, finite numbers >= 0, the one of its metric its Error. */
+static const char *check_errors(const fit_record *r, char *why, size_t len)
+{
+    brdffit_metric m;
+    if (brdffit_metric_from_name(r->settings.metric, &m, NULL) != BRDFFIT_OK) {
+        snprintf(why, len, "metric \"%.32s\" is not a metric", r->settings.metric);
+        return why;
+    }
+    int have = 0;
+    for (int k = 0; k < BRDFFIT_METRIC_COUNT; k++)
+        have += !isnan(r->errors[k]);
+    if (have == 0)
+        return NULL; /* a record of a version without them */
+    for (int k = 0; k < BRDFFIT_METRIC_COUNT; k++)
+        if (!(isfinite(r->errors[k]) && r->errors[k] >= 0)) {
+            snprintf(why, len, "the Error under %s is not a finite number >= 0",
+                     brdffit_metric_get_name((brdffit_metric)k));
+            return why;
+        }
+    if (r->errors[m] != r->error) {
+        snprintf(why, len, "the Error %.17g is not its Error under its metric %s, %.17g",
+                 r->error, r->settings.metric, r->errors[m]);
+        return why;
+    }
+    return NULL;
+}
+
 static const char *check_failed(const fit_record *r)
 {
     if (!r->message[0])
@@ -123,7 +151,9 @@ const char *fr_check(const fit_record *r, char *why, size_t len)
             return r->has_params ? "a failed fit with parameters" : check_failed(r);
         if (!r->has_counts)
             return "a fit without its iterations and passes";
-        return check_result(r, mi, why, len);
+        if ((bad = check_result(r, mi, why, len)) != NULL)
+            return bad;
+        return check_errors(r, why, len);
     case FR_PUBLISHED: /* parameters as published, in range or not (then its status says) */
         if (r->status != BRDFFIT_OK)
             return (bad = check_params(r, mi, why, len)) ? bad : check_failed(r);

@@ -18,6 +18,9 @@ const cli_help_block *cli_options_help(void)
                                    "(1, 1.15, 1.66)/1500; flat = 1/1500, as Ngan et al.)" },
         { "--cutoff DEG", "fit directions with theta_i, theta_o <= DEG, in (0, 90]\n(default 80)" },
         { "--starts N", starts_text },
+        { "--metric NAME", "the Error each fit minimises: ngan-l2 (default, the\n"
+                           "paper's), log or cube-root (docs/metrics.md); every fit\n"
+                           "reports its Error under all three" },
         { "--backend auto|opencl|host", "where the data passes run (default auto: OpenCL when a\n"
                                         "device is found, else C on the host)" },
         { "--device SPEC", "OpenCL device, PLATFORM:DEVICE by index or name\n"
@@ -125,6 +128,15 @@ static int set_starts(cli_options *o, const char *v)
     return CLI_OK;
 }
 
+static int set_metric(cli_options *o, const char *v)
+{
+    brdffit_metric m;
+    if (brdffit_metric_from_name(v, &m, NULL) != BRDFFIT_OK)
+        return cli_usage_error("--metric '%s': expected ngan-l2, log or cube-root", v);
+    o->fit.metric = (int)m;
+    return CLI_OK;
+}
+
 static int set_backend(cli_options *o, const char *v)
 {
     static const struct { const char *name; brdffit_backend backend; } backends[] = {
@@ -155,6 +167,7 @@ static const struct {
 } with_value[] = {
     { "--model", set_models },   { "--scale", set_scale },     { "--cutoff", set_cutoff },
     { "--starts", set_starts },  { "--backend", set_backend }, { "--device", set_device },
+    { "--metric", set_metric },
 };
 
 /* ------------------------------------------------------------------ the parser */

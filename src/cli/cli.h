@@ -176,6 +176,7 @@ typedef struct cli_options {
     brdffit_fit_options fit;
     brdffit_context_options context;
     int json;
+    int all_metrics;                            /* --metric all (batch: the three in turn) */
     int read_ahead;                             /* 1 (default): the next table is read
                                                  * while this one is fitted (prefetch.h);
                                                  * 0 after --no-read-ahead             */

@@ -312,6 +312,9 @@ static int fit_or_demo(int argc, char **argv, int demo)
             rc = cli_usage_error("demo takes no files (got '%s')", o.files[0]);
         else if (!demo && o.nfiles == 0)
             rc = cli_usage_error("fit needs at least one MERL .binary file");
+        else if (o.all_metrics)
+            rc = cli_usage_error("--metric all is batch's; %s takes one of ngan-l2, log, cube-root",
+                                 demo ? "demo" : "fit");
         else
             rc = demo ? run_demo(&o) : run_fit(&o);
     }

@@ -137,6 +137,9 @@ static int parse_score(int argc, char **argv, score_args *a)
         return rc;
     if (a->common.nfiles != 1)
         return cli_usage_error("score needs one table (got %d)", a->common.nfiles);
+    if (a->common.all_metrics)
+        return cli_usage_error("--metric all is batch's; score takes one of ngan-l2, log, "
+                               "cube-root");
     if (!a->params == !a->fits)
         return cli_usage_error("score needs --params P,... (with one --model) or --fits FILE");
     if (a->params && (!a->model_given || a->common.nmodels != 1))

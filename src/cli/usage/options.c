@@ -20,7 +20,9 @@ const cli_help_block *cli_options_help(void)
         { "--starts N", starts_text },
         { "--metric NAME", "the Error each fit minimises: ngan-l2 (default, the\n"
                            "paper's), log or cube-root (docs/metrics.md); every fit\n"
-                           "reports its Error under all three" },
+                           "reports its Error under all three.  batch: also all\n"
+                           "(the three in turn, into OUT/ngan-l2, OUT/log,\n"
+                           "OUT/cube-root)" },
         { "--backend auto|opencl|host", "where the data passes run (default auto: OpenCL when a\n"
                                         "device is found, else C on the host)" },
         { "--device SPEC", "OpenCL device, PLATFORM:DEVICE by index or name\n"
@@ -131,9 +133,15 @@ static int set_starts(cli_options *o, const char *v)
 static int set_metric(cli_options *o, const char *v)
 {
     brdffit_metric m;
+    if (strcmp(v, "all") == 0) { /* batch alone takes it (cmd_batch.c); fit, score refuse */
+        o->all_metrics = 1;
+        o->fit.metric = BRDFFIT_METRIC_NGAN_L2;
+        return CLI_OK;
+    }
     if (brdffit_metric_from_name(v, &m, NULL) != BRDFFIT_OK)
         return cli_usage_error("--metric '%s': expected ngan-l2, log or cube-root", v);
     o->fit.metric = (int)m;
+    o->all_metrics = 0;
     return CLI_OK;
 }
 

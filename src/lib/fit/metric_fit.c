@@ -11,8 +11,6 @@
 #include "subsets.h"
 
 #include <ctype.h>
-#include <stdio.h>
-#include <stdlib.h>
 #include <math.h>
 #include <string.h>
 
@@ -146,16 +144,106 @@ static brdffit_status run_pass(mlm *L, size_t stride, const double *theta, int f
     return st;
 }
 
+/* The damped step from theta with the entries it would take past a bound
+ * put on that bound and the step solved again without them (so that one
+ * coefficient going to 0 does not shorten the step of all the others). */
+static int bounded_step(const mlm *L, const bf_metric_sums *S, const double *theta,
+                        const int *free_in, double lambda, double *dx)
+{
+    int free_[BF_MT_MAX], clamped[BF_MT_MAX];
+    double to[BF_MT_MAX]; /* a clamped entry's step: to its bound */
+    memcpy(free_, free_in, sizeof(int) * (size_t)L->n);
+    memset(clamped, 0, sizeof clamped);
+    for (int round = 0; round <= L->n; round++) {
+        double g[BF_MT_MAX];
+        memcpy(g, S->jtr, sizeof(double) * (size_t)L->n);
+        for (int t = 0; t < L->n; t++)
+            if (clamped[t])
+                for (int u = 0; u < L->n; u++)
+                    g[u] += S->jtj[u * BF_MT_MAX + t] * to[t];
+        if (!damped_step(S->jtj, g, L->n, free_, lambda, dx))
+            return 0;
+        int more = 0;
+        for (int t = 0; t < L->n; t++) {
+            if (clamped[t]) {
+                dx[t] = to[t];
+            } else if (free_[t] && (theta[t] + dx[t] < L->lo[t] || theta[t] + dx[t] > L->hi[t])) {
+                to[t] = (theta[t] + dx[t] < L->lo[t] ? L->lo[t] : L->hi[t]) - theta[t];
+                clamped[t] = 1;
+                free_[t] = 0;
+                more = 1;
+            }
+        }
+        if (!more)
+            break;
+    }
+    for (int t = 0; t < L->n; t++)
+        if (clamped[t])
+            dx[t] = to[t];
+    return 1;
+}
+
+/* The residuals' own curvature sum w r grad^2 r, which J^T J leaves out and
+ * which on these fits is a large negative share of the Hessian in the lobe
+ * coordinates (a tenth of J^T J's, on alum-bronze): estimated by symmetric
+ * rank-one secant updates from consecutive points' gradients J^T r, as the
+ * "ngan-l2" fit does (docs/fitting.md, "Newton's curvature"). */
+static void secant_update(const mlm *L, double *sc, const bf_metric_sums *old,
+                          const bf_metric_sums *now, const double *step)
+{
+    const int n = L->n;
+    double v[BF_MT_MAX], vs = 0.0, vv = 0.0, ss = 0.0;
+    for (int t = 0; t < n; t++) {
+        double bs = 0.0;
+        for (int u = 0; u < n; u++)
+            bs += (now->jtj[t * BF_MT_MAX + u] + sc[t * BF_MT_MAX + u]) * step[u];
+        v[t] = (now->jtr[t] - old->jtr[t]) - bs;
+        vs += v[t] * step[t];
+        vv += v[t] * v[t];
+        ss += step[t] * step[t];
+    }
+    if (!(fabs(vs) > 1e-8 * sqrt(vv * ss)))
+        return;
+    for (int t = 0; t < n; t++)
+        for (int u = 0; u < n; u++)
+            sc[t * BF_MT_MAX + u] += v[t] * v[u] / vs;
+}
+
+/* The sums with J^T J + sc in place of J^T J when that, less a tenth of
+ * J^T J, is positive definite; else as they are. */
+static bf_metric_sums with_secant(const mlm *L, const bf_metric_sums *S, const double *sc)
+{
+    bf_metric_sums H = *S;
+    int all[BF_MT_MAX];
+    double x[BF_MT_MAX];
+    for (int t = 0; t < L->n; t++)
+        all[t] = 1;
+    for (int t = 0; t < L->n; t++)
+        for (int u = 0; u < L->n; u++)
+            H.jtj[t * BF_MT_MAX + u] = 0.9 * S->jtj[t * BF_MT_MAX + u] + sc[t * BF_MT_MAX + u];
+    if (!damped_step(H.jtj, S->jtr, L->n, all, 0.0, x))
+        return *S;
+    for (int t = 0; t < L->n; t++)
+        for (int u = 0; u < L->n; u++)
+            H.jtj[t * BF_MT_MAX + u] = S->jtj[t * BF_MT_MAX + u] + sc[t * BF_MT_MAX + u];
+    return H;
+}
+
 /* LM from theta on every stride-th group, to a relative decrease below tol
- * or max_it steps (*limit set then); sums: the value sums at the end. */
+ * or max_it steps (*limit set then); sums: the value sums at the end.  sc:
+ * the secant estimate, carried in and out; made on other samples whose r^T r
+ * at theta was sc_rr (> 0), it is scaled to these first. */
 static brdffit_status lm_stage(mlm *L, size_t stride, double *theta, double tol, int max_it,
-                               bf_metric_sums *at, int *limit)
+                               double *sc, double sc_rr, bf_metric_sums *at, int *limit)
 {
     bf_metric_sums S, T;
     brdffit_status st = run_pass(L, stride, theta, 1, &S);
     if (st != BRDFFIT_OK)
         return st;
     const brdffit_metric m = L->pt.metric;
+    if (sc_rr > 0)
+        for (int k = 0; k < BF_MT_MAX * BF_MT_MAX; k++)
+            sc[k] *= S.rr[m] / sc_rr;
     double lambda = 1e-3;
     *limit = 0;
     for (int it = 0;; it++) {
@@ -170,7 +258,8 @@ static brdffit_status lm_stage(mlm *L, size_t stride, double *theta, double tol,
         double trial[BF_MT_MAX], rel = 0.0;
         for (int tries = 0; tries < 12 && !moved; tries++, lambda *= 4.0) {
             double dx[BF_MT_MAX];
-            if (!damped_step(S.jtj, S.jtr, L->n, free_, lambda, dx))
+            bf_metric_sums H = with_secant(L, &S, sc);
+            if (!bounded_step(L, &H, theta, free_, lambda, dx))
                 continue;
             for (int t = 0; t < L->n; t++)
                 trial[t] = fmin(fmax(theta[t] + dx[t], L->lo[t]), L->hi[t]);
@@ -185,25 +274,30 @@ static brdffit_status lm_stage(mlm *L, size_t stride, double *theta, double tol,
         if (!moved)
             break;
         lambda = fmax(lambda / 12.0, 1e-9); /* the loop's last *4, and /3 */
+        double step[BF_MT_MAX];
+        for (int t = 0; t < L->n; t++)
+            step[t] = trial[t] - theta[t];
         memcpy(theta, trial, sizeof(double) * (size_t)L->n);
         L->iterations++;
         if (rel < tol) {
             S = T;
             break;
         }
+        bf_metric_sums old = S;
         st = run_pass(L, stride, theta, 1, &S);
         if (st != BRDFFIT_OK)
             return st;
+        secant_update(L, sc, &old, &S, step);
     }
     *at = S;
     return BRDFFIT_OK;
 }
 
 #define SUBSET_STRIDE 8
-#define SUBSET_TOL 1e-8
+#define SUBSET_TOL 1e-6
 #define SUBSET_MAX_IT 40
 #define ALL_TOL 1e-6
-#define ALL_MAX_IT 4
+#define ALL_MAX_IT 3
 
 /* The bits of brdffit_at_bound of a metric fit's parameters. */
 static unsigned metric_bounds(const mlm *L, const double *theta)
@@ -262,19 +356,21 @@ brdffit_status bf_metric_refit(const brdffit_samples *samples, brdffit_model mod
     bf_params_to_coords(&fm, r->params.p, theta + nlin);
     bf_metric_sums at;
     int limit = 0;
+    double sc[BF_MT_MAX * BF_MT_MAX];
+    memset(sc, 0, sizeof sc);
+    double sub_rr = 0.0;
     if (set->n / SUBSET_STRIDE >= BF_SCREEN_MIN_SAMPLES) {
-        st = lm_stage(&L, SUBSET_STRIDE, theta, SUBSET_TOL, SUBSET_MAX_IT, &at, &limit);
+        st = lm_stage(&L, SUBSET_STRIDE, theta, SUBSET_TOL, SUBSET_MAX_IT, sc, 0.0, &at, &limit);
         if (st != BRDFFIT_OK)
             return st;
+        sub_rr = at.rr[metric];
     }
     /* on all samples every pass sums the other metrics too: the Errors at
      * the end come with the last one */
     L.pt.sum_bits = (1u << BRDFFIT_METRIC_LOG) | (1u << BRDFFIT_METRIC_CUBE_ROOT);
-    int it_sub = L.iterations, p_sub = L.passes; double t_sub = L.seconds;
-    st = lm_stage(&L, 1, theta, ALL_TOL, ALL_MAX_IT, &at, &limit);
+    st = lm_stage(&L, 1, theta, ALL_TOL, ALL_MAX_IT, sc, sub_rr, &at, &limit);
     if (st != BRDFFIT_OK)
         return st;
-    if (getenv("BF_MDEBUG")) fprintf(stderr, "sub it %d passes %d s %.3f; all it %d passes %d s %.3f\n", it_sub, p_sub, t_sub, L.iterations - it_sub, L.passes - p_sub, L.seconds - t_sub);
     point_at(&L.pt, &fm, theta);
     memcpy(r->params.d, L.pt.params.d, sizeof r->params.d);
     memcpy(r->params.s, L.pt.params.s, sizeof r->params.s);

@@ -3,6 +3,7 @@
  * value against a loop over the samples written here, a table made by a
  * model fitted back to its parameters under each, no NaN at the models'
  * bounds, names and refusals. */
+#define _DEFAULT_SOURCE /* mkdtemp */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
 
@@ -323,6 +324,46 @@ START_TEST(cli_metric_records)
 }
 END_TEST
 
+/* batch --metric all: three reports, OUT/METRIC, each's records of its
+ * metric with the Errors under all three; fit and score refuse all. */
+START_TEST(cli_batch_all_metrics)
+{
+    char dir[] = "/tmp/brdffit-metric-XXXXXX", args[2048], path[1200];
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    snprintf(args, sizeof args,
+             "batch '%s' --out '%s/o' --model ward --starts 1 --cutoff 40 --metric all "
+             "--no-render --no-plot --quiet", tu_table_fixture(), dir);
+    tu_run_out r = tu_run_cli("", args);
+    TU_EXPECT_STATUS(r, 0, args);
+    for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++) {
+        const char *name = brdffit_metric_get_name((brdffit_metric)m);
+        snprintf(path, sizeof path, "%s/o/%s/index.html", dir, name);
+        ck_assert_msg(strstr(r.out, path), "%s not in\n%s", path, r.out);
+        char *html = tu_slurp(path);
+        ck_assert_ptr_nonnull(html);
+        ck_assert_msg(strstr(html, "median Error") && strstr(html, name), "%s", path);
+        free(html);
+        snprintf(path, sizeof path, "%s/o/%s/journal.jsonl", dir, name);
+        char *j = tu_slurp(path), want[64];
+        ck_assert_ptr_nonnull(j);
+        snprintf(want, sizeof want, "\"metric\":\"%s\"", name);
+        ck_assert_msg(strstr(j, want) && strstr(j, "\"errors\":{\"ngan-l2\":"), "%s", j);
+        free(j);
+    }
+    tu_run_free(&r);
+    ck_assert_int_eq(tu_remove_tree(dir), 0);
+    const char *refused[] = { "fit", "score" };
+    for (int k = 0; k < 2; k++) {
+        snprintf(args, sizeof args, "%s '%s' --model ward --metric all%s", refused[k],
+                 tu_table_fixture(), k ? " --params 0.1,0.1,0.1,0.1,0.1,0.1,0.1" : "");
+        r = tu_run_cli("", args);
+        TU_EXPECT_STATUS(r, 2, args);
+        ck_assert_msg(strstr(r.err, "--metric all is batch's"), "%s", r.err);
+        tu_run_free(&r);
+    }
+}
+END_TEST
+
 static void fixture_up(void)
 {
     tu_table_fixture_make();
@@ -349,6 +390,7 @@ Suite *metric_suite(void)
     tcase_set_timeout(cli, 600);
     tcase_add_unchecked_fixture(cli, fixture_up, fixture_down);
     tcase_add_test(cli, cli_metric_records);
+    tcase_add_test(cli, cli_batch_all_metrics);
     suite_add_tcase(s, cli);
     return s;
 }

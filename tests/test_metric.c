@@ -350,6 +350,14 @@ START_TEST(cli_batch_all_metrics)
         ck_assert_msg(strstr(j, want) && strstr(j, "\"errors\":{\"ngan-l2\":"), "%s", j);
         free(j);
     }
+    snprintf(path, sizeof path, "%s/o/index.html", dir);
+    ck_assert_msg(strstr(r.out, path), "%s not in\n%s", path, r.out);
+    char *top = tu_slurp(path);
+    ck_assert_ptr_nonnull(top);
+    ck_assert_msg(strstr(top, "<td>ward</td>") && strstr(top, "href=\"log/index.html\"") &&
+                      strstr(top, "src=\"cube-root/headline.svg\""),
+                  "%s", top);
+    free(top);
     tu_run_free(&r);
     ck_assert_int_eq(tu_remove_tree(dir), 0);
     const char *refused[] = { "fit", "score" };

@@ -405,8 +405,9 @@ static int run_batch(batch_run *R, material_list *L)
     return R->failures ? CLI_FAILED : CLI_OK;
 }
 
-/* One batch of b's materials under b's metric into b->out. */
-static int batch_once(batch_options *bp, material_list *Lp)
+/* One batch of b's materials under b's metric into b->out; its model
+ * table into *summary when not NULL. */
+static int batch_once(batch_options *bp, material_list *Lp, metric_summary *summary)
 {
     batch_options b = *bp;
     material_list L = *Lp;
@@ -418,6 +419,7 @@ static int batch_once(batch_options *bp, material_list *Lp)
         memset(&job, 0, sizeof job); /* --metric all: a batch after another */
         memset(&pre, 0, sizeof pre);
         memset(&R, 0, sizeof R);
+        R.summary = summary;
         R.b = &b;
         R.job = &job;
         R.pre = &pre;
@@ -445,6 +447,8 @@ static int batch_once(batch_options *bp, material_list *Lp)
     return rc;
 }
 
+int batch_metrics_page(const char *out, const metric_summary *sums);
+
 /* --metric all: the batch under each metric in turn, into OUT/METRIC (each a
  * report of its own: its model table and headline under that metric; every
  * record carries its Errors under all three).  The worst status. */
@@ -456,6 +460,8 @@ static int batch_all_metrics(batch_options *b, material_list *L)
         return CLI_FAILED;
     }
     int worst = CLI_OK;
+    metric_summary sums[BRDFFIT_METRIC_COUNT];
+    memset(sums, 0, sizeof sums);
     for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++) {
         char dir[BJ_PATH_MAX];
         const char *name = brdffit_metric_get_name((brdffit_metric)m);
@@ -465,13 +471,18 @@ static int batch_all_metrics(batch_options *b, material_list *L)
         }
         b->out = dir;
         b->common.fit.metric = m;
-        int rc = batch_once(b, L);
+        int rc = batch_once(b, L, &sums[m]);
         b->out = out;
         if (rc > worst)
             worst = rc;
         if (rc >= 128 || batch_stop_signal) /* stopped by a signal: not the next metric */
             return rc;
     }
+    if (batch_metrics_page(out, sums) != 0)
+        return CLI_FAILED;
+    char index[BJ_PATH_MAX];
+    snprintf(index, sizeof index, "%s/index.html", out);
+    printf("%s\n", index);
     return worst;
 }
 
@@ -486,7 +497,7 @@ int cmd_batch(int argc, char **argv)
     material_list L = { NULL, 0, 0 };
     rc = batch_collect(&b, &L);
     if (rc == CLI_OK)
-        rc = b.common.all_metrics ? batch_all_metrics(&b, &L) : batch_once(&b, &L);
+        rc = b.common.all_metrics ? batch_all_metrics(&b, &L) : batch_once(&b, &L, NULL);
     free(L.m);
     cli_options_free(&b.common);
     return rc;

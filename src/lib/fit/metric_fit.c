@@ -314,8 +314,9 @@ static unsigned metric_bounds(const mlm *L, const double *theta)
     return mask;
 }
 
-/* theta, its bounds and the map from the "ngan-l2" fit's parameters. */
-static void theta_from(mlm *L, const brdffit_params *p)
+/* theta's length and bounds: the colours >= 0 (glTF: in [0, 1]), the lobe
+ * coordinates free (their sine maps keep the parameters within bounds). */
+static void theta_bounds(mlm *L)
 {
     const int nlin = L->pt.gltf ? 3 : 6;
     L->n = nlin + L->fm->nl;
@@ -327,7 +328,6 @@ static void theta_from(mlm *L, const brdffit_params *p)
         L->lo[nlin + j] = -INFINITY;
         L->hi[nlin + j] = INFINITY;
     }
-    (void)p;
 }
 
 brdffit_status bf_metric_refit(const brdffit_samples *samples, brdffit_model model,
@@ -345,7 +345,7 @@ brdffit_status bf_metric_refit(const brdffit_samples *samples, brdffit_model mod
     L.fm = &fm;
     L.err = err;
     point_init(&L.pt, model, metric, &r->params);
-    theta_from(&L, &r->params);
+    theta_bounds(&L);
     double theta[BF_MT_MAX];
     const int nlin = L.pt.gltf ? 3 : 6;
     for (int c = 0; c < 3; c++) {

@@ -2,12 +2,17 @@
 /* bench_metric.c -- part 2's fits under each Error metric: per model, the
  * three fits alternately (a burst of load on the shared machine hits all
  * three), the fastest of each, and log's and cube-root's against ngan-l2's
- * (docs/metrics.md, docs/performance.md). */
+ * (docs/metrics.md, docs/performance.md); and `batch --metric all` over a
+ * few tables, projected to the database (make bench-database). */
+#define _DEFAULT_SOURCE /* mkdtemp */
 #include "bench_metric.h"
 #include "bench_record.h"
+#include "testutil.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static int selected(const char *list, brdffit_model m)
 {
@@ -73,5 +78,52 @@ int bench_metric_fits(brdffit_context *ctx, const brdffit_samples *s, const char
                 bench_record(benchmark, "fit / ngan-l2 fit ratio", best[k].seconds / l2);
         }
     }
+    return 0;
+}
+
+#define BATCH_TABLES 4
+
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int bench_metric_batch(char (*names)[64], int ntab, const char *models)
+{
+    const char *cli = getenv("BRDFFIT_CLI");
+    char dir[] = "/tmp/brdffit-bench-metric-XXXXXX", cmd[8192], path[1024];
+    int n = ntab < BATCH_TABLES ? ntab : BATCH_TABLES;
+    if (!cli || n < 1 || !mkdtemp(dir)) {
+        fprintf(stderr, "bench: batch --metric all needs BRDFFIT_CLI, tables and a temporary folder\n");
+        return 1;
+    }
+    size_t used = (size_t)snprintf(cmd, sizeof cmd, "'%s' batch", cli);
+    for (int t = 0; t < n; t++) {
+        if (!tu_merl_table(names[t], path, sizeof path)) {
+            fprintf(stderr, "bench: no table %s\n", names[t]);
+            tu_remove_tree(dir);
+            return 1;
+        }
+        used += (size_t)snprintf(cmd + used, sizeof cmd - used, " '%s'", path);
+    }
+    snprintf(cmd + used, sizeof cmd - used,
+             " --out '%s/o' --metric all --no-render --no-plot --quiet%s%s >/dev/null", dir,
+             models ? " --model " : "", models ? models : "");
+    double t0 = wall_now();
+    int rc = system(cmd);
+    double wall = wall_now() - t0;
+    tu_remove_tree(dir);
+    if (rc != 0) {
+        fprintf(stderr, "bench: %s: exit status %d\n", cmd, rc);
+        return 1;
+    }
+    double all = wall * (double)ntab / (double)n;
+    printf("\nbatch --metric all --no-render --no-plot, %d tables x %s: %.1f s wall; the %d tables\n"
+           "  at that rate: %.0f s (%.1f min)\n", n, models ? models : "the default models", wall,
+           ntab, all, all / 60.0);
+    bench_record("database/metric-all", "first tables wall seconds", wall);
+    bench_record("database/metric-all", "projected all tables seconds", all);
     return 0;
 }

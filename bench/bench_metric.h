@@ -12,4 +12,10 @@
 int bench_metric_fits(brdffit_context *ctx, const brdffit_samples *s, const char *models,
                       int rounds);
 
+/* `brdffit batch --metric all --no-render --no-plot` over the first few of
+ * the ntab tables names (of models, NULL: the default set), timed from
+ * outside; printed with its projection to all ntab tables and recorded
+ * (database/metric-all).  0, or 1 after printing why. */
+int bench_metric_batch(char (*names)[64], int ntab, const char *models);
+
 #endif

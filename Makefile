@@ -11,6 +11,7 @@
 #   make fuzz        the fuzz targets (tests/fuzz/, libFuzzer), FUZZ_SECONDS each (default 60)
 #   make bench       the benchmark (bench/), figures: docs/performance.md
 #   make bench-python  only its Python part (eval from NumPy against C)
+#   make bench-mitsuba  the Mitsuba 3 plugin's render time (docs/mitsuba.md)
 #   make bench-database  the 100 tables x every model end to end (a few minutes)
 #   make bench-ceres  brdffit's fit against a tuned Ceres Solver fit (installs Ceres)
 #   make fidelity    every published material x model against the paper and a stored run
@@ -129,6 +130,9 @@ $(BUILD)/lib/fit: | $(BUILD)/lib
 
 $(BUILD)/lib/%.o: src/lib/%.c | $(BUILD)/lib $(BUILD)/lib/fit
 	$(CC) $(CPPFLAGS) $(LIB_INC) $(CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
+
+# The affine pass's block loops become vectors only where sqrt need not set errno.
+$(BUILD)/lib/fit/affine_pass.o: CFLAGS += -fno-math-errno
 
 $(BUILD)/lib/kernel_source.o: $(BUILD)/lib/kernel_source.c
 	$(CC) $(CPPFLAGS) $(CFLAGS) $(LIB_CFLAGS) -c -o $@ $<
@@ -316,6 +320,15 @@ bench-gltf: $(BUILD)/brdffit
 	python3 bench/gltf_database.py $(CURDIR)/$(BUILD)/brdffit $(BUILD)/bench-gltf \
 	    $(if $(BENCH_RECORD),--record)
 
+# The Mitsuba 3 plugin (bench/mitsuba_render.py): a 256 x 256 sphere at 64
+# samples a pixel through brdffit.mitsuba with llvm_ad_rgb, in the tests'
+# venv (BRDFFIT_TEST_VENV, else build/test-venv, with mitsuba; docs/mitsuba.md).
+MITSUBA_VENV ?= $(or $(BRDFFIT_TEST_VENV),$(CURDIR)/$(BUILD)/test-venv)
+bench-mitsuba: $(BUILD)/brdffit $(BUILD)/libbrdffit.so
+	BRDFFIT_LIBRARY=$(CURDIR)/$(BUILD)/$(SONAME) \
+	    $(MITSUBA_VENV)/bin/python bench/mitsuba_render.py $(CURDIR)/$(BUILD)/brdffit \
+	    $(BUILD)/bench-mitsuba $(if $(BENCH_RECORD),--record)
+
 # The Python package's eval on 1,000,000 pairs against the same call from C.
 $(BUILD)/bench_eval_c: bench/python/eval_c.c include/brdffit.h $(BUILD)/libbrdffit.so
 	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ $< -L$(BUILD) -lbrdffit -Wl,-rpath,$(CURDIR)/$(BUILD) $(LDFLAGS)
@@ -443,5 +456,5 @@ clean:
 # The header dependencies the compiler recorded (-MMD -MP).
 -include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
 
-.PHONY: all demo test sanitize tsan fuzz bench bench-ceres bench-database bench-gltf bench-python fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
+.PHONY: all demo test sanitize tsan fuzz bench bench-ceres bench-database bench-gltf bench-python bench-mitsuba fidelity fidelity-quick deps install install-python uninstall uninstall-python clean
 .DELETE_ON_ERROR:

@@ -832,6 +832,34 @@ brdffit_status brdffit_image_error(const float *ref, const float *img, int width
                                    size_t stride, double *error, size_t *covered,
                                    brdffit_error *err);
 
+/* LDR FLIP (Andersson et al., "FLIP: A Difference Evaluator for Alternating
+ * Images", HPG 2020), the perceptual difference of test from ref as NVIDIA's
+ * reference implementation (github.com/NVlabs/flip) defines it: both images
+ * sRGB-encoded RGB in [0, 1] (clamped), 3 floats a pixel, width x height,
+ * the same stride (floats from one row to the next; 0: 3 width); viewed at
+ * ppd pixels per degree (0: BRDFFIT_FLIP_PPD, a 0.7 m wide 3840-pixel display
+ * at 0.7 m; else 1..1000).  map (may be NULL; width x height floats, row-major)
+ * gets the per-pixel FLIP in [0, 1] (0: no visible difference); mean the mean
+ * over all pixels, what NVIDIA's tool and the flip-evaluator package report.
+ * BRDFFIT_E_INVALID_ARGUMENT
+ * for a non-finite value (the pixel is named) or bad sizes; BRDFFIT_E_NO_MEMORY. */
+#define BRDFFIT_FLIP_PPD 67.0206432
+brdffit_status brdffit_flip(const float *ref, const float *test, int width, int height,
+                            size_t stride, double ppd, float *map, double *mean,
+                            brdffit_error *err);
+
+/* The same against one reference many times: brdffit_flip_ref_create does
+ * the reference's half of the work once (its arguments as brdffit_flip's;
+ * *out NULL on failure); brdffit_flip_compare then takes a test image of the
+ * reference's size (stride 0: 3 width), and may be called from several
+ * threads at once; brdffit_flip_ref_free (NULL: nothing) releases it. */
+typedef struct brdffit_flip_ref brdffit_flip_ref;
+brdffit_status brdffit_flip_ref_create(const float *ref, int width, int height, size_t stride,
+                                       double ppd, brdffit_flip_ref **out, brdffit_error *err);
+brdffit_status brdffit_flip_compare(const brdffit_flip_ref *ref, const float *test, size_t stride,
+                                    float *map, double *mean, brdffit_error *err);
+void brdffit_flip_ref_free(brdffit_flip_ref *ref);
+
 /* ------------------------------------------------------------------ incidence-plane curves
  *
  * For each incidence angle theta_i (degrees), wi = (-sin ti, 0, cos ti) in
@@ -871,6 +899,37 @@ brdffit_status brdffit_curve_table(const brdffit_table *table, const brdffit_cur
 brdffit_status brdffit_curve_model(brdffit_model model, const brdffit_params *params,
                                    const brdffit_curve_options *opt, double *rgb, size_t stride,
                                    brdffit_error *err);
+/* ------------------------------------------------------------------ directional albedo
+ *
+ * a_c(theta_o) = integral over the hemisphere of f_c(wi, wo) cos theta_i d wi,
+ * wo = (sin theta_o, 0, cos theta_o): the share of light from wo (or, by
+ * reciprocity, toward it) that the surface reflects, per channel.  A
+ * Lambertian term d gives d exactly; an energy-conserving BRDF gives at most
+ * 1.  theta_o_deg: n angles in [0, 90) degrees; rgb: 3n doubles (R, G, B
+ * per angle).  The sums are in double; no accepted input gives NaN or inf.
+ *
+ * Models (brdffit_albedo_model): d_c + s_c times the lobe's integral (the
+ * d/pi term exactly), or f's integral for the glTF models.  The quadrature
+ * is Gauss-Legendre over the half vector (theta_h graded geometrically down
+ * to the lobe's width: alpha, m, sqrt(2 / (n + 2)) of a cos^n lobe, ...;
+ * Lafortune about its lobe's axis), only where wi is above the horizon:
+ * within 1e-4 of the integral (relative to max(1, a)) over the registry's
+ * bounds for theta_o in 0..85 deg (docs/library.md states what is tested).
+ * Parameters as brdffit_params_check; a d or s so large that the albedo
+ * overflows is BRDFFIT_E_VALUE_RANGE.
+ *
+ * Tables (brdffit_albedo_table): the same integral of the table's lookups
+ * (brdffit_table_lookup at scale and interp), with the theta_h intervals its
+ * bins'.  A channel whose lookup is masked (-1) counts 0 there, as in the
+ * renders, so the albedo is then a lower bound; masked (may be NULL) gets,
+ * per angle, the share of the cosine-weighted hemisphere where some channel
+ * was masked (0..1). */
+brdffit_status brdffit_albedo_model(brdffit_model model, const brdffit_params *params, size_t n,
+                                    const double *theta_o_deg, double *rgb, brdffit_error *err);
+brdffit_status brdffit_albedo_table(const brdffit_table *table, brdffit_scale scale,
+                                    brdffit_interp interp, size_t n, const double *theta_o_deg,
+                                    double *rgb, double *masked, brdffit_error *err);
+
 #if defined(__GNUC__)
 #pragma GCC visibility pop
 #endif

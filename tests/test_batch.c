@@ -106,8 +106,9 @@ static void make_inputs(const char *dir, int bad)
     }
 }
 
-/* fits.tsv without its comment line and the seconds column: what must be
- * equal between runs ("timings aside"). */
+/* fits.tsv without its comment line, the seconds column and the energy
+ * columns (albedo_*, which a journal of an earlier version does not have):
+ * what must be equal between runs ("timings aside"). */
 static char *fits_sans_timing(const char *dir)
 {
     char path[1024];
@@ -117,7 +118,7 @@ static char *fits_sans_timing(const char *dir)
     char *out = malloc(strlen(s) + 1);
     ck_assert_ptr_nonnull(out);
     size_t n = 0;
-    int seconds_col = -1;
+    int seconds_col = -1, albedo_col = -1;
     for (char *line = s; *line;) {
         char *end = strchr(line, '\n');
         size_t len = end ? (size_t)(end - line) : strlen(line);
@@ -126,7 +127,9 @@ static char *fits_sans_timing(const char *dir)
             for (size_t i = 0; i < len; i++) {
                 if (seconds_col < 0 && strncmp(line + i, "seconds\t", 8) == 0 && (i == 0 || line[i - 1] == '\t'))
                     seconds_col = col;
-                if (col != seconds_col || seconds_col < 0)
+                if (albedo_col < 0 && strncmp(line + i, "\talbedo_", 8) == 0)
+                    albedo_col = col + 1;
+                if ((col != seconds_col || seconds_col < 0) && (albedo_col < 0 || col < albedo_col))
                     out[n++] = line[i];
                 if (line[i] == '\t')
                     col++;
@@ -408,11 +411,15 @@ static void check_batch_pages(const char *out)
     char *idx = slurp(path);
     ck_assert_int_eq(count_lines(idx, "class=\"best\""), 3);
     ck_assert_int_eq(count_lines(idx, "not fitted: "), 2);
-    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, "standard") &&
+    ck_assert_msg(strstr(idx, "ngan-l2") && strstr(idx, ">flat<") &&
                       strstr(idx, brdffit_version()) && strstr(idx, "median Error") &&
                       strstr(idx, "headline.svg"),
                   "%s", idx);
-    ck_assert_msg(strstr(idx, "published "), "no published Error in the matrix");
+    ck_assert_msg(strstr(idx, "published Error ") && strstr(idx, "\xc2\xa0\xc3\x97"),
+                  "no published Error and ratio in the matrix");
+    ck_assert_msg(strstr(idx, "median ratio to published"), "no median ratio in the Models table");
+    ck_assert_msg(strstr(idx, "computed here: the published parameters scored on the tables given"),
+                  "the settings do not say where the published Errors come from");
     free(idx);
     snprintf(path, sizeof path, "%s/chrome/index.html", out);
     char *page = slurp(path);
@@ -420,6 +427,8 @@ static void check_batch_pages(const char *out)
         "src=\"reference.png\"", "src=\"ward.png\"", "src=\"ward-diff.png\"",
         "src=\"blinn-phong.png\"", "src=\"plot-measured.svg\"", "src=\"plot-ward.svg\"",
         "src=\"plot-blinn-phong.svg\"", "href=\"reference.exr\"", "href=\"ward.exr\"",
+        "src=\"ward-flip.png\"", "src=\"diff-scale.svg\"", "src=\"flip-scale.svg\"",
+        "Blue: the model is darker than the reference", "Its mean over the image is the image error",
     };
     for (size_t i = 0; i < sizeof linked / sizeof linked[0]; i++)
         ck_assert_msg(strstr(page, linked[i]), "chrome's page has no %s", linked[i]);
@@ -443,8 +452,8 @@ START_TEST(batch_writes_every_file)
     ck_assert_int_eq(tu_write_bytes(list, body, strlen(body)), 0);
     tu_shared("data/ngan2005-fits.tsv", pub, sizeof pub);
     snprintf(out, sizeof out, "%s/out", dir);
-    snprintf(args, sizeof args, "batch '%s/in' @'%s' --out '%s' " FAST " --published '%s'", dir, list,
-             out, pub);
+    snprintf(args, sizeof args, "batch '%s/in' @'%s' --out '%s' " FAST " --scale flat --published '%s'",
+             dir, list, out, pub);
     run_out r = run(args);
     expect_status(r, 1, args); /* two tables failed; the others are fitted */
     char want[1200];
@@ -722,7 +731,7 @@ START_TEST(unwritable_or_full_out_stops_at_once)
     run_free(&r);
 
     /* a full disk: every file limited to 2 MB (ulimit -f 4096 blocks of 512 in sh),
-     * the journal already 2 MB less 1200 bytes long (records of another material):
+     * the journal already 2 MB less 3000 bytes long (records of another material):
      * the first record of the run fits, the second cannot be written */
     char out[1024], jpath[1200], cpath[1200];
     snprintf(out, sizeof out, "%s/full", dir);
@@ -736,7 +745,7 @@ START_TEST(unwritable_or_full_out_stops_at_once)
     char *name = strstr(cj, "\"material\":\"alum-bronze\"");
     ck_assert_ptr_nonnull(name);
     memcpy(name, "\"material\":\"padding-mat\"", 25); /* same length */
-    const size_t limit = 4096 * 512, pad_to = limit - 1200, len = strlen(cj);
+    const size_t limit = 4096 * 512, pad_to = limit - 3000, len = strlen(cj);
     FILE *jf = fopen(jpath, "wb");
     ck_assert_ptr_nonnull(jf);
     size_t have = 0;
@@ -924,7 +933,7 @@ START_TEST(score_agrees_with_the_batch)
     make_inputs(dir, 0);
     tu_shared("data/ngan2005-fits.tsv", pub, sizeof pub);
     char extra[1200];
-    snprintf(extra, sizeof extra, "--published '%s'", pub);
+    snprintf(extra, sizeof extra, "--scale flat --published '%s'", pub);
     free(clean_run(dir, "out", extra));
     snprintf(out, sizeof out, "%s/out", dir);
     ck_assert_ptr_nonnull(tu_merl_table("blue-rubber", table, sizeof table));
@@ -940,7 +949,7 @@ START_TEST(score_agrees_with_the_batch)
     char e_fit[64], e_pub[64];
     fits_field(out, "blue-rubber", "ward", "error", e_fit, sizeof e_fit);
     fits_field(out, "blue-rubber", "ward", "published_error", e_pub, sizeof e_pub);
-    snprintf(args, sizeof args, "score '%s' --model ward --params %s", table, params);
+    snprintf(args, sizeof args, "score '%s' --scale flat --model ward --params %s", table, params);
     run_out r = run(args);
     expect_status(r, 0, args);
     double e = score_error(r.out, "ward");
@@ -948,7 +957,8 @@ START_TEST(score_agrees_with_the_batch)
     run_free(&r);
 
     /* the published parameters: the batch's published Error */
-    snprintf(args, sizeof args, "score '%s' --fits '%s' --model ward,blinn-phong", table, pub);
+    snprintf(args, sizeof args, "score '%s' --scale flat --fits '%s' --model ward,blinn-phong",
+             table, pub);
     r = run(args);
     expect_status(r, 0, args);
     e = score_error(r.out, "ward");
@@ -966,6 +976,49 @@ START_TEST(score_agrees_with_the_batch)
     r = run(args);
     expect_status(r, 2, args);
     run_free(&r);
+    tmpdir_remove(dir);
+}
+END_TEST
+
+/* A published-fits file stating another scale than --scale is refused,
+ * naming both, and nothing is written; with --allow-scale-mismatch the
+ * comparison is made and said on every page. */
+START_TEST(published_scale_mismatch)
+{
+    char dir[512], args[8192], pub[1024], out[1024], path[2048];
+    tmpdir(dir, sizeof dir);
+    make_inputs(dir, 0);
+    tu_shared("data/ngan2005-fits.tsv", pub, sizeof pub); /* "# scale: flat" */
+    snprintf(out, sizeof out, "%s/out", dir);
+    snprintf(args, sizeof args, "batch '%s/in' --out '%s' " FAST " --no-render --no-plot "
+             "--published '%s'", dir, out, pub);
+    run_out r = run(args);
+    expect_status(r, 2, args);
+    ck_assert_msg(strstr(r.err, "states '# scale: flat'") && strstr(r.err, "--scale standard") &&
+                      strstr(r.err, "pass --scale flat") && strstr(r.err, "--allow-scale-mismatch"),
+                  "%s", r.err);
+    run_free(&r);
+    snprintf(path, sizeof path, "%s/index.html", out);
+    ck_assert_msg(!exists(path), "a refused batch wrote %s", path);
+
+    strcat(args, " --allow-scale-mismatch");
+    r = run(args);
+    expect_status(r, 0, args);
+    ck_assert_msg(strstr(r.err, "warning: --published") && strstr(r.err, "not fitted to"), "%s", r.err);
+    run_free(&r);
+    check_page(out, "index.html");
+    for (int i = -1; i < 3; i++) {
+        if (i < 0)
+            snprintf(path, sizeof path, "%s/index.html", out);
+        else
+            snprintf(path, sizeof path, "%s/%s/index.html", out, names[i]);
+        char *page = slurp(path);
+        ck_assert_msg(page && strstr(page, "class=\"warn\">Warning: ") &&
+                          strstr(page, "states &#39;# scale: flat&#39;") &&
+                          strstr(page, "not fitted to"),
+                      "%s has no warning of the scale mismatch", path);
+        free(page);
+    }
     tmpdir_remove(dir);
 }
 END_TEST
@@ -1066,7 +1119,10 @@ static void append_fit_as(const char *out, const char *status, int code, const c
     char *rest = at + strlen(ok), *e = strstr(rest, ",\"error\":");
     ck_assert_ptr_nonnull(e);
     *e = '\0';
-    const char *after = e + 9 + strcspn(e + 9, ",}");
+    char *after = e + 9 + strcspn(e + 9, ",}");
+    char *albedo = strstr(after, ",\"albedo\":"); /* a failed fit has no albedo (the last members) */
+    if (albedo)
+        strcpy(albedo, "}");
     FILE *f = fopen(path, "a");
     ck_assert_ptr_nonnull(f);
     fprintf(f, "%s\"status\":\"%s\",\"status_code\":%d,\"message\":\"%s\"%s,\"error\":null%s\n",
@@ -1274,6 +1330,7 @@ Suite *batch_suite(void)
     tcase_add_test(tc, changed_settings_and_files_are_refitted);
     tcase_add_test(tc, progress_lines);
     tcase_add_test(tc, score_agrees_with_the_batch);
+    tcase_add_test(tc, published_scale_mismatch);
     tcase_add_test(tc, demo_batch_prints_its_index);
     tcase_add_test(tc, one_record_schema_everywhere);
     tcase_add_test(tc, resume_decides_by_status_code);

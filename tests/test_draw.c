@@ -2,12 +2,14 @@
 /* test_draw.c -- `brdffit render` and `brdffit plot` ($BRDFFIT_CLI): files
  * from a FITS.jsonl, the image errors printed, SVG parsed; bad light specs,
  * an unwritable --out, a malformed --env EXR and one too bright to render
- * get a message and a status. */
+ * get a message and a status; a TSV of parameters is scored (render prints
+ * the Error score prints), and one stating another scale is refused. */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
 #include "image_io.h"
 
 #include <check.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -192,6 +194,65 @@ START_TEST(bad_inputs_are_reported)
 }
 END_TEST
 
+/* The number after "\nKEY" in text (KEY starts a line), or NAN when no line has it. */
+static double number_after(const char *text, const char *key)
+{
+    char k[128];
+    snprintf(k, sizeof k, "\n%s", key);
+    const char *p = strstr(text, k);
+    return p ? strtod(p + strlen(k), NULL) : NAN;
+}
+
+START_TEST(render_scores_a_tsv_of_parameters)
+{
+    char tsv[1024], args[4096], *out, *err;
+    snprintf(tsv, sizeof tsv, "%s/pub.tsv", dir);
+    FILE *f = fopen(tsv, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs("# published fits\n# scale: flat\n"
+          "material\tmodel\td_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\n"
+          "ct\tward\t0.05\t0.07\t0.1\t0.25\t0.2\t0.15\t0.25\t\t\n"
+          "ct\tcook-torrance\t0.05\t0.08\t0.12\t0.3\t0.25\t0.2\t0.6\t0.3\t\n", f);
+    fclose(f);
+    /* the file's scale is not --scale's (standard by default): refused, both named */
+    snprintf(args, sizeof args, "render '%s' --fits '%s' --out '%s/m' --size 32", table, tsv, dir);
+    ck_assert_int_eq(run(args, &out, &err), 1); /* as for any --fits file it cannot use */
+    ck_assert_msg(strstr(err, "'# scale: flat' (line 2)") && strstr(err, "--scale standard") &&
+                      strstr(err, "--allow-scale-mismatch"), "%s", err);
+    free(out);
+    free(err);
+    snprintf(args, sizeof args, "score '%s' --fits '%s'", table, tsv);
+    ck_assert_int_eq(run(args, &out, &err), 2);
+    ck_assert_msg(strstr(err, "'# scale: flat'") && strstr(err, "--scale standard"), "%s", err);
+    free(out);
+    free(err);
+    /* on its own scale: the Error of each row, as score computes it */
+    snprintf(args, sizeof args, "score '%s' --fits '%s' --scale flat", table, tsv);
+    ck_assert_int_eq(run(args, &out, &err), 0);
+    double sw = number_after(out, "ward "), sc = number_after(out, "cook-torrance ");
+    free(out);
+    free(err);
+    ck_assert_msg(isfinite(sw) && isfinite(sc) && sw > 0 && sc > 0, "score: %g %g", sw, sc);
+    snprintf(args, sizeof args, "render '%s' --fits '%s' --out '%s/f' --size 32 --scale flat",
+             table, tsv, dir);
+    ck_assert_int_eq(run(args, &out, &err), 0);
+    double rw = number_after(out, "  ward "), rc = number_after(out, "  cook-torrance ");
+    ck_assert_msg(!strstr(out, "nan"), "%s", out);
+    ck_assert_msg(tu_reldiff(rw, sw) < 1e-3 && tu_reldiff(rc, sc) < 1e-3,
+                  "render %g %g, score %g %g:\n%s", rw, rc, sw, sc, out);
+    free(out);
+    free(err);
+    /* compared anyway when asked: said on stderr */
+    snprintf(args, sizeof args, "render '%s' --fits '%s' --out '%s/a' --size 32 "
+             "--allow-scale-mismatch", table, tsv, dir);
+    ck_assert_int_eq(run(args, &out, &err), 0);
+    ck_assert_msg(strstr(err, "warning") && strstr(err, "not fitted to"), "%s", err);
+    ck_assert_msg(isfinite(number_after(out, "  ward ")), "%s", out);
+    free(out);
+    free(err);
+}
+END_TEST
+
 Suite *draw_suite(void)
 {
     Suite *s = suite_create("draw");
@@ -201,6 +262,7 @@ Suite *draw_suite(void)
     tcase_add_test(tc, render_from_fits_file);
     tcase_add_test(tc, plot_svgs_parse);
     tcase_add_test(tc, bad_inputs_are_reported);
+    tcase_add_test(tc, render_scores_a_tsv_of_parameters);
     suite_add_tcase(s, tc);
     return s;
 }

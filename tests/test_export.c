@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* test_export.c -- `brdffit export --format gltf` run as a program (under the
+/* test_export.c -- `brdffit export --format gltf|mitsuba` run as a program (under the
  * sanitizers in `make sanitize`): the .gltf of a core and an extended fit is
  * one strict JSON object with the record's material, the extensions only in
  * the extended one and never required; a value outside glTF's ranges is
@@ -109,6 +109,43 @@ START_TEST(export_refuses_values_outside_gltf)
 }
 END_TEST
 
+/* --format mitsuba: every model's fit is a scene whose BSDF holds the fit
+ * under the registry's parameter names; one out of its model's bounds is
+ * refused naming its line.  python/tests/test_mitsuba.py renders them. */
+START_TEST(export_writes_mitsuba_scenes)
+{
+    static const char he[] = RECORD("tin", "he", "[0.1,0.2,0.3]", "[0.5,0.5,0.5]", "[16,0.5,2]");
+    static const char bad[] = RECORD("wide", "ward", "[0.1,0.1,0.1]", "[0.2,0.2,0.2]", "[5]");
+    char fits[128], args[512], path[256], text[2048];
+    make_dir();
+    snprintf(text, sizeof text, "%s%s%s%s", ward, core, he, bad);
+    put("fits.jsonl", text, fits, sizeof fits);
+    snprintf(args, sizeof args, "export %s --format mitsuba --size 32 --out %s/out", fits, dir);
+    tu_run_out r = tu_run_cli("", args);
+    TU_EXPECT_STATUS(r, 1, args);
+    ck_assert_msg(strstr(r.err, "line 4: wide, ward:") != NULL && strstr(r.err, "alpha") != NULL,
+                  "%s", r.err);
+    static const char *const want[3][3] = {
+        { "bronze-ward.xml", "<float name=\"alpha\" value=\"0.05\"/>", "\"model\" value=\"ward\"" },
+        { "red-gltf.xml", "<float name=\"roughness\" value=\"0.45\"/>", "<rgb name=\"d\" value=\"0.8, 0.05, 0.0125\"/>" },
+        { "tin-he.xml", "<float name=\"sigma0\" value=\"0.5\"/>", "<float name=\"tau\" value=\"16\"/>" },
+    };
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, "%s/out/%s", dir, want[k][0]);
+        char *doc = tu_slurp(path);
+        ck_assert_msg(doc != NULL, "%s: not written", path);
+        ck_assert(strstr(doc, "<scene version=\"3.0.0\">") != NULL);
+        ck_assert(strstr(doc, "<sensor type=\"orthographic\">") != NULL);
+        ck_assert(strstr(doc, "<integer name=\"width\" value=\"32\"/>") != NULL);
+        ck_assert(strstr(doc, "<bsdf type=\"brdffit\">") != NULL);
+        ck_assert_msg(strstr(doc, want[k][1]) && strstr(doc, want[k][2]), "%s:\n%s", path, doc);
+        free(doc);
+    }
+    tu_run_free(&r);
+    remove_dir();
+}
+END_TEST
+
 Suite *export_suite(void)
 {
     Suite *s = suite_create("export");
@@ -116,5 +153,8 @@ Suite *export_suite(void)
     tcase_add_test(tc, export_writes_strict_gltf);
     tcase_add_test(tc, export_refuses_values_outside_gltf);
     suite_add_tcase(s, tc);
+    TCase *mi = tcase_create("mitsuba");
+    tcase_add_test(mi, export_writes_mitsuba_scenes);
+    suite_add_tcase(s, mi);
     return s;
 }

@@ -2,7 +2,8 @@
 /* test_gltf_fit.c -- the fit of the glTF models (src/lib/fit/affine.c): a
  * table filled from a glTF material fits back to its parameters, metal,
  * dielectric and between, core and extended; the Error the fit reports is
- * brdffit_error_of's; the affine engine's pass sums against a direct loop. */
+ * brdffit_error_of's; the affine engine's pass sums against a direct loop,
+ * and the same on its workers, in the calling thread and after fork. */
 #define _DEFAULT_SOURCE
 #include "testutil.h"
 
@@ -12,7 +13,11 @@
 
 #include <check.h>
 #include <math.h>
+#include <pthread.h>
+#include <stdint.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 typedef struct gltf_case {
     brdffit_model model;
@@ -144,6 +149,64 @@ START_TEST(pass_sums)
 }
 END_TEST
 
+/* A pass with two partials at a fixed point into m. */
+static void pass_at(const brdffit_samples *s, af_mom *m)
+{
+    const double pts[3][AF_NP] = { { 0.3, 0.4, 1.7, 0.8 }, { 0.3001, 0.4, 1.7, 0.8 },
+                                   { 0.3, 0.4, 1.7, 0.8002 } };
+    const double inv_h[2] = { 1e4, 5e3 };
+    brdffit_error err;
+    ck_assert_int_eq(bf_affine_pass(s, BRDFFIT_GLTF_EXT, pts, 2, inv_h, m, &err), BRDFFIT_OK);
+}
+
+/* The sums of two passes equal to the bit. */
+static int same_sums(const af_mom *a, const af_mom *b)
+{
+    return memcmp(&a->aa, &b->aa, sizeof *a - offsetof(af_mom, aa)) == 0;
+}
+
+static const brdffit_samples *workers_set;
+static af_mom workers_m[4];
+
+static void *workers_thread(void *arg)
+{
+    pass_at(workers_set, &workers_m[(intptr_t)arg]);
+    return NULL;
+}
+
+/* A pass gives the same sums on the pass workers, in the calling thread
+ * (passes from four threads at once: those that find the workers in use run
+ * there) and in a child process made by fork after the workers were made
+ * (which makes its own). */
+START_TEST(pass_workers)
+{
+    const brdffit_params q = case_params(&cases[4]);
+    brdffit_samples *s = filled(BRDFFIT_GLTF_EXT, &q);
+    af_mom m0;
+    pass_at(s, &m0);
+    ck_assert(m0.bb > 0);
+    workers_set = s;
+    pthread_t t[4];
+    for (intptr_t k = 0; k < 4; k++)
+        ck_assert_int_eq(pthread_create(&t[k], NULL, workers_thread, (void *)k), 0);
+    for (int k = 0; k < 4; k++) {
+        pthread_join(t[k], NULL);
+        ck_assert_msg(same_sums(&workers_m[k], &m0), "thread %d's sums differ", k);
+    }
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        af_mom m;
+        pass_at(s, &m);
+        _exit(same_sums(&m, &m0) ? 0 : 3);
+    }
+    int status = 0;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    ck_assert_msg(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the child's pass: status %d", status);
+    brdffit_samples_free(s);
+}
+END_TEST
+
 /* The partials of A and B against central differences of bf_gltf_affine,
  * over directions and parameters that reach the corners (metal, dielectric,
  * sharp and rough, ior near 1), to 1e-6 relative of the larger of the two
@@ -196,6 +259,7 @@ Suite *gltf_fit_suite(void)
     tcase_set_timeout(tc, 600);
     tcase_add_loop_test(tc, recovery, 0, NCASES);
     tcase_add_test(tc, pass_sums);
+    tcase_add_test(tc, pass_workers);
     tcase_add_test(tc, partials);
     suite_add_tcase(s, tc);
     return s;

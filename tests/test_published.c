@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* test_published.c -- the program's reader of published-fit tables
  * (src/cli/pipeline/published.c, the format of ngan2005-fits.tsv): a good table reads
- * back value for value; each kind of malformed table is refused with the line
- * and the reason, and leaves no rows behind. */
+ * back value for value, with the scale its "# scale:" comment states; each
+ * kind of malformed table is refused with the line and the reason, and
+ * leaves no rows behind; a scale other than the tables' is found and named. */
 #define _POSIX_C_SOURCE 200809L
 #include "testutil.h"
 #include "batch.h"
@@ -45,6 +46,30 @@ START_TEST(published_reads_rows)
     ck_assert_ptr_nonnull(r);
     ck_assert_double_eq(r->params.p[2], 1.6);
     ck_assert_ptr_null(pub_find(&t, "chrome", BRDFFIT_WARD));
+    ck_assert_int_eq(t.scale_line, 0); /* no scale stated: no mismatch with either */
+    char msg[512];
+    ck_assert_int_eq(pub_scale_mismatch(&t, BRDFFIT_SCALE_STANDARD, msg, sizeof msg), 0);
+    ck_assert_int_eq(pub_scale_mismatch(&t, BRDFFIT_SCALE_FLAT, msg, sizeof msg), 0);
+    pub_free(&t);
+}
+END_TEST
+
+START_TEST(published_reads_its_scale)
+{
+    pub_table t;
+    brdffit_error err;
+    const char *text = "# fitted to flat tables\n#  scale:  flat \n" HEADER
+                       "a\tward\t0\t0\t0\t0\t0\t0\t0.1\t\t\n# scale: flat\n";
+    ck_assert_int_eq(read_text(text, &t, &err), 0);
+    ck_assert_int_eq(t.scale_line, 2);
+    ck_assert_int_eq(t.scale, BRDFFIT_SCALE_FLAT);
+    char msg[2048];
+    ck_assert_int_eq(pub_scale_mismatch(&t, BRDFFIT_SCALE_FLAT, msg, sizeof msg), 0);
+    ck_assert_int_eq(pub_scale_mismatch(&t, BRDFFIT_SCALE_STANDARD, msg, sizeof msg), 1);
+    ck_assert_msg(strstr(msg, "states '# scale: flat' (line 2)") &&
+                      strstr(msg, "read with --scale standard"), "%s", msg);
+    ck_assert_ptr_nonnull(strstr(pub_scale_advice(&t), "pass --scale flat"));
+    ck_assert_ptr_nonnull(strstr(pub_scale_advice(&t), "--allow-scale-mismatch"));
     pub_free(&t);
 }
 END_TEST
@@ -71,6 +96,10 @@ static const bad_case bad_cases[] = {
     { HEADER "a\tward\t0\t0\t0\t0\t0\t0\t\t\t\n" "b\tward\t0\t0\t0\t0\t0\t0\t0.1\t\t\t\n",
       "line 3: expected 11 tab-separated columns" },
     { HEADER "\tward\t0\t0\t0\t0\t0\t0\t0.1\t\t\n", "line 2: empty or too long material name" },
+    { "# scale: linear\n" HEADER, "line 1: '# scale: linear': expected '# scale: standard' or" },
+    { "# scale: flat please\n" HEADER, "line 1: '# scale: flat please': expected" },
+    { "# scale: flat\n# scale: standard\n" HEADER,
+      "line 2: '# scale: standard', but line 1 states '# scale: flat'" },
 };
 enum { NBAD = (int)(sizeof bad_cases / sizeof bad_cases[0]) };
 
@@ -103,6 +132,7 @@ Suite *published_suite(void)
     Suite *s = suite_create("published");
     TCase *tc = tcase_create("read");
     tcase_add_test(tc, published_reads_rows);
+    tcase_add_test(tc, published_reads_its_scale);
     tcase_add_loop_test(tc, published_refuses_malformed, 0, NBAD);
     tcase_add_test(tc, published_missing_file);
     suite_add_tcase(s, tc);

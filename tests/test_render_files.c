@@ -94,9 +94,10 @@ static void check_listed(const char *dir, const rf_result *r)
     char path[1024];
     const char *names[] = { "reference.exr", "reference.png", "cook-torrance.exr",
                             "cook-torrance.png", "cook-torrance-diff.png", "ward.exr", "ward.png",
-                            "ward-diff.png", "renders.json", "plot-measured.svg",
-                            "plot-cook-torrance.svg", "plot-ward.svg" };
-    ck_assert_int_eq(r->nfiles, 12);
+                            "ward-diff.png", "cook-torrance-flip.png", "ward-flip.png",
+                            "diff-scale.svg", "flip-scale.svg", "renders.json",
+                            "plot-measured.svg", "plot-cook-torrance.svg", "plot-ward.svg" };
+    ck_assert_int_eq(r->nfiles, 16);
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         struct stat st;
         snprintf(path, sizeof path, "%s/%s", dir, names[i]);
@@ -106,7 +107,11 @@ static void check_listed(const char *dir, const rf_result *r)
     ck_assert_str_eq(find_file(r, "cook-torrance.png")->caption, "Cook-Torrance: 0.0123");
     ck_assert_str_eq(find_file(r, "ward.png")->caption, "Ward");
     ck_assert_int_eq(find_file(r, "ward.png")->fit, 1);
-    ck_assert(r->image_error[0] < 0.01 && r->image_error[1] > 0.05);
+    ck_assert_msg(r->image_error[0] < 0.01 && r->image_error[1] > 0.05, "FLIP %g %g",
+                  r->image_error[0], r->image_error[1]);
+    ck_assert(r->relative_rms[0] < 0.01 && r->relative_rms[1] > 0.05);
+    const char *cap = find_file(r, "ward-diff.png")->caption, *want = "Ward: \xce\x94L*, \xea\x9f\xbbLIP 0.";
+    ck_assert_msg(strncmp(cap, want, strlen(want)) == 0, "%s", cap);
 }
 
 /* reference.exr: the pixels the library renders (want, 64 x 64 RGBA), A the coverage. */
@@ -129,9 +134,27 @@ static void check_reference_exr(const char *dir, const float *want)
     free(a);
 }
 
+/* The value a masked pixel (x, y) of want takes: the mean of the measured
+ * pixels (A = 1) among its 8 neighbours, else within 2 pixels. */
+static double filled_value(const float *want, int x, int y, int c)
+{
+    for (int r = 1; r <= 2; r++) {
+        double s = 0;
+        int k = 0;
+        for (int yy = y - r; yy <= y + r; yy++)
+            for (int xx = x - r; xx <= x + r; xx++)
+                if (yy >= 0 && yy < 64 && xx >= 0 && xx < 64 && want[4 * (yy * 64 + xx) + 3] == 1.0f)
+                    s += want[4 * (yy * 64 + xx) + c], k++;
+        if (k > 0)
+            return (double)(float)(s / k);
+    }
+    return -1;
+}
+
 /* reference.png: 64 x 64, sRGB of exposure x radiance (the exposure from the
- * reference); the difference image of a poor fit (ward) brighter than that of
- * the exact model (cook-torrance), masked pixels grey, pixels off the sphere black. */
+ * reference), masked pixels filled from their measured neighbours; the
+ * difference image of a poor fit (ward) further from white than that of the
+ * exact model (cook-torrance), pixels off the sphere black. */
 static void check_pngs(const char *dir, const float *want, double exposure)
 {
     char path[1024];
@@ -140,27 +163,32 @@ static void check_pngs(const char *dir, const float *want, double exposure)
     unsigned char *png = read_png(path, &w, &h);
     ck_assert_int_eq(w, 64);
     ck_assert_int_eq(h, 64);
-    int bright = 0;
+    int bright = 0, masked = 0;
     for (int i = 0; i < 64 * 64; i++)
         for (int c = 0; c < 3; c++) {
-            int v = want[4 * i + 3] > 0 ? srgb8(exposure * want[4 * i + c]) : 0;
+            int m = want[4 * i + 3] == BRDFFIT_COVERAGE_MASKED;
+            double lin = m ? filled_value(want, i % 64, i / 64, c) : want[4 * i + c];
+            masked += m;
+            int v = want[4 * i + 3] > 0 ? srgb8(exposure * lin) : 0;
             ck_assert_msg(abs(png[3 * i + c] - v) <= 0, "pixel %d ch %d: %d want %d", i, c,
                           png[3 * i + c], v);
             bright += png[3 * i + c] == 255;
         }
     ck_assert(bright > 0 && bright < 64 * 64 / 10); /* ~1% of the sphere may clip */
+    ck_assert(masked > 0);
     free(png);
     long sum[2] = { 0, 0 };
     for (int k = 0; k < 2; k++) {
         snprintf(path, sizeof path, "%s/%s-diff.png", dir, k ? "ward" : "cook-torrance");
         png = read_png(path, &w, &h);
         for (int i = 0; i < 64 * 64; i++) {
-            if (want[4 * i + 3] == BRDFFIT_COVERAGE_MASKED)
-                ck_assert(png[3 * i] == 128 && png[3 * i + 1] == 128 && png[3 * i + 2] == 128);
-            else if (want[4 * i + 3] == 0)
+            if (want[4 * i + 3] == 0)
                 ck_assert(png[3 * i] == 0 && png[3 * i + 1] == 0 && png[3 * i + 2] == 0);
-            else
-                sum[k] += png[3 * i] + png[3 * i + 1] + png[3 * i + 2];
+            else /* filled, never grey */
+                for (int c = 0; c < 3; c++) {
+                    ck_assert(!(png[3 * i] == 128 && png[3 * i + 1] == 128 && png[3 * i + 2] == 128));
+                    sum[k] += abs(png[3 * i + c] - 247); /* the diverging map's white */
+                }
         }
         free(png);
     }
@@ -270,11 +298,11 @@ START_TEST(model_files_in_order)
     rf_result r;
     brdffit_error err;
     ck_assert_msg(rf_write_material(dir, "order", t, fits, 5, &s, &r, &err) == 0, "%s", err.message);
-    ck_assert_int_eq(r.nfiles, 2 + 3 * 5 + 1); /* and renders.json */
+    ck_assert_int_eq(r.nfiles, 2 + 3 * 5 + 5 + 2 + 1); /* diffs, bars, renders.json */
     ck_assert_str_eq(r.files[0].file, "reference.exr");
     ck_assert_str_eq(r.files[1].file, "reference.png");
     for (int k = 0; k < 5; k++) {
-        const char *stem = brdffit_model_get(models[k])->name, *suffix[3] = { ".exr", ".png", "-diff.png" };
+        const char *stem = brdffit_model_get(models[k])->name, *suffix[3] = { ".exr", ".png", "-flip.png" };
         for (int q = 0; q < 3; q++) {
             char want[64];
             snprintf(want, sizeof want, "%s%s", stem, suffix[q]);
@@ -283,7 +311,13 @@ START_TEST(model_files_in_order)
         }
         ck_assert_msg(isfinite(r.image_error[k]) && r.image_error[k] >= 0, "model %d: image error %g",
                       k, r.image_error[k]);
+        char diff[64];
+        snprintf(diff, sizeof diff, "%s-diff.png", stem);
+        ck_assert_str_eq(r.files[17 + k].file, diff); /* once all are known: one scale */
+        ck_assert_int_eq(r.files[17 + k].fit, k);
     }
+    ck_assert_str_eq(r.files[22].file, "diff-scale.svg");
+    ck_assert_str_eq(r.files[23].file, "flip-scale.svg");
     ck_assert(r.image_error[0] < r.image_error[1]); /* the exact model beats Ward */
     fits[1].params.p[0] = -1.0;
     fits[3].params.p[0] = -1.0;
@@ -445,7 +479,7 @@ START_TEST(env_exr_reading)
 }
 END_TEST
 
-START_TEST(srgb_and_false_colour)
+START_TEST(srgb_and_colour_maps)
 {
     for (int i = 0; i <= 1000; i++) {
         double v = i / 1000.0;
@@ -455,14 +489,20 @@ START_TEST(srgb_and_false_colour)
     ck_assert_int_eq(tm_srgb8(NAN), 0);
     ck_assert_int_eq(tm_srgb8(7), 255);
     unsigned char c[3];
-    tm_false_colour(0, c);
-    ck_assert(c[0] == 0 && c[1] == 0 && c[2] == 0);
-    tm_false_colour(0.25, c);
-    ck_assert(c[0] == 0 && c[1] == 0 && c[2] == 255);
-    tm_false_colour(0.5, c);
-    ck_assert(c[0] == 255 && c[1] == 0 && c[2] == 0);
-    tm_false_colour(3, c);
-    ck_assert(c[0] == 255 && c[1] == 255 && c[2] == 255);
+    cm_diverging(0, c); /* ColorBrewer RdBu's white */
+    ck_assert(c[0] == 247 && c[1] == 247 && c[2] == 247);
+    cm_diverging(-1, c);
+    ck_assert(c[0] == 5 && c[1] == 48 && c[2] == 97);
+    cm_diverging(7, c);
+    ck_assert(c[0] == 103 && c[1] == 0 && c[2] == 31);
+    cm_diverging(-0.5, c);
+    ck_assert(c[2] > c[0]); /* darker: blue */
+    cm_diverging(0.5, c);
+    ck_assert(c[0] > c[2]); /* brighter: red */
+    cm_magma(0, c); /* NVIDIA's MapMagma[0] and [255] as its tool writes them */
+    ck_assert(c[0] == 0 && c[1] == 0 && c[2] == 4);
+    cm_magma(1, c);
+    ck_assert(c[0] == 252 && c[1] == 253 && c[2] == 191);
     /* exposure: 1 / the 99th percentile of max(R, G, B) over pixels with A > 0 */
     float img[4 * 200];
     for (int i = 0; i < 200; i++) {
@@ -470,6 +510,97 @@ START_TEST(srgb_and_false_colour)
         img[4 * i + 3] = i < 100 ? 1.0f : 0.0f;
     }
     ck_assert_double_eq_tol(tm_auto_exposure(img, 200, 1, 0), 1.0 / 99.0, 1e-12);
+}
+END_TEST
+
+/* The difference scale: the 95th percentile of |dL*| (NaN left out), rounded
+ * up to 1, 1.5, 2, 3, 5, 7 x 10^k within [1, 100]. */
+START_TEST(difference_scale)
+{
+    float v[200];
+    for (int i = 0; i < 200; i++)
+        v[i] = i < 100 ? (float)(i % 2 ? -i : i) * 0.1f : NAN; /* |v| 0 .. 9.9 */
+    ck_assert_double_eq(ci_diff_scale(v, 200), 10);
+    for (int i = 0; i < 100; i++)
+        v[i] *= 0.25f; /* 95th percentile 2.35 */
+    ck_assert_double_eq(ci_diff_scale(v, 200), 3);
+    ck_assert_double_eq(ci_diff_scale(v + 100, 100), 1); /* none finite */
+    v[0] = 1e6f;
+    for (int i = 1; i < 200; i++)
+        v[i] = 500;
+    ck_assert_double_eq(ci_diff_scale(v, 200), 100);
+}
+END_TEST
+
+/* Masked pixels: a measured neighbour's mean within 1, else within 2 pixels;
+ * none: left masked. */
+START_TEST(masked_pixels_filled)
+{
+    float px[4 * 7 * 7];
+    for (int i = 0; i < 49; i++) {
+        px[4 * i] = px[4 * i + 1] = px[4 * i + 2] = (float)i;
+        px[4 * i + 3] = BRDFFIT_COVERAGE_MASKED;
+    }
+    px[4 * 0 + 3] = 1.0f;  /* (0, 0) measured */
+    px[4 * 2 + 3] = 1.0f;  /* (2, 0) measured */
+    ck_assert_int_eq(ci_fill_masked(px, 7), 13); /* the 5 x 3 block at the top left but the two */
+    ck_assert(px[4 * 1 + 3] == 1.0f && px[4 * 1] == 1.0f);     /* (1, 0): mean of 0 and 2 */
+    ck_assert(px[4 * 8 + 3] == 1.0f && px[4 * 8] == 1.0f);     /* (1, 1): the same */
+    ck_assert(px[4 * 16 + 3] == 1.0f && px[4 * 16] == 1.0f);   /* (2, 2): within 2 */
+    ck_assert(px[4 * 4 + 3] == 1.0f && px[4 * 4] == 2.0f);     /* (4, 0): (2, 0) alone */
+    ck_assert(px[4 * 48 + 3] == BRDFFIT_COVERAGE_MASKED && px[4 * 48] == 48.0f); /* (6, 6) */
+}
+END_TEST
+
+/* A model brighter than the reference everywhere shows red, a darker one
+ * blue; both on one scale, given on the colour bar. */
+START_TEST(difference_signs)
+{
+    char dir[512], path[1024];
+    tmpdir(dir, sizeof dir);
+    brdffit_table *t = ct_table();
+    rf_fit fits[2];
+    memset(fits, 0, sizeof fits);
+    for (int k = 0; k < 2; k++) {
+        fits[k].model = BRDFFIT_COOK_TORRANCE;
+        fits[k].params = ct_params();
+        for (int c = 0; c < 3; c++)
+            fits[k].params.d[c] *= k ? 0.5 : 1.5, fits[k].params.s[c] *= k ? 0.5 : 1.5;
+        fits[k].stem = k ? "darker" : "brighter";
+        fits[k].error = NAN;
+    }
+    rf_settings s;
+    rf_settings_default(&s, BRDFFIT_SCALE_STANDARD);
+    s.render_opt.width = 48;
+    s.plot = 0;
+    rf_result r;
+    brdffit_error err;
+    ck_assert_msg(rf_write_material(dir, "signs", t, fits, 2, &s, &r, &err) == 0, "%s", err.message);
+    for (int k = 0; k < 2; k++) {
+        int w, h, red = 0, blue = 0;
+        snprintf(path, sizeof path, "%s/%s-diff.png", dir, k ? "darker" : "brighter");
+        unsigned char *png = read_png(path, &w, &h);
+        for (int i = 0; i < w * h; i++) {
+            red += png[3 * i] > png[3 * i + 2] + 30;
+            blue += png[3 * i + 2] > png[3 * i] + 30;
+        }
+        free(png);
+        ck_assert_msg(k ? blue > 20 * (red + 1) : red > 20 * (blue + 1), "%s: %d red, %d blue",
+                      path, red, blue);
+    }
+    tu_xml_doc doc;
+    snprintf(path, sizeof path, "%s/diff-scale.svg", dir);
+    ck_assert_msg(tu_xml_load(path, &doc) == 0, "%s", doc.error);
+    char top[32];
+    snprintf(top, sizeof top, "%+g", r.diff_scale);
+    int ticks = 0;
+    for (int i = 0; i < doc.n; i++)
+        if (strcmp(doc.e[i].name, "text") == 0)
+            ticks += strcmp(doc.e[i].text, top) == 0;
+    ck_assert_int_eq(ticks, 1);
+    tu_xml_free(&doc);
+    brdffit_table_free(t);
+    rm_tree(dir);
 }
 END_TEST
 
@@ -482,7 +613,10 @@ Suite *render_files_suite(void)
     tcase_add_test(tc, model_files_in_order);
     tcase_add_test(tc, unwritable_directory);
     tcase_add_test(tc, env_exr_reading);
-    tcase_add_test(tc, srgb_and_false_colour);
+    tcase_add_test(tc, srgb_and_colour_maps);
+    tcase_add_test(tc, difference_scale);
+    tcase_add_test(tc, masked_pixels_filled);
+    tcase_add_test(tc, difference_signs);
     suite_add_tcase(s, tc);
     return s;
 }

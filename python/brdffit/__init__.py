@@ -13,6 +13,7 @@ struct layouts this package was written for.
     rgb = brdffit.eval("cook-torrance", r.params, wi, wo)   # (n, 3) arrays
     img = brdffit.render(r)                                 # (256, 256, 4) RGBA
     theta_o, curves = brdffit.incidence_curves(t)           # (4, 180, 3) measured
+    a = brdffit.albedo(r)                                   # (18, 3) at theta_o 0..85
 
 Conventions (frame, units, scales, the Error metric) are those of
 include/brdffit.h: wi toward the light, wo toward the viewer, z the normal,
@@ -49,11 +50,12 @@ from .errors import (
     UnknownModelError,
     ValueRangeError,
 )
+from .albedo import albedo
 from .curves import incidence_curves
 from .evaluate import eval  # noqa: A004 (the C API's name)
 from .fitting import METRICS, AtBound, Context, FitFlag, FitResult, error_of, fit
 from .models import Model, Param, Params, metric_name, model, models
-from .render import COVERAGE_MASKED, Light, default_lights, image_error, render
+from .render import COVERAGE_MASKED, Light, default_lights, flip, image_error, render
 from .samples import Sample, Samples
 from .table import Table, scale_factors
 
@@ -89,7 +91,8 @@ __all__ = [
     "Light", "Model", "NoDeviceError", "NoSamplesError", "OpenCLError", "OptionsSizeError",
     "OutOfMemoryError", "Param", "ParamRangeError", "Params", "Sample", "Samples", "Status", "Table",
     "TooFewSamplesError", "UnknownModelError", "ValueRangeError", "__version__",
-    "default_lights", "error_of", "eval", "fit", "image_error", "incidence_curves",
+    "albedo", "default_lights", "error_of", "eval", "fit", "flip", "image_error",
+    "incidence_curves",
     "library_version", "load_library", "metric_name", "model", "models", "release_memory", "render",
     "scale_factors", "version",
 ]

@@ -275,6 +275,15 @@ FUNCTIONS = {
         [_P, _P, C.c_int, C.c_int, C.c_size_t, C.POINTER(C.c_double), C.POINTER(C.c_size_t),
          _err],
     ),
+    "brdffit_flip": (
+        _status,
+        [_P, _P, C.c_int, C.c_int, C.c_size_t, C.c_double, _P, C.POINTER(C.c_double), _err],
+    ),
+    # directional albedo
+    "brdffit_albedo_model": (
+        _status, [c_enum, C.POINTER(Params), C.c_size_t, _P, _P, _err]),
+    "brdffit_albedo_table": (
+        _status, [_P, c_enum, c_enum, C.c_size_t, _P, _P, _P, _err]),
     "brdffit_curve_options_init": (None, [C.POINTER(CurveOptions), C.c_size_t]),
     "brdffit_curve_theta_o": (_status, [C.POINTER(CurveOptions), _P, _err]),
     "brdffit_curve_table": (_status, [_P, C.POINTER(CurveOptions), _P, C.c_size_t, _err]),

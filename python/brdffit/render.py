@@ -172,3 +172,28 @@ def image_error(ref, img):
     _lib.call("brdffit_image_error", a.ctypes.data, b.ctypes.data, w, h, 0, ctypes.byref(error),
               ctypes.byref(covered))
     return error.value, covered.value
+
+
+def flip(ref, test, ppd=0.0):
+    """(mean, map): LDR FLIP (NVIDIA's definition, brdffit_flip) of test
+    against ref, both (height, width, 3) sRGB-encoded images in [0, 1] (uint8
+    images are divided by 255); map the per-pixel FLIP, (height, width)
+    float32 in [0, 1]; mean its mean over all pixels.  ppd: pixels per degree
+    (0: 67.02, a 0.7 m wide 3840-pixel display at 0.7 m)."""
+    imgs = []
+    for name, img in (("ref", ref), ("test", test)):
+        a = np.asarray(img)
+        a = a / np.float32(255) if a.dtype == np.uint8 else a
+        a = np.ascontiguousarray(real_array(name, a, np.float32))
+        if a.ndim != 3 or a.shape[2] != 3 or 0 in a.shape:
+            raise InvalidArgumentError(_BAD, f"{name}: shape {a.shape}, expected (height, width, 3)")
+        imgs.append(a)
+    a, b = imgs
+    if a.shape != b.shape:
+        raise InvalidArgumentError(_BAD, f"flip: ref {a.shape} and test {b.shape} differ")
+    h, w = c_int("height", a.shape[0]), c_int("width", a.shape[1])
+    fmap = np.zeros(a.shape[:2], dtype=np.float32)
+    mean = ctypes.c_double()
+    _lib.call("brdffit_flip", a.ctypes.data, b.ctypes.data, w, h, 0, float(ppd), fmap.ctypes.data,
+              ctypes.byref(mean))
+    return mean.value, fmap

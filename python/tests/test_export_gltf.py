@@ -282,7 +282,7 @@ def test_names_that_are_not_one_path_component(tmp_path, name):
 def test_usage(tmp_path):
     fits = write_jsonl(tmp_path / "fits.jsonl", [CORE])
     r = export(tmp_path, fits, "--format", "obj")
-    assert r.returncode == 2 and "unknown format 'obj' (formats: gltf)" in r.stderr, r.stderr
+    assert r.returncode == 2 and "unknown format 'obj' (formats: gltf, mitsuba)" in r.stderr, r.stderr
     r = subprocess.run([CLI, "export", fits], capture_output=True, text=True)
     assert r.returncode == 2 and "--out DIR" in r.stderr, r.stderr
     r = export(tmp_path, str(tmp_path / "missing.jsonl"))

@@ -162,7 +162,7 @@ def test_render_equals_the_programs_exr(brdffit, cli, exrdump, tmp_path):
     assert (rec["covered"], rec["masked"]) == (covered, int(masked.sum()))
     assert covered == int((ref[..., 3] == 1).sum())
     [m] = rec["models"]
-    assert m["model"] == "cook-torrance" and m["image_error"] == err > 0
+    assert m["model"] == "cook-torrance" and m["relative_rms"] == err > 0
 
 
 def test_render_options(brdffit, alum_bronze):

@@ -43,10 +43,12 @@ static const cli_command commands[] = {
     { "score", cmd_score, "TABLE --model M --params d_r,...,p0[,p1,p2,p3] | --fits FILE",
       "print the Error of given parameters on a table",
       "print the Error of given parameters on a table", { cli_score_help, cli_options_help } },
-    { "export", cmd_export, "FITS... --out DIR [--format gltf]",
-      "write fitted glTF materials as .gltf files (a sphere each)",
+    { "export", cmd_export, "FITS... --out DIR [--format gltf|mitsuba]",
+      "write fits as .gltf files or Mitsuba 3 scenes (a sphere each)",
       "write each fit of model gltf or gltf-ext as a glTF 2.0 file:\n"
-      "the material on a sphere, DIR/MATERIAL-MODEL.gltf",
+      "the material on a sphere, DIR/MATERIAL-MODEL.gltf; with --format\n"
+      "mitsuba each fit of any model as a Mitsuba 3 scene of render's\n"
+      "sphere, DIR/MATERIAL-MODEL.xml",
       { cli_export_help } },
 };
 static const int ncommands = (int)(sizeof commands / sizeof commands[0]);

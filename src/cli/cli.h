@@ -29,7 +29,7 @@
  *                 (fault.c); batch.h is what the batch's files share
  *   report/       the paper-style table (report.c), the HTML report
  *                 (html_report.c, html_material.c, html_index.c,
- *                 report_data.c), a material's files (assets.c)
+ *                 html_headline.c, report_data.c), a material's files (assets.c)
  *   images/       renders and plots (draw.c, render_files.c), image files
  *                 (exr_io.c, png_io.c, tonemap.c), SVG/XML text
  *                 (svg.c, plot_svg.c)

@@ -46,6 +46,8 @@ int batch_parse_options(int argc, char **argv, batch_options *b)
             b->no_plot = 1;
         else if (strcmp(a, "--demo") == 0)
             b->demo = 1;
+        else if (strcmp(a, "--allow-scale-mismatch") == 0)
+            b->allow_scale_mismatch = 1;
         else if (strcmp(a, "--json") == 0)
             rc = cli_usage_error("batch writes its JSON into --out DIR; --json is for fit");
         else if (strncmp(a, "--out", 5) == 0 && (a[5] == '\0' || a[5] == '='))
@@ -84,7 +86,10 @@ const cli_help_block *cli_batch_help(void)
         { "--out DIR", "the report: DIR/index.html, DIR/<material>/, fits.tsv,\n"
                        "journal.jsonl (re-run the same command to resume)" },
         { "--published FITS.tsv", "also the Error of published parameters (the format\n"
-                                  "of ngan2005-fits.tsv) on each table, and the ratio" },
+                                  "of ngan2005-fits.tsv) on each table, and the ratio;\n"
+                                  "a file stating '# scale: S' needs --scale S" },
+        { "--allow-scale-mismatch", "compare with a --published file of another scale\n"
+                                    "(said on every page of the report)" },
         { "--shard K/N", "only every N-th material of the sorted list, from the\n"
                          "K-th (merge the shards with `brdffit report`)" },
         { "--no-render, --no-plot", "leave out the renders / the incidence-plane plots" },

@@ -44,12 +44,12 @@ int batch_keep(batch_run *R, const fit_record *r)
     return 0;
 }
 
-/* What a material's renders and plots depend on; "rf1" names the set of files
+/* What a material's renders and plots depend on; "rf2" names the set of files
  * assets.c writes, so a journal whose assets were made by another set redraws them. */
 void batch_assets_key(const batch_run *R, char *buf, size_t len)
 {
     const batch_options *b = R->b;
-    size_t used = (size_t)snprintf(buf, len, "rf1:render=%d,plot=%d:", !b->no_render, !b->no_plot);
+    size_t used = (size_t)snprintf(buf, len, "rf2:render=%d,plot=%d:", !b->no_render, !b->no_plot);
     for (int i = 0; i < b->common.nmodels && used < len; i++)
         used += (size_t)snprintf(buf + used, len - used, "%s%s", i ? "," : "",
                                  brdffit_model_get(b->common.models[i])->name);

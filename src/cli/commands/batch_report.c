@@ -26,6 +26,7 @@ int batch_write_report(batch_run *R, const material_list *L)
     if (R->have_pub) {
         rep.have_published = 1;
         snprintf(rep.published_path, sizeof rep.published_path, "%s", R->pub.path);
+        snprintf(rep.scale_note, sizeof rep.scale_note, "%s", R->scale_note);
     }
     const char *dirs[1] = { R->b->out };
     int rc = 0;

@@ -19,6 +19,7 @@ typedef struct batch_options {
     const char *published;
     int shard_k, shard_n;    /* 1-based; 1/1 unsharded */
     int quiet, no_render, no_plot, demo;
+    int allow_scale_mismatch; /* --allow-scale-mismatch: a --published file of another scale */
 } batch_options;
 
 /* A material of the inputs (batch_inputs.c). */
@@ -54,6 +55,7 @@ typedef struct batch_run {
     bj_records all;          /* the journal's records, then this run's       */
     pub_table pub;
     int have_pub;
+    char scale_note[BRDFFIT_MESSAGE_MAX]; /* the --published file's scale is not --scale's, or "" */
     brdffit_context *ctx;
     progress P;
     int failures;            /* materials and fits that failed */

@@ -354,6 +354,15 @@ static int run_batch(batch_run *R, material_list *L)
             return CLI_USAGE;
         }
         R->have_pub = 1;
+        char why[BRDFFIT_MESSAGE_MAX];
+        if (pub_scale_mismatch(&R->pub, b->common.sample.scale, why, sizeof why)) {
+            if (!b->allow_scale_mismatch) {
+                cli_error("--published: %s; %s", why, pub_scale_advice(&R->pub));
+                return CLI_USAGE;
+            }
+            snprintf(R->scale_note, sizeof R->scale_note, "%.1500s: %s", why, PUB_SCALE_NOTE);
+            cli_error("warning: --published: %s", R->scale_note);
+        }
     }
     if (open_out(R) != 0) {
         cli_error("%s", R->out_err.message);

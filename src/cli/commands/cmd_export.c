@@ -1,10 +1,12 @@
 /* SPDX-License-Identifier: MIT */
-/* cmd_export.c -- `brdffit export FITS... --out DIR [--format gltf]`: each
- * fit of model gltf or gltf-ext in the files of fits (the JSON Lines of `fit
- * --json`, a batch's fits.tsv) as DIR/MATERIAL-MODEL.gltf, the material on a
- * sphere (export/gltf_write.c).  Fits of other models and fits that failed
- * are skipped with a line on stderr; a record whose values are not a glTF
- * material's is refused naming its file and line. */
+/* cmd_export.c -- `brdffit export FITS... --out DIR [--format gltf|mitsuba]`:
+ * each fit of model gltf or gltf-ext in the files of fits (the JSON Lines of
+ * `fit --json`, a batch's fits.tsv) as DIR/MATERIAL-MODEL.gltf, the material
+ * on a sphere (export/gltf_write.c); with --format mitsuba each fit of any
+ * model as DIR/MATERIAL-MODEL.xml, a Mitsuba 3 scene of the render sphere
+ * (export/mitsuba_write.c).  Fits of other models and fits that failed are
+ * skipped with a line on stderr; a record whose values are not a material's
+ * is refused naming its file and line. */
 #define _POSIX_C_SOURCE 200809L
 #include "batch.h"
 #include "cli.h"
@@ -14,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define EXPORT_FORMATS "gltf"
+#define EXPORT_FORMATS "gltf, mitsuba"
 #define MAX_OTHER_MODELS 16
 
 const cli_help_block *cli_export_help(void)
@@ -24,12 +26,22 @@ const cli_help_block *cli_export_help(void)
                      "or a batch's fits.tsv; each fit of model gltf or gltf-ext\n"
                      "that succeeded (status ok or limit) is written, the\n"
                      "others skipped" },
-        { "--out DIR", "where the files go (made when missing):\nDIR/MATERIAL-MODEL.gltf" },
+        { "--out DIR", "where the files go (made when missing):\n"
+                       "DIR/MATERIAL-MODEL.gltf (.xml for mitsuba)" },
         { "--format gltf", "the file format (default gltf): glTF 2.0, one .gltf a\n"
                            "fit, the material on a sphere, the buffer embedded;\n"
                            "a gltf-ext fit adds KHR_materials_ior and\n"
                            "KHR_materials_specular (a viewer without them shows\n"
                            "the core material)" },
+        { "--format mitsuba", "a Mitsuba 3 scene XML a fit, of any model: render's\n"
+                              "sphere, camera and lights with a BSDF of type brdffit\n"
+                              "(the Python package's plugin, brdffit.mitsuba)" },
+        { "--size N, --spp N", "mitsuba: N x N pixels (default 256), samples per\n"
+                               "pixel, a square (default 64)" },
+        { "--light X,Y,Z[:R,G,B]", "mitsuba: a directional light as render takes it\n"
+                                   "(repeatable; default render's key and rim lights)" },
+        { "--env FILE.exr", "mitsuba: render's latitude-longitude environment (its\n"
+                            "absolute path in the scene); without --light the only light" },
     };
     static const cli_help_block block = CLI_HELP_BLOCK("Arguments of export", NULL, items);
     return &block;
@@ -39,6 +51,8 @@ typedef struct export_run {
     const char *out;
     const char *path;              /* the file of fits being read             */
     gltf_mesh mesh;
+    int mitsuba;                   /* --format mitsuba                        */
+    mitsuba_scene scene;
     int made_out;                  /* DIR is open (dir)                       */
     out_dir dir;                   /* --out, opened once (outdir.h)            */
     int written, refused;
@@ -68,7 +82,8 @@ static int name_ok(const char *name)
 }
 
 
-static int write_file(export_run *X, const char *file, const gltf_material *m)
+static int write_file(export_run *X, const char *file, const gltf_material *m,
+                      const fit_record *r)
 {
     brdffit_error err;
     memset(&err, 0, sizeof err);
@@ -85,7 +100,10 @@ static int write_file(export_run *X, const char *file, const gltf_material *m)
     }
     if (out_open(&o, &X->dir, file, &err) != 0)
         goto fail;
-    gltf_write(o.f, m, &X->mesh);
+    if (X->mitsuba)
+        mitsuba_write(o.f, r, m->name, &X->scene);
+    else
+        gltf_write(o.f, m, &X->mesh);
     if (out_commit(&o, &err) != 0)
         goto fail;
     plain_string(stdout, path);
@@ -108,7 +126,7 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
     if (r->kind != FR_FIT && r->kind != FR_FAILURE)
         return 0; /* a journal's published Errors and renders */
     int ext = strcmp(r->model, "gltf-ext") == 0;
-    if (r->kind == FR_FIT && !ext && strcmp(r->model, "gltf") != 0) {
+    if (r->kind == FR_FIT && !X->mitsuba && !ext && strcmp(r->model, "gltf") != 0) {
         note_other_model(X, r->model);
         return 0;
     }
@@ -126,7 +144,9 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
         X->refused++;
         return 0;
     }
-    const char *bad = gltf_material_of(r, ext, &m, reason, sizeof reason);
+    memset(&m, 0, sizeof m);
+    const char *bad = X->mitsuba ? mitsuba_fit_check(r, reason, sizeof reason)
+                                 : gltf_material_of(r, ext, &m, reason, sizeof reason);
     if (bad) {
         cli_error("%s: line %ld: %s, %s: %s; not written", X->path, line, r->material, r->model,
                   bad);
@@ -136,8 +156,8 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
     snprintf(name, sizeof name, "%s-%s", r->material, r->model);
     m.name = name;
     char file[sizeof name + 8];
-    snprintf(file, sizeof file, "%s.gltf", name);
-    if (write_file(X, file, &m) != 0)
+    snprintf(file, sizeof file, "%s.%s", name, X->mitsuba ? "xml" : "gltf");
+    if (write_file(X, file, &m, r) != 0)
         X->refused++;
     else
         X->written++;
@@ -148,10 +168,18 @@ static int visit(void *user, const fit_record *r, long line, const char *why)
 static int parse(int argc, char **argv, export_run *X, char **files, int *nfiles)
 {
     const char *format = "gltf";
+    int scene_opts = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (cli_is_help(a))
             return CLI_HELP;
+        int r = mitsuba_option(&X->scene, argc, argv, &i);
+        if (r != 1) {
+            if (r != CLI_OK)
+                return r;
+            scene_opts = 1;
+            continue;
+        }
         if (strcmp(a, "--out") == 0 && i + 1 < argc)
             X->out = argv[++i];
         else if (strncmp(a, "--out=", 6) == 0)
@@ -165,8 +193,12 @@ static int parse(int argc, char **argv, export_run *X, char **files, int *nfiles
         else
             files[(*nfiles)++] = argv[i];
     }
-    if (strcmp(format, "gltf") != 0)
+    X->mitsuba = strcmp(format, "mitsuba") == 0;
+    if (strcmp(format, "gltf") != 0 && !X->mitsuba)
         return cli_usage_error("export: unknown format '%s' (formats: " EXPORT_FORMATS ")", format);
+    if (scene_opts && !X->mitsuba)
+        return cli_usage_error("export: --size, --spp, --light and --env are for --format mitsuba");
+    mitsuba_options_done(&X->scene);
     if (!X->out || !X->out[0] || *nfiles == 0)
         return cli_usage_error("export needs files of fits and --out DIR");
     return CLI_OK;
@@ -184,12 +216,13 @@ int cmd_export(int argc, char **argv)
 {
     export_run X;
     memset(&X, 0, sizeof X);
+    mitsuba_scene_default(&X.scene);
     int nfiles = 0;
     char **files = malloc((size_t)(argc > 0 ? argc : 1) * sizeof *files);
     if (!files)
         return CLI_FAILED;
     int rc = parse(argc, argv, &X, files, &nfiles);
-    if (rc == CLI_OK && gltf_mesh_make(&X.mesh) != 0) {
+    if (rc == CLI_OK && !X.mitsuba && gltf_mesh_make(&X.mesh) != 0) {
         cli_error("out of memory");
         rc = CLI_FAILED;
     }
@@ -205,8 +238,9 @@ int cmd_export(int argc, char **argv)
     if (rc == CLI_OK) {
         report_others(&X);
         if (X.written == 0)
-            cli_error(X.refused ? "nothing written"
-                                : "nothing written: no fit of model gltf or gltf-ext to export");
+            cli_error(X.refused   ? "nothing written"
+                      : X.mitsuba ? "nothing written: no fit to export"
+                                  : "nothing written: no fit of model gltf or gltf-ext to export");
         rc = X.written == 0 || X.refused ? CLI_FAILED : CLI_OK;
     }
     gltf_mesh_free(&X.mesh);

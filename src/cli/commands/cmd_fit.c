@@ -212,14 +212,18 @@ static void fit_file(runner *R, const char *path, const char *next, int first)
     src.path = path;
     snprintf(src.id.path, sizeof src.id.path, "%s", path);
     src.id.size = -1;
-    if (prefetch_wait(&R->pre, path)) { /* its sample set, made meanwhile */
+    if (prefetch_wait(&R->pre, path)) { /* its table and sample set, made meanwhile */
         src.samples = R->pre.samples;
+        src.table = R->pre.table; /* the records' measured albedo */
         R->pre.samples = NULL;
+        R->pre.table = NULL;
     }
-    prefetch_drop(&R->pre); /* what it held besides: its table */
+    prefetch_drop(&R->pre);
     R->next = next;
     R->first = first;
-    if (fit_material(R, &m, &src) != 0 || o->json)
+    int failed = fit_material(R, &m, &src) != 0;
+    brdffit_table_free(src.table);
+    if (failed || o->json)
         return;
     report_legend(stdout, o->models, o->nmodels, (brdffit_metric)o->fit.metric);
     print_best(R, brdffit_seconds() - t0);

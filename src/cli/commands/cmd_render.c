@@ -14,7 +14,10 @@ const cli_help_block *cli_draw_help(void)
         { "--out DIR", "where the files go (made when missing)" },
         { "--fits FILE", "the fits to draw: `brdffit fit --json` output (JSON\n"
                          "Lines) or an ngan2005-fits.tsv-style TSV; default:\n"
-                         "fit the models now" },
+                         "fit the models now; a TSV's parameters are scored\n"
+                         "on TABLE (their Error); one stating '# scale: S'\n"
+                         "needs --scale S" },
+        { "--allow-scale-mismatch", "draw a --fits TSV of another scale anyway" },
         { "--interp trilinear|nearest", "table lookup (default trilinear)" },
     };
     static const cli_help_block block = CLI_HELP_BLOCK(

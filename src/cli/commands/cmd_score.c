@@ -19,7 +19,9 @@ const cli_help_block *cli_score_help(void)
                                                          "paper's units (gltf, gltf-ext: base colour,\n"
                                                          "specular colour, metallic,roughness,ior,specular)" },
         { "--fits FILE", "score the rows of this material (named by TABLE's file)\n"
-                         "in an ngan2005-fits.tsv-style TSV" },
+                         "in an ngan2005-fits.tsv-style TSV; a file stating\n"
+                         "'# scale: S' needs --scale S" },
+        { "--allow-scale-mismatch", "score a --fits file of another scale anyway" },
     };
     static const cli_help_block block = CLI_HELP_BLOCK(
         "Options of score", "and the options of fit: --scale, --cutoff, --backend, --device",
@@ -102,6 +104,7 @@ typedef struct score_args {
     const char *params;
     const char *fits;
     int model_given;   /* --model was on the command line */
+    int allow_scale_mismatch;
 } score_args;
 
 static int parse_score(int argc, char **argv, score_args *a)
@@ -120,6 +123,10 @@ static int parse_score(int argc, char **argv, score_args *a)
             dst = &a->fits, n = 6;
         if (strncmp(argv[i], "--model", 7) == 0 && (argv[i][7] == '\0' || argv[i][7] == '='))
             a->model_given = 1;
+        if (strcmp(argv[i], "--allow-scale-mismatch") == 0) {
+            a->allow_scale_mismatch = 1;
+            continue;
+        }
         if (!dst) {
             rest[nrest++] = argv[i];
             continue;
@@ -155,6 +162,15 @@ static int score_fits(score_job *J, const score_args *a, const char *material)
     if (pub_read(a->fits, &t, &err) != 0) {
         cli_error("--fits: %s", err.message);
         return CLI_USAGE;
+    }
+    char why[BRDFFIT_MESSAGE_MAX];
+    if (pub_scale_mismatch(&t, a->common.sample.scale, why, sizeof why)) {
+        if (!a->allow_scale_mismatch) {
+            cli_error("--fits: %s; %s", why, pub_scale_advice(&t));
+            pub_free(&t);
+            return CLI_USAGE;
+        }
+        cli_error("warning: --fits: %s: %s", why, PUB_SCALE_NOTE);
     }
     int found = 0;
     char origin[BJ_PATH_MAX + 16];

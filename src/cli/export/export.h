@@ -6,7 +6,8 @@
  *   gltf_mesh.c   the sphere the material is shown on: its vertices and
  *                 triangles as glTF's little-endian buffer
  *   gltf_write.c  the glTF 2.0 file: one JSON text, the buffer embedded
- *   gltf_record.c a fit record of a glTF model as the material written */
+ *   gltf_record.c a fit record of a glTF model as the material written
+ *   mitsuba_write.c a fit as a Mitsuba 3 scene of the render sphere */
 #ifndef BRDFFIT_EXPORT_H
 #define BRDFFIT_EXPORT_H
 
@@ -85,5 +86,31 @@ void gltf_write_material(FILE *f, const gltf_material *m);
  * material into m (its name left NULL): NULL, or why not (into why). */
 const char *gltf_material_of(const fit_record *r, int ext, gltf_material *m, char *why,
                              size_t len);
+
+/* ---- mitsuba_write.c ---- */
+
+/* What a Mitsuba scene shows besides the fit: brdffit render's sphere. */
+typedef struct mitsuba_scene {
+    int width;                /* N x N pixels (render's --size)               */
+    int spp;                  /* samples per pixel                            */
+    int nlights;
+    brdffit_light lights[BRDFFIT_RENDER_MAX_LIGHTS]; /* toward the light, camera frame */
+    char env[4096];           /* the environment map's absolute path, or ""   */
+    int lights_given;         /* --light was given (else the defaults, or none with --env) */
+} mitsuba_scene;
+
+/* The defaults: 256 pixels, 64 samples, render's default lights, no map. */
+int mitsuba_scene_default(mitsuba_scene *sc);
+/* The options of the scene (mitsuba_options.c): --size N, --spp N,
+ * --light X,Y,Z[:R,G,B], --env FILE.exr as render takes them.  CLI_OK,
+ * CLI_USAGE (printed), or 1 when argv[*i] is none of them. */
+int mitsuba_option(mitsuba_scene *sc, int argc, char **argv, int *i);
+/* After the options: --env without --light lights the sphere by the map alone. */
+void mitsuba_options_done(mitsuba_scene *sc);
+/* NULL when fit record r names a model and holds parameters it accepts,
+ * else why not (into why). */
+const char *mitsuba_fit_check(const fit_record *r, char *why, size_t len);
+/* The scene XML of the fit in r (checked) onto f; name MATERIAL-MODEL. */
+void mitsuba_write(FILE *f, const fit_record *r, const char *name, const mitsuba_scene *sc);
 
 #endif

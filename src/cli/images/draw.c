@@ -71,6 +71,10 @@ int draw_common_option(draw_job *j, int argc, char **argv, int *i)
             j->fits = v;
         return r != 1 ? r : CLI_OK;
     }
+    if (strcmp(argv[*i], "--allow-scale-mismatch") == 0) {
+        j->allow_scale_mismatch = 1;
+        return CLI_OK;
+    }
     if ((r = draw_option(argc, argv, i, "--interp", &v)) != 0) {
         if (r != 1)
             return r;
@@ -120,9 +124,14 @@ static int get_fits(draw_job *j, const brdffit_table *t, const char *material, r
 {
     if (j->fits) {
         brdffit_error err;
-        if (mf_read(j->fits, material, j->o.models, j->o.nmodels, j->o.sample.scale, fits, nfits,
-                    &err) != 0) {
+        mf_scale sc = { j->o.sample.scale, j->allow_scale_mismatch };
+        if (mf_read(j->fits, material, j->o.models, j->o.nmodels, &sc, fits, nfits, &err) != 0) {
             cli_error("--fits %s", err.message);
+            return CLI_FAILED;
+        }
+        /* a TSV of parameters holds no Error: it is computed here, as score does */
+        if (j->s.render && mf_score(t, &j->o.sample, &j->o.context, fits, *nfits, &err) != 0) {
+            cli_error("--fits %s: %s", j->fits, err.message);
             return CLI_FAILED;
         }
         return CLI_OK;
@@ -137,17 +146,16 @@ static void print_summary(const draw_job *j, const char *material, const rf_fit 
 {
     printf("%s: files in %s\n", material, j->out);
     if (j->s.render) {
-        printf("  renders %dx%d, exposure %.4g (%s), difference white = %.4g (%.0f%% of the "
-               "PNG white level)\n",
+        printf("  renders %dx%d, exposure %.4g (%s), differences in L* of the PNGs, full "
+               "scale +-%g\n",
                j->s.render_opt.width, j->s.render_opt.width, r->exposure,
-               j->s.exposure > 0 ? "--exposure" : "from the reference", r->diff_scale,
-               100 * RF_DIFF_FRACTION);
-        printf("  reference: %zu covered pixels, %zu with masked lookups\n", r->covered,
-               r->masked);
-        printf("  %-18s %12s %12s\n", "model", "Error", "image error");
+               j->s.exposure > 0 ? "--exposure" : "from the reference", r->diff_scale);
+        printf("  reference: %zu covered pixels, %zu with masked lookups (%zu filled from "
+               "covered neighbours)\n", r->covered, r->masked, r->filled);
+        printf("  %-18s %12s %12s %12s\n", "model", "Error", "image error", "relative RMS");
         for (int k = 0; k < nfits; k++)
-            printf("  %-18s %12.4g %12.4g\n", brdffit_model_get(fits[k].model)->name,
-                   fits[k].error, r->image_error[k]);
+            printf("  %-18s %12.4g %12.4g %12.4g\n", brdffit_model_get(fits[k].model)->name,
+                   fits[k].error, r->image_error[k], r->relative_rms[k]);
     }
     for (int i = 0; i < r->nfiles; i++) {
         printf("  %-26s ", r->files[i].file);

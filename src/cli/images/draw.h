@@ -12,6 +12,7 @@ typedef struct draw_job {
     const char *out;       /* --out DIR                                    */
     const char *fits;      /* --fits FILE, or NULL: fit now                */
     const char *env;       /* --env FILE.exr, or NULL                      */
+    int allow_scale_mismatch; /* --allow-scale-mismatch                    */
     rf_settings s;         /* what to draw and how                         */
     char **rest;           /* the arguments left for cli_parse_options     */
     int nrest;
@@ -22,7 +23,7 @@ int draw_init(draw_job *j, int argc);
 /* argv[*i] is "--name VALUE" or "--name=VALUE": 1 and *value (stepping *i),
  * 0 when it is another argument, CLI_USAGE (printed) when the value is missing. */
 int draw_option(int argc, char **argv, int *i, const char *name, const char **value);
-/* --out, --fits, --interp: CLI_OK, CLI_USAGE (printed), or 1 when argv[*i]
+/* --out, --fits, --interp, --allow-scale-mismatch: CLI_OK, CLI_USAGE (printed), or 1 when argv[*i]
  * is none of them. */
 int draw_common_option(draw_job *j, int argc, char **argv, int *i);
 /* Up to n comma-separated finite numbers of s into v: how many, or -1. */

@@ -4,7 +4,9 @@
  *
  *   exr_io.c    linear RGBA float EXR out; RGB (half, float or uint) EXR in
  *   png_io.c    8-bit RGB PNG out
- *   tonemap.c   exposure, the sRGB transfer curve, the difference false colour
+ *   tonemap.c   exposure, the sRGB transfer curve
+ *   colour_maps.c  magma and the blue-white-red diverging map
+ *   compare_images.c  masked pixels filled, signed lightness differences, FLIP maps, colour bars
  *
  * Files are written whole into an open directory (outdir.h: a temporary
  * renamed over the name; no link followed).
@@ -58,13 +60,42 @@ double tm_auto_exposure(const float *rgba, int width, int height, size_t stride)
 void tm_to_srgb8(const float *rgba, int width, int height, size_t stride, double exposure,
                  unsigned char *rgb);
 
-/* The difference image: per pixel e = max_c |img_c - ref_c| / scale, clamped
- * to [0, 1], through a false-colour map (black 0 -> blue -> red -> yellow ->
- * white 1); off the sphere black; where ref is masked (A not 1) grey
- * (128, 128, 128). */
-void tm_difference8(const float *ref, const float *img, int width, int height, size_t stride,
-                    double scale, unsigned char *rgb);
-/* The false colour of e in [0, 1] into rgb[3] (the difference images' map). */
-void tm_false_colour(double e, unsigned char rgb[3]);
+/* ---- colour_maps.c ---- */
+
+/* Magma (NVIDIA's FLIP tool's error-map colours) of v in [0, 1] (clamped). */
+void cm_magma(double v, unsigned char rgb[3]);
+/* The blue-white-red diverging map (ColorBrewer RdBu) of t in [-1, 1]
+ * (clamped): -1 dark blue, 0 white, +1 dark red. */
+void cm_diverging(double t, unsigned char rgb[3]);
+
+/* ---- compare_images.c ---- */
+
+/* Reference pixels whose lookups met a masked bin (A = BRDFFIT_COVERAGE_MASKED)
+ * take the mean RGB of the measured pixels (A = 1) among their 8 neighbours,
+ * or failing that within 2 pixels, and A = 1; the count of such pixels is
+ * returned.  Others keep their A.  rgba: n x n, stride 4 n. */
+size_t ci_fill_masked(float *rgba, int n);
+
+/* CIE L* (0..100) of each 8-bit sRGB pixel of the display image rgb8 (n x n)
+ * where the reference rgba is covered (A = 1), NaN elsewhere, into l. */
+void ci_lightness(const unsigned char *rgb8, const float *ref_rgba, int n, float *l);
+
+/* The full scale of the signed difference images: the 95th percentile of
+ * |dl| over the count finite values of dl, rounded up to the next of 1, 1.5,
+ * 2, 3, 5, 7 times a power of ten, in [1, 100] (1 when there is none). */
+double ci_diff_scale(const float *dl, size_t count);
+
+/* The signed difference image of dl = L*(model) - L*(reference): the
+ * diverging map of dl / scale where the reference is covered; black off the
+ * sphere (A = 0); grey (128, 128, 128) where the reference stays masked. */
+void ci_diff_image(const float *dl, const float *ref_rgba, int n, double scale, unsigned char *rgb);
+
+/* The FLIP map (n x n values in [0, 1]) in magma. */
+void ci_flip_image(const float *map, int n, unsigned char *rgb);
+
+/* The colour bars of the comparison images, SVG files in dir:
+ * diff-scale.svg (-scale..+scale L*, darker / brighter) and flip-scale.svg
+ * (FLIP 0..1, magma).  0 or -1 with err. */
+int ci_write_bars(const out_dir *dir, double scale, brdffit_error *err);
 
 #endif

@@ -87,21 +87,34 @@ static void caption_of(const rf_fit *f, char *buf, size_t len)
 typedef struct render_job {
     const out_dir *dir;
     int n;                   /* image width = height */
-    float *ref, *img;        /* RGBA, 4 n^2 floats each */
+    float *ref, *img;        /* RGBA, 4 n^2 floats each (ref: masked pixels filled) */
+    const float *raw;        /* the reference as rendered (relative_rms: its covered pixels) */
     unsigned char *rgb8;     /* 3 n^2 */
     rf_result *r;
     brdffit_error *err;
+    const float *ref_l;      /* the reference PNG's L* (ci_lightness)             */
+    float *dl;               /* n^2 per fit: L*(model) - L*(reference)            */
+    const brdffit_flip_ref *flip; /* the reference PNG for FLIP                   */
+    float *work;             /* 5 n^2: the model's L*, its PNG as floats, FLIP map */
 } render_job;
 
-/* name.exr (linear) and name.png (display) of rgba. */
-static int write_pair(render_job *j, const float *rgba, const char *stem, const char *caption,
-                      int fit)
+/* name.exr (linear RGBA). */
+static int write_exr(render_job *j, const float *rgba, const char *stem, const char *caption,
+                     int fit)
 {
     char name[160];
     snprintf(name, sizeof name, "%s.exr", stem);
     if (exr_write_rgba(j->dir, name, rgba, j->n, j->n, 0, j->err) != 0)
         return -1;
     add_file(j->r, name, caption, RF_DATA, fit);
+    return 0;
+}
+
+/* name.png (display) of rgba, left in j->rgb8. */
+static int write_png(render_job *j, const float *rgba, const char *stem, const char *caption,
+                     int fit)
+{
+    char name[160];
     tm_to_srgb8(rgba, j->n, j->n, 0, j->r->exposure, j->rgb8);
     snprintf(name, sizeof name, "%s.png", stem);
     if (png_write_rgb8(j->dir, name, j->rgb8, j->n, j->n, j->err) != 0)
@@ -110,26 +123,47 @@ static int write_pair(render_job *j, const float *rgba, const char *stem, const 
     return 0;
 }
 
+/* The model's PNG in j->rgb8 against the reference's: its L* difference
+ * (kept for the difference image, written once the scale is known) and its
+ * FLIP map, written as STEM-flip.png; the mean FLIP is its image error. */
+static int compare_model(render_job *j, const rf_fit *f, int k)
+{
+    size_t px = (size_t)j->n * (size_t)j->n;
+    float *l = j->work, *srgb = l + px, *map = srgb + 3 * px, *dl = j->dl + (size_t)k * px;
+    ci_lightness(j->rgb8, j->ref, j->n, l);
+    for (size_t i = 0; i < px; i++)
+        dl[i] = l[i] - j->ref_l[i];
+    for (size_t i = 0; i < 3 * px; i++)
+        srgb[i] = j->rgb8[i] / 255.0f;
+    double mean;
+    brdffit_error lerr;
+    if (brdffit_flip_compare(j->flip, srgb, 0, map, &mean, &lerr) != BRDFFIT_OK)
+        return failf(j->err, lerr.status, "FLIP %s: %s", stem_of(f), lerr.message);
+    j->r->image_error[k] = mean;
+    ci_flip_image(map, j->n, j->rgb8);
+    char name[160], caption[256];
+    snprintf(name, sizeof name, "%s-flip.png", stem_of(f));
+    if (png_write_rgb8(j->dir, name, j->rgb8, j->n, j->n, j->err) != 0)
+        return -1;
+    snprintf(caption, sizeof caption, "%s: \xea\x9f\xbbLIP %.3g", label_of(f), mean);
+    add_file(j->r, name, caption, RF_IMAGE, k);
+    return 0;
+}
+
 static int write_model(render_job *j, const rf_fit *f, int k, const rf_settings *s)
 {
-    char caption[256], name[160];
+    char caption[256];
     brdffit_error lerr;
     if (brdffit_render_model(f->model, &f->params, &s->render_opt, j->img, 0, &lerr) != BRDFFIT_OK)
         return failf(j->err, lerr.status, "render %s: %s", stem_of(f), lerr.message);
     caption_of(f, caption, sizeof caption);
-    if (write_pair(j, j->img, stem_of(f), caption, k) != 0)
+    if (write_exr(j, j->img, stem_of(f), caption, k) != 0 ||
+        write_png(j, j->img, stem_of(f), caption, k) != 0)
         return -1;
     double e;
-    j->r->image_error[k] = brdffit_image_error(j->ref, j->img, j->n, j->n, 0, &e, NULL, NULL) ==
-                                   BRDFFIT_OK ? e : NAN;
-    tm_difference8(j->ref, j->img, j->n, j->n, 0, j->r->diff_scale, j->rgb8);
-    snprintf(name, sizeof name, "%s-diff.png", stem_of(f));
-    if (png_write_rgb8(j->dir, name, j->rgb8, j->n, j->n, j->err) != 0)
-        return -1;
-    snprintf(caption, sizeof caption, "%s |model - reference|, image error %.3g (white = %.3g)",
-             label_of(f), j->r->image_error[k], j->r->diff_scale);
-    add_file(j->r, name, caption, RF_IMAGE, k);
-    return 0;
+    j->r->relative_rms[k] = brdffit_image_error(j->raw, j->img, j->n, j->n, 0, &e, NULL, NULL) ==
+                                    BRDFFIT_OK ? e : NAN;
+    return compare_model(j, f, k);
 }
 
 /* The models' renders and files are written by RF_WRITERS threads (writer w
@@ -172,12 +206,12 @@ static int write_models(render_job *j, const rf_fit *fits, int nfits, const rf_s
         w[i] = (model_writer){ .j = *j, .fits = fits, .s = s, .first = i, .nfits = nfits,
                                .failed = nfits };
         w[i].r.exposure = j->r->exposure;
-        w[i].r.diff_scale = j->r->diff_scale;
         w[i].j.r = &w[i].r;
         w[i].j.err = &w[i].err;
         w[i].j.img = malloc(16 * px);
         w[i].j.rgb8 = malloc(3 * px);
-        if (!w[i].j.img || !w[i].j.rgb8)
+        w[i].j.work = malloc(sizeof(float) * 5 * px);
+        if (!w[i].j.img || !w[i].j.rgb8 || !w[i].j.work)
             rc = failf(j->err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", j->dir->path);
     }
     for (int i = 1; rc == 0 && i < RF_WRITERS; i++) /* writer 0 in this thread */
@@ -197,6 +231,7 @@ static int write_models(render_job *j, const rf_fit *fits, int nfits, const rf_s
             break;
         }
         j->r->image_error[k] = o->r.image_error[k];
+        j->r->relative_rms[k] = o->r.relative_rms[k];
         for (int f = 0; f < o->r.nfiles; f++)
             if (o->r.files[f].fit == k && j->r->nfiles < RF_MAX_FILES)
                 j->r->files[j->r->nfiles++] = o->r.files[f];
@@ -204,8 +239,57 @@ static int write_models(render_job *j, const rf_fit *fits, int nfits, const rf_s
     for (int i = 0; w && i < RF_WRITERS; i++) {
         free(w[i].j.img);
         free(w[i].j.rgb8);
+        free(w[i].j.work);
     }
     free(w);
+    return rc;
+}
+
+/* The difference images, once every model's L* difference is known: one
+ * full scale for them all (ci_diff_scale), and the colour bars. */
+static int write_diffs(render_job *j, const rf_fit *fits, int nfits)
+{
+    size_t px = (size_t)j->n * (size_t)j->n;
+    j->r->diff_scale = ci_diff_scale(j->dl, (size_t)nfits * px);
+    for (int k = 0; k < nfits; k++) {
+        char name[160], caption[256];
+        ci_diff_image(j->dl + (size_t)k * px, j->ref, j->n, j->r->diff_scale, j->rgb8);
+        snprintf(name, sizeof name, "%s-diff.png", stem_of(&fits[k]));
+        if (png_write_rgb8(j->dir, name, j->rgb8, j->n, j->n, j->err) != 0)
+            return -1;
+        snprintf(caption, sizeof caption, "%s: \xce\x94L*, \xea\x9f\xbbLIP %.3g",
+                 label_of(&fits[k]), j->r->image_error[k]);
+        add_file(j->r, name, caption, RF_IMAGE, k);
+    }
+    if (ci_write_bars(j->dir, j->r->diff_scale, j->err) != 0)
+        return -1;
+    add_file(j->r, "diff-scale.svg", "colours of the difference images", RF_IMAGE, -1);
+    add_file(j->r, "flip-scale.svg", "colours of the FLIP maps", RF_IMAGE, -1);
+    return 0;
+}
+
+/* The reference: its EXR as rendered (masked pixels A = 0.5), then its
+ * masked pixels filled where a covered neighbour is, its PNG, the PNG's L*
+ * and its FLIP reference. */
+static int write_reference(render_job *j, float *raw, float *ref_l, brdffit_flip_ref **flip)
+{
+    size_t px = (size_t)j->n * (size_t)j->n;
+    if (write_exr(j, j->ref, "reference", "Reference (measured)", -1) != 0)
+        return -1;
+    memcpy(raw, j->ref, sizeof(float) * 4 * px);
+    j->r->filled = ci_fill_masked(j->ref, j->n);
+    if (write_png(j, j->ref, "reference", "Reference (measured)", -1) != 0)
+        return -1;
+    ci_lightness(j->rgb8, j->ref, j->n, ref_l);
+    float *srgb = malloc(sizeof(float) * 3 * px);
+    if (!srgb)
+        return failf(j->err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", j->dir->path);
+    for (size_t i = 0; i < 3 * px; i++)
+        srgb[i] = j->rgb8[i] / 255.0f;
+    brdffit_error lerr;
+    int rc = brdffit_flip_ref_create(srgb, j->n, j->n, 0, 0, flip, &lerr) == BRDFFIT_OK
+                 ? 0 : failf(j->err, lerr.status, "FLIP reference: %s", lerr.message);
+    free(srgb);
     return rc;
 }
 
@@ -214,9 +298,13 @@ static int write_renders(const out_dir *dir, const brdffit_table *table, const r
 {
     int n = s->render_opt.width, rc = -1;
     size_t px = (size_t)n * (size_t)n;
-    render_job j = { dir, n, malloc(16 * px), malloc(16 * px), malloc(3 * px), r, err };
+    render_job j = { dir, n, malloc(16 * px), malloc(16 * px), NULL, malloc(3 * px), r, err,
+                     NULL, malloc(sizeof(float) * px * (size_t)(nfits > 0 ? nfits : 1)), NULL,
+                     NULL };
+    float *ref_l = malloc(sizeof(float) * px), *raw = malloc(16 * px);
+    brdffit_flip_ref *flip = NULL;
     brdffit_error lerr;
-    if (!j.ref || !j.img || !j.rgb8) {
+    if (!j.ref || !j.img || !j.rgb8 || !j.dl || !ref_l || !raw) {
         failf(err, BRDFFIT_E_NO_MEMORY, "%s: no memory for the images", dir->path);
         goto done;
     }
@@ -230,14 +318,21 @@ static int write_renders(const out_dir *dir, const brdffit_table *table, const r
         r->masked += j.ref[4 * i + 3] == BRDFFIT_COVERAGE_MASKED;
     }
     r->exposure = s->exposure > 0 ? s->exposure : tm_auto_exposure(j.ref, n, n, 0);
-    r->diff_scale = RF_DIFF_FRACTION / r->exposure;
-    if (write_pair(&j, j.ref, "reference", "Reference (measured)", -1) != 0)
+    if (write_reference(&j, raw, ref_l, &flip) != 0)
         goto done;
-    rc = write_models(&j, fits, nfits, s);
+    j.raw = raw;
+    j.ref_l = ref_l;
+    j.flip = flip;
+    if (write_models(&j, fits, nfits, s) == 0 && write_diffs(&j, fits, nfits) == 0)
+        rc = 0;
 done:
+    brdffit_flip_ref_free(flip);
+    free(ref_l);
+    free(raw);
     free(j.ref);
     free(j.img);
     free(j.rgb8);
+    free(j.dl);
     return rc;
 }
 
@@ -279,13 +374,18 @@ static void json_body(FILE *f, const char *material, const rf_fit *fits, int nfi
     fprintf(f, ",\"exposure_rule\":\"%s\",\"transfer\":\"sRGB (IEC 61966-2-1) of exposure x "
                "radiance, clamped to [0, 1], 8-bit\"",
             s->exposure > 0 ? "given" : "1 / 99th percentile of max(R, G, B) over the sphere");
-    fputs(",\"difference\":{\"value\":\"max over R, G, B of |model - reference|\","
+    fputs(",\"difference\":{\"value\":\"L*(model PNG) - L*(reference PNG), CIE lightness\","
           "\"full_scale\":", f);
     json_number(f, r->diff_scale);
-    fputs(",\"colours\":\"black 0, blue 1/4, red 1/2, yellow 3/4, white 1 of full scale; grey: "
-          "masked reference pixel\"}", f);
-    fprintf(f, ",\"image_error\":\"RMS of model - reference over covered pixels / RMS of the "
-               "reference\",\"covered\":%zu,\"masked\":%zu,\"models\":[", r->covered, r->masked);
+    fputs(",\"scale_rule\":\"95th percentile of |value| over the covered pixels of all models, "
+          "rounded up to 1, 1.5, 2, 3, 5 or 7 x 10^k, in [1, 100]\",\"colours\":\"ColorBrewer RdBu: "
+          "dark blue -full_scale (model darker), white 0, dark red +full_scale (model brighter); "
+          "black off the sphere; grey: masked reference pixel with no covered neighbour\"}", f);
+    fprintf(f, ",\"image_error\":\"mean LDR FLIP (NVIDIA) of the model PNG against the "
+               "reference PNG over all pixels, 67 pixels per degree\",\"relative_rms\":\"RMS of "
+               "model - reference over covered pixels / RMS of the reference (linear)\","
+               "\"covered\":%zu,\"masked\":%zu,\"masked_filled\":%zu,\"models\":[",
+            r->covered, r->masked, r->filled);
     for (int k = 0; k < nfits; k++) {
         fputs(k ? ",{\"model\":" : "{\"model\":", f);
         json_string(f, brdffit_model_get(fits[k].model)->name);
@@ -295,6 +395,8 @@ static void json_body(FILE *f, const char *material, const rf_fit *fits, int nfi
         json_number(f, fits[k].error);
         fputs(",\"image_error\":", f);
         json_number(f, r->image_error[k]);
+        fputs(",\"relative_rms\":", f);
+        json_number(f, r->relative_rms[k]);
         fputc('}', f);
     }
     fputs("]}\n", f);
@@ -374,7 +476,7 @@ int rf_write_material_at(const out_dir *dir, const char *material, const brdffit
     rf_result *r = out ? out : &scratch;
     memset(r, 0, sizeof *r);
     for (int k = 0; k < RF_MAX_FITS; k++)
-        r->image_error[k] = NAN;
+        r->image_error[k] = r->relative_rms[k] = NAN;
     if (!dir || !material || !table || !s || nfits < 0 || nfits > RF_MAX_FITS ||
         (nfits > 0 && !fits))
         return failf(err, BRDFFIT_E_INVALID_ARGUMENT, "rf_write_material: bad arguments");

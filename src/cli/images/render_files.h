@@ -12,7 +12,11 @@
  *   reference.exr, reference.png       the measured table (EXR: linear RGBA,
  *                                      A the coverage; PNG: sRGB, 8-bit)
  *   STEM.exr, STEM.png                 each model at its parameters
- *   STEM-diff.png                      false colour of |model - reference|
+ *   STEM-diff.png                      L*(model PNG) - L*(reference PNG),
+ *                                      blue-white-red, one scale per material
+ *   STEM-flip.png                      FLIP of the model PNG against the
+ *                                      reference PNG (magma)
+ *   diff-scale.svg, flip-scale.svg     the colour bars of the two
  *   renders.json                       exposure, difference scale, image
  *                                      error of every model, lights, settings
  *   plot-measured.svg                  the measured curves alone
@@ -20,9 +24,13 @@
  * Display conventions: one exposure per material, chosen from the reference
  * (tm_auto_exposure: 1 / the 99th percentile of max(R, G, B) over the sphere)
  * unless given; PNG = sRGB transfer curve of exposure x radiance, clamped,
- * 8-bit.  Difference: e = max over channels |model - reference|, full scale
- * (white) at RF_DIFF_FRACTION / exposure, i.e. 20% of the radiance the PNGs
- * show as white; reference pixels with masked lookups grey, background black. */
+ * 8-bit.  Reference pixels with masked lookups take the mean of the measured
+ * pixels within 2 pixels (ci_fill_masked; in every image but reference.exr,
+ * which keeps A = 0.5); any with none stay grey in the difference images.
+ * Difference: CIE L* of the model's PNG minus the reference's, full scale the 95th percentile of |dL*|
+ * over all models' covered pixels rounded up to 1, 1.5, 2, 3, 5, 7 x 10^k
+ * (ci_diff_scale), background black.  Image error: the mean FLIP of the
+ * model's PNG against the reference's (brdffit_flip). */
 #ifndef BRDFFIT_RENDER_FILES_H
 #define BRDFFIT_RENDER_FILES_H
 
@@ -32,8 +40,7 @@
 #include <stddef.h>
 
 #define RF_MAX_FITS 16
-#define RF_MAX_FILES (4 + 4 * RF_MAX_FITS)
-#define RF_DIFF_FRACTION 0.2
+#define RF_MAX_FILES (6 + 5 * RF_MAX_FITS)
 
 typedef struct rf_fit {
     brdffit_model model;
@@ -65,9 +72,11 @@ void rf_settings_default(rf_settings *s, brdffit_scale scale);
 
 typedef struct rf_result {
     double exposure;                  /* of every PNG of the material              */
-    double diff_scale;                /* radiance at full scale of the difference images */
-    double image_error[RF_MAX_FITS];  /* per fit; NAN where undefined (black reference) */
-    size_t covered, masked;           /* reference pixels with A = 1 / masked      */
+    double diff_scale;                /* L* at full scale of the difference images */
+    double image_error[RF_MAX_FITS];  /* per fit: mean FLIP of its PNG; NAN: not made */
+    double relative_rms[RF_MAX_FITS]; /* per fit: brdffit_image_error; NAN where undefined */
+    size_t covered, masked;           /* reference pixels with A = 1 / masked, as rendered */
+    size_t filled;                    /* masked pixels filled from covered neighbours */
     double seconds_render, seconds_plot;
     rf_file files[RF_MAX_FILES];      /* every file written, in order              */
     int nfiles;

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* tonemap.c -- linear radiance to 8-bit display values: the exposure rule,
- * the sRGB transfer curve, the false colour of the difference images. */
+ * the sRGB transfer curve. */
 #include "image_io.h"
 
 #include <math.h>
@@ -59,45 +59,5 @@ void tm_to_srgb8(const float *rgba, int width, int height, size_t stride, double
             unsigned char *q = rgb + 3 * ((size_t)y * (size_t)width + (size_t)x);
             for (int c = 0; c < 3; c++)
                 q[c] = p[3] > 0 ? tm_srgb8(exposure * p[c]) : 0;
-        }
-}
-
-void tm_false_colour(double e, unsigned char rgb[3])
-{
-    /* piecewise linear through black, blue, red, yellow, white at 0, 1/4, 1/2, 3/4, 1 */
-    static const double stops[5][3] = {
-        { 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }, { 1, 1, 0 }, { 1, 1, 1 },
-    };
-    if (!(e > 0))
-        e = 0;
-    if (e > 1)
-        e = 1;
-    double t = e * 4;
-    int k = t >= 4 ? 3 : (int)t;
-    double a = t - k;
-    for (int c = 0; c < 3; c++)
-        rgb[c] = (unsigned char)lrint(255.0 * ((1 - a) * stops[k][c] + a * stops[k + 1][c]));
-}
-
-void tm_difference8(const float *ref, const float *img, int width, int height, size_t stride,
-                    double scale, unsigned char *rgb)
-{
-    if (stride == 0)
-        stride = 4 * (size_t)width;
-    for (int y = 0; y < height; y++)
-        for (int x = 0; x < width; x++) {
-            const float *a = ref + (size_t)y * stride + 4 * (size_t)x;
-            const float *b = img + (size_t)y * stride + 4 * (size_t)x;
-            unsigned char *q = rgb + 3 * ((size_t)y * (size_t)width + (size_t)x);
-            if (a[3] == 0) {
-                q[0] = q[1] = q[2] = 0;
-            } else if (a[3] != 1.0f) {
-                q[0] = q[1] = q[2] = 128;
-            } else {
-                double d = 0;
-                for (int c = 0; c < 3; c++)
-                    d = fmax(d, fabs((double)b[c] - (double)a[c]));
-                tm_false_colour(scale > 0 ? d / scale : 0, q);
-            }
         }
 }

@@ -33,12 +33,22 @@ static int material_failed(const fp_job *job, const fp_source *src, const fp_hoo
     return 1;
 }
 
+/* The table's albedo into the source, once (the fits' records carry it). */
+static void measure_albedo(const fp_job *job, fp_source *src, const brdffit_table *t)
+{
+    if (src->has_albedo || !t)
+        return;
+    brdffit_scale scale = job->sample ? job->sample->scale : BRDFFIT_SCALE_STANDARD;
+    src->has_albedo = fr_albedo_measure(t, scale, src->albedo) == 0;
+}
+
 /* The source's sample set into *s (the table read first unless given). */
 static brdffit_status make_samples(const fp_job *job, fp_source *src, brdffit_samples **s,
                                    brdffit_error *err)
 {
     *s = src->samples;
     src->samples = NULL;
+    measure_albedo(job, src, src->table);
     if (*s)
         return BRDFFIT_OK;
     brdffit_table *read = NULL;
@@ -50,6 +60,8 @@ static brdffit_status make_samples(const fp_job *job, fp_source *src, brdffit_sa
     }
     if (st == BRDFFIT_OK)
         st = brdffit_samples_create(t, job->sample, s, err);
+    if (st == BRDFFIT_OK)
+        measure_albedo(job, src, t);
     if (read && job->keep_table && st == BRDFFIT_OK)
         src->table = read;
     else
@@ -104,6 +116,8 @@ int fp_fit_table(const fp_job *job, fp_source *src, const fp_hooks *h)
             err.status = st;
         fp_record(r, FR_FIT, job, src);
         fr_set_fit(r, model, st, &err, st == BRDFFIT_OK ? &res : NULL, ctx, s);
+        if (st == BRDFFIT_OK)
+            fr_set_albedo(r, model, src->has_albedo ? (const double(*)[3])src->albedo : NULL);
         h->record(h->user, r, st == BRDFFIT_OK ? &res : NULL);
     }
     if (!r)

@@ -18,6 +18,10 @@ typedef struct fp_source {
                                   job keeps it (then the caller's to free)          */
     brdffit_samples *samples;  /* in: a sample set made ahead (taken: freed here)   */
     bj_identity id;            /* the records' file, size, hash                     */
+    int has_albedo;            /* in/out: albedo holds the table's directional albedo
+                                  (fr_albedo_measure), made here from the table when
+                                  not given                                        */
+    double albedo[FR_ALBEDO_N][3];
 } fp_source;
 
 /* What to fit it with. */

@@ -118,11 +118,21 @@ static int read_jsonl(const char *path, const char *material, const brdffit_mode
 }
 
 static int read_tsv(const char *path, const char *material, const brdffit_model *models,
-                    int nmodels, rf_fit *fits, int *nfits, brdffit_error *err)
+                    int nmodels, const mf_scale *sc, rf_fit *fits, int *nfits, brdffit_error *err)
 {
     pub_table t;
     if (pub_read(path, &t, err) != 0)
         return -1;
+    char why[BRDFFIT_MESSAGE_MAX];
+    if (pub_scale_mismatch(&t, sc->scale, why, sizeof why)) {
+        if (!sc->allow_mismatch) {
+            err->status = BRDFFIT_E_INVALID_ARGUMENT;
+            snprintf(err->message, sizeof err->message, "%.1500s; %s", why, pub_scale_advice(&t));
+            pub_free(&t);
+            return -1;
+        }
+        cli_error("warning: --fits %s: %s", why, PUB_SCALE_NOTE);
+    }
     for (int k = 0; k < nmodels; k++) {
         const pub_row *row = pub_find(&t, material, models[k]);
         if (!row)
@@ -131,7 +141,7 @@ static int read_tsv(const char *path, const char *material, const brdffit_model 
         memset(&f, 0, sizeof f);
         f.model = models[k];
         f.params = row->params;
-        f.error = NAN; /* a TSV of parameters holds no Error of this table */
+        f.error = NAN; /* a TSV of parameters holds no Error of this table: mf_score */
         keep(fits, nfits, &f);
     }
     pub_free(&t);
@@ -139,12 +149,12 @@ static int read_tsv(const char *path, const char *material, const brdffit_model 
 }
 
 int mf_read(const char *path, const char *material, const brdffit_model *models, int nmodels,
-            brdffit_scale scale, rf_fit *fits, int *nfits, brdffit_error *err)
+            const mf_scale *sc, rf_fit *fits, int *nfits, brdffit_error *err)
 {
     *nfits = 0;
     int rc = ends_with(path, ".tsv")
-                 ? read_tsv(path, material, models, nmodels, fits, nfits, err)
-                 : read_jsonl(path, material, models, nmodels, scale, fits, nfits, err);
+                 ? read_tsv(path, material, models, nmodels, sc, fits, nfits, err)
+                 : read_jsonl(path, material, models, nmodels, sc->scale, fits, nfits, err);
     if (rc == 0 && *nfits == 0) {
         err->status = BRDFFIT_E_NO_SAMPLES;
         snprintf(err->message, sizeof err->message,
@@ -158,6 +168,37 @@ int mf_read(const char *path, const char *material, const brdffit_model *models,
             snprintf(err->message, sizeof err->message, "%.500s: %.1500s", path, why);
             rc = -1;
         }
+    return rc;
+}
+
+int mf_score(const brdffit_table *table, const brdffit_sample_options *sample,
+             const brdffit_context_options *copt, rf_fit *fits, int nfits, brdffit_error *err)
+{
+    int missing = 0;
+    for (int k = 0; k < nfits; k++)
+        missing += isnan(fits[k].error);
+    if (!missing)
+        return 0;
+    brdffit_samples *s = NULL;
+    brdffit_context *ctx = NULL;
+    int rc = brdffit_samples_create(table, sample, &s, err) == BRDFFIT_OK &&
+                     brdffit_context_create(copt, &ctx, err) == BRDFFIT_OK
+                 ? 0 : -1;
+    for (int k = 0; rc == 0 && k < nfits; k++) {
+        if (!isnan(fits[k].error))
+            continue;
+        double e = NAN;
+        if (brdffit_error_of(ctx, s, fits[k].model, &fits[k].params, &e, err) != BRDFFIT_OK) {
+            char why[BRDFFIT_MESSAGE_MAX];
+            snprintf(why, sizeof why, "%s", err->message);
+            snprintf(err->message, sizeof err->message, "%s: the Error of the parameters: %.1800s",
+                     brdffit_model_get(fits[k].model)->name, why);
+            rc = -1;
+        }
+        fits[k].error = e;
+    }
+    brdffit_context_free(ctx);
+    brdffit_samples_free(s);
     return rc;
 }
 

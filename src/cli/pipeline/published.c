@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* published.c -- a table of published fits (the format of ngan2005-fits.tsv):
- * '#' comment lines, a header "material model d_r d_g d_b s_r s_g s_b p0 p1 p2",
- * then one row per material and model, tab-separated; an empty p is 0. */
+ * '#' comment lines (one may be "# scale: flat" or "# scale: standard", the
+ * scale of the tables the parameters were fitted to), a header "material
+ * model d_r d_g d_b s_r s_g s_b p0 p1 p2", then one row per material and
+ * model, tab-separated; an empty p is 0. */
 #define _POSIX_C_SOURCE 200809L
 #include "batch.h"
 #include "cli.h"
@@ -70,6 +72,55 @@ static const char *parse_row(char **fld, pub_row *row, char *why, size_t len)
     return NULL;
 }
 
+/* A comment line: its "# scale: NAME" into t.  NULL, or why it is not one. */
+static const char *read_comment(const char *line, int lineno, pub_table *t, char *why, size_t len)
+{
+    const char *p = line + 1;
+    p += strspn(p, " \t");
+    if (strncmp(p, "scale:", 6) != 0)
+        return NULL; /* any other comment */
+    p += 6;
+    p += strspn(p, " \t");
+    char name[32];
+    size_t n = strcspn(p, " \t");
+    snprintf(name, sizeof name, "%.*s", (int)(n < sizeof name ? n : sizeof name - 1), p);
+    brdffit_scale s;
+    if (n >= sizeof name || p[n + strspn(p + n, " \t")] != '\0' ||
+        brdffit_scale_from_name(name, &s, NULL) != BRDFFIT_OK) {
+        snprintf(why, len, "'%.60s': expected '# scale: standard' or '# scale: flat'", line);
+        return why;
+    }
+    if (t->scale_line > 0 && s != t->scale) {
+        snprintf(why, len, "'# scale: %s', but line %d states '# scale: %s'", brdffit_scale_name(s),
+                 t->scale_line, brdffit_scale_name(t->scale));
+        return why;
+    }
+    if (t->scale_line == 0) {
+        t->scale = s;
+        t->scale_line = lineno;
+    }
+    return NULL;
+}
+
+int pub_scale_mismatch(const pub_table *t, brdffit_scale scale, char *msg, size_t len)
+{
+    if (t->scale_line <= 0 || t->scale == scale)
+        return 0;
+    snprintf(msg, len, "%.1200s states '# scale: %s' (line %d), but the tables are read with "
+             "--scale %s", t->path, brdffit_scale_name(t->scale), t->scale_line,
+             brdffit_scale_name(scale));
+    return 1;
+}
+
+const char *pub_scale_advice(const pub_table *t)
+{
+    return t->scale == BRDFFIT_SCALE_FLAT
+               ? "pass --scale flat to compare on the data its parameters were fitted to, or "
+                 "--allow-scale-mismatch to compare anyway"
+               : "pass --scale standard to compare on the data its parameters were fitted to, "
+                 "or --allow-scale-mismatch to compare anyway";
+}
+
 /* row appended to t's rows: NULL, or why not. */
 static const char *append_row(pub_table *t, const pub_row *row, int *cap_rows)
 {
@@ -99,6 +150,8 @@ int pub_read(const char *path, pub_table *t, brdffit_error *err)
     while (!fault && getline(&line, &cap, f) > 0) {
         lineno++;
         line[strcspn(line, "\r\n")] = '\0';
+        if (line[0] == '#')
+            fault = read_comment(line, lineno, t, why, sizeof why);
         if (line[0] == '#' || line[0] == '\0')
             continue;
         char *fld[PUB_FIELDS + 1];

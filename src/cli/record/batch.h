@@ -83,8 +83,8 @@ int bj_journal_load(const char *path, bj_records *rs, int *bad, int *torn, brdff
 
 typedef enum jr_type { JR_NULL = 0, JR_BOOL, JR_NUMBER, JR_STRING, JR_ARRAY, JR_OBJECT } jr_type;
 
-#define JR_MAX_MEMBERS 48
-#define JR_MAX_ARRAY 16
+#define JR_MAX_MEMBERS 64
+#define JR_MAX_ARRAY 64
 
 /* A flat JSON object: members whose values are null, true/false, numbers,
  * strings, arrays of up to JR_MAX_ARRAY numbers, or a flat object (settings). */
@@ -125,14 +125,28 @@ typedef struct pub_table {
     pub_row *rows;
     int n;
     char path[BJ_PATH_MAX];
+    int scale_line;       /* the line of its "# scale: NAME" comment, or 0 */
+    brdffit_scale scale;  /* the scale it states (when scale_line > 0)    */
 } pub_table;
 
 /* Read a TSV of the ngan2005-fits.tsv format: header line "material model
  * d_r ... p2", '#' comments, an empty p is 0 (a p beyond the model's count
- * must be empty).  0, or -1 with err (names the line): a malformed row, a
- * second row of the same material and model (both lines named), a file
- * without a header or empty. */
+ * must be empty); a comment "# scale: standard|flat" states the scale of the
+ * tables the parameters were fitted to.  0, or -1 with err (names the line):
+ * a malformed row, a second row of the same material and model (both lines
+ * named), an unknown or second, different scale, a file without a header or
+ * empty. */
 int pub_read(const char *path, pub_table *t, brdffit_error *err);
+/* 1 when t states a scale other than scale (why, naming the file and both
+ * scales, into msg), else 0. */
+int pub_scale_mismatch(const pub_table *t, brdffit_scale scale, char *msg, size_t len);
+/* What to do about a mismatch: the --scale to pass, or the override flag. */
+const char *pub_scale_advice(const pub_table *t);
+/* What a report and the program say when published fits of another scale
+ * are compared anyway. */
+#define PUB_SCALE_NOTE "the published Errors and ratios are computed on data the published " \
+                       "parameters were not fitted to (--allow-scale-mismatch)"
+
 void pub_free(pub_table *t);
 /* The row of material and model, or NULL. */
 const pub_row *pub_find(const pub_table *t, const char *material, brdffit_model model);
@@ -197,6 +211,8 @@ typedef struct rp_report {
     int have_published;
     char started[64];               /* date of the report (UTC ISO 8601)       */
     const char *extra_note;         /* a line for the settings table, or NULL  */
+    char scale_note[BRDFFIT_MESSAGE_MAX + 256]; /* the published fits are of another
+                                       scale (--allow-scale-mismatch): on every page; or "" */
 } rp_report;
 
 /* An empty report of these models and settings: 0 or -1 (no memory). */
@@ -221,5 +237,8 @@ int rp_sort_model(const rp_report *rep);
 /* Median Error of model slot k over the materials it was fitted to, and how
  * often it is the best; NAN / 0 when none. */
 double rp_median(const rp_report *rep, int k, int *nbest, int *nfitted);
+/* Median of Error / published Error of model slot k over the materials with
+ * both (n: how many); NAN when none. */
+double rp_median_ratio(const rp_report *rep, int k, int *n);
 
 #endif

@@ -23,6 +23,8 @@ void fr_init(fit_record *r, fr_kind kind)
     for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++)
         r->errors[m] = NAN;
     r->seconds = r->seconds_solver = r->seconds_passes = r->seconds_build = NAN;
+    r->albedo_max = r->albedo_max_theta_o = r->albedo_departure = NAN;
+    r->albedo_departure_theta_o = r->seconds_albedo = NAN;
     r->samples = -1;
 }
 

@@ -51,6 +51,18 @@ typedef enum fr_kind {
     FR_ASSETS = 3       /* the renders and plots of a material are written      */
 } fr_kind;
 
+/* The energy fields (fit_record_albedo.c): the directional albedo on the
+ * grid theta_o = 0, 5, ..., 85 deg, per channel. */
+#define FR_ALBEDO_N 18
+#define FR_ALBEDO_STEP_DEG 5.0
+/* A fit "exceeds 1" when its albedo_max is above this (1 and the
+ * quadrature's tolerance), and "departs" from the measured table when its
+ * albedo_departure is above FR_ALBEDO_DEPARTS; the departure's denominator
+ * is at least FR_ALBEDO_FLOOR (a nearly black table). */
+#define FR_ALBEDO_MAX_OK 1.0001
+#define FR_ALBEDO_DEPARTS 0.10
+#define FR_ALBEDO_FLOOR 0.01
+
 typedef struct fit_record {
     fr_kind kind;
     char material[BJ_NAME_MAX];
@@ -73,9 +85,18 @@ typedef struct fit_record {
     unsigned at_bound;              /* brdffit_at_bound bits (the library's) */
     double seconds, seconds_solver, seconds_passes, seconds_build; /* NAN: none */
     long long samples;              /* -1: not known                        */
+    int has_albedo;                 /* albedo holds the fitted model's      */
+    double albedo[FR_ALBEDO_N][3];  /* a_c(theta_o) of the fitted model     */
+    double albedo_max, albedo_max_theta_o; /* max over theta_o and channels, and where; NAN: none */
+    int has_albedo_measured;        /* albedo_measured holds the table's    */
+    double albedo_measured[FR_ALBEDO_N][3];
+    double albedo_departure, albedo_departure_theta_o; /* max over theta_o <= the cutoff of
+                                       |Y_fit - Y_table| / max(Y_table, FR_ALBEDO_FLOOR),
+                                       Y the luminance, and where; NAN: none */
+    double seconds_albedo;          /* what computing albedo took; NAN: none */
     char backend[16];               /* "opencl" | "host" | ""               */
     char backend_description[256];
-    char assets_key[BJ_MSG_MAX];    /* FR_ASSETS: what was drawn ("rf1:render=1,plot=1:ward,he") */
+    char assets_key[BJ_MSG_MAX];    /* FR_ASSETS: what was drawn ("rf2:render=1,plot=1:ward,he") */
     char assets[BJ_ASSETS_MAX];     /* FR_ASSETS: lines "kind<TAB>file<TAB>caption"   */
     int origin;                     /* not written: which journal it came from        */
     int line;                       /* not written: its line in that journal (1..)    */
@@ -90,6 +111,27 @@ void fr_set_fit(fit_record *r, brdffit_model model, brdffit_status st, const brd
                 const brdffit_samples *s);
 /* A failure: status st and err's message (or the status's text). */
 void fr_set_failure(fit_record *r, brdffit_status st, const brdffit_error *err);
+
+/* The energy fields (fit_record_albedo.c).  The grid's angles; the
+ * luminance 0.2126 R + 0.7152 G + 0.0722 B; the table's albedo on the grid
+ * (trilinear lookups; 0, or -1 when the library refuses); the fitted
+ * model's albedo (r's model and params; a fit that failed gets none), its
+ * maximum and its departure from measured (NULL: not known); whether a
+ * record's fit exceeds 1 / departs from the table; their JSON members
+ * (written after the others, read from o: 0, or -1 when malformed) and TSV
+ * columns (after the others). */
+void fr_albedo_angles(double theta_o_deg[FR_ALBEDO_N]);
+double fr_luminance(const double rgb[3]);
+int fr_albedo_measure(const brdffit_table *table, brdffit_scale scale,
+                      double out[FR_ALBEDO_N][3]);
+void fr_set_albedo(fit_record *r, brdffit_model model, const double measured[FR_ALBEDO_N][3]);
+int fr_albedo_exceeds(const fit_record *r);
+int fr_albedo_departs(const fit_record *r);
+void fr_albedo_write_json(FILE *f, const fit_record *r);
+struct jr_object;
+int fr_albedo_read_json(const struct jr_object *o, fit_record *r);
+void fr_albedo_tsv_header(FILE *f);
+void fr_albedo_tsv_row(FILE *f, const fit_record *r);
 
 /* The "status" text of a record: "ok", "limit" (fitted, but the LM run kept
  * stopped on its evaluation limit), or brdffit_strerror(status). */

@@ -96,8 +96,9 @@ static const char *check_result(const fit_record *r, const brdffit_model_info *m
     return NULL;
 }
 
-/* A fit's metric is one of the metrics; its Errors under them, when the
- * record has them, finite numbers >= 0, the one of its metric its Error. */
+/* A fit's metric is one of the metrics; its Errors under them, each a
+ * finite number >= 0 or absent (NaN: not computed, or a record of a version
+ * without them), the one of its metric, when present, its Error. */
 static const char *check_errors(const fit_record *r, char *why, size_t len)
 {
     brdffit_metric m;
@@ -105,22 +106,33 @@ static const char *check_errors(const fit_record *r, char *why, size_t len)
         snprintf(why, len, "metric \"%.32s\" is not a metric", r->settings.metric);
         return why;
     }
-    int have = 0;
     for (int k = 0; k < BRDFFIT_METRIC_COUNT; k++)
-        have += !isnan(r->errors[k]);
-    if (have == 0)
-        return NULL; /* a record of a version without them */
-    for (int k = 0; k < BRDFFIT_METRIC_COUNT; k++)
-        if (!(isfinite(r->errors[k]) && r->errors[k] >= 0)) {
+        if (!isnan(r->errors[k]) && !(isfinite(r->errors[k]) && r->errors[k] >= 0)) {
             snprintf(why, len, "the Error under %s is not a finite number >= 0",
                      brdffit_metric_get_name((brdffit_metric)k));
             return why;
         }
-    if (r->errors[m] != r->error) {
+    if (!isnan(r->errors[m]) && r->errors[m] != r->error) {
         snprintf(why, len, "the Error %.17g is not its Error under its metric %s, %.17g",
                  r->error, r->settings.metric, r->errors[m]);
         return why;
     }
+    return NULL;
+}
+
+/* The energy fields: a successful fit's only, curves of numbers >= 0. */
+static const char *check_albedo(const fit_record *r)
+{
+    int ok_fit = r->kind == FR_FIT && r->status == BRDFFIT_OK;
+    if ((r->has_albedo || r->has_albedo_measured) && !ok_fit)
+        return "an albedo where no fit succeeded";
+    for (int k = 0; k < FR_ALBEDO_N; k++)
+        for (int c = 0; c < 3; c++)
+            if ((r->has_albedo && !(r->albedo[k][c] >= 0)) ||
+                (r->has_albedo_measured && !(r->albedo_measured[k][c] >= 0)))
+                return "an albedo below 0";
+    if (!isnan(r->seconds_albedo) && !(r->seconds_albedo >= 0 && r->has_albedo))
+        return "seconds_albedo without an albedo, or below 0";
     return NULL;
 }
 
@@ -136,6 +148,8 @@ static const char *check_failed(const fit_record *r)
 const char *fr_check(const fit_record *r, char *why, size_t len)
 {
     const char *bad = check_key(r);
+    if (!bad)
+        bad = check_albedo(r);
     if (bad)
         return bad;
     const brdffit_model_info *mi = NULL;

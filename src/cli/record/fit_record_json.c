@@ -148,6 +148,7 @@ void fr_write_json(FILE *f, const fit_record *r)
     json_text(f, "backend_description", r->backend_description);
     json_text(f, "assets_key", r->kind == FR_ASSETS ? r->assets_key : NULL);
     json_text(f, "assets", r->kind == FR_ASSETS ? r->assets : NULL);
+    fr_albedo_write_json(f, r);
     putc('}', f);
 }
 
@@ -447,6 +448,8 @@ int fr_read_json(const char *line, fit_record *r, fr_need need)
     if (r->kind == FR_ASSETS &&
         (get_str(&o, NULL, "assets_key", r->assets_key, sizeof r->assets_key, 0) != 0 ||
          get_str(&o, NULL, "assets", r->assets, sizeof r->assets, 0) != 0))
+        goto done;
+    if (fr_albedo_read_json(&o, r) != 0)
         goto done;
     rc = 0;
 done:

@@ -21,7 +21,10 @@ static int assets_write(const out_dir *dir, const char *material, const brdffit_
         const char *kind = f->kind == RF_PLOT ? "plot"
                          : f->kind == RF_DATA ? "data"
                          : fl > 9 && strcmp(f->file + fl - 9, "-diff.png") == 0 ? "diff"
-                                                                             : "image";
+                         : fl > 9 && strcmp(f->file + fl - 9, "-flip.png") == 0 ? "flip"
+                         : strcmp(f->file, "diff-scale.svg") == 0 ? "diffbar"
+                         : strcmp(f->file, "flip-scale.svg") == 0 ? "flipbar"
+                                                                  : "image";
         int w = snprintf(list + used, len - used, "%s\t%s\t%s\n", kind, f->file, f->caption);
         if (w < 0 || (size_t)w >= len - used) {
             err->status = BRDFFIT_E_INVALID_ARGUMENT;

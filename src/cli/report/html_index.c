@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* html_index.c -- the report's own files: DIR/index.html (settings, per-model
- * summary, the headline figure, the Error matrix), DIR/headline.svg and
- * DIR/fits.tsv. */
+ * summary, the headline figure, the Error matrix: sortable by any column with
+ * a few lines of inline script, readable without) and DIR/fits.tsv
+ * (DIR/headline.svg: html_headline.c). */
 #define _POSIX_C_SOURCE 200809L
 #include "html_report.h"
 
@@ -15,6 +16,7 @@ static void settings_table(xml_writer *w, const rp_report *rep)
 {
     char b[256];
     xml_open(w, "table");
+    xml_open(w, "tbody");
     const char *rows[][2] = {
         { "metric", rep->settings.metric[0] ? rep->settings.metric : brdffit_metric_name() },
         { "cutoff", (snprintf(b, sizeof b, "%g deg (theta_i, theta_o)", rep->settings.cutoff_deg), b) },
@@ -22,7 +24,7 @@ static void settings_table(xml_writer *w, const rp_report *rep)
     for (int i = 0; i < 2; i++) {
         xml_open(w, "tr");
         rp_cell(w, "th", "name", rows[i][0]);
-        rp_cell(w, "td", "name", rows[i][1]);
+        rp_cell(w, "td", "wrap", rows[i][1]);
         xml_close(w);
     }
     char starts[320], dflt[256];
@@ -31,6 +33,11 @@ static void settings_table(xml_writer *w, const rp_report *rep)
     else
         snprintf(starts, sizeof starts, "each model's default (%s)",
                  cli_default_starts(dflt, sizeof dflt));
+    char pub_how[512];
+    snprintf(pub_how, sizeof pub_how, "computed here: the published parameters scored on the "
+             "tables given, with the settings above (scale %s), not the figures printed in the "
+             "paper%s", rep->settings.scale,
+             rep->scale_note[0] ? "; the file states another scale (see the warning above)" : "");
     const char *more[][2] = {
         { "scale", rep->settings.scale },
         { "starts", starts },
@@ -38,188 +45,54 @@ static void settings_table(xml_writer *w, const rp_report *rep)
         { "backend", rep->backend },
         { "report written", rep->started },
         { "published fits", rep->have_published ? rep->published_path : "(none given)" },
+        { "published Errors", rep->have_published ? pub_how : NULL },
     };
     for (size_t i = 0; i < sizeof more / sizeof more[0]; i++) {
+        if (!more[i][1])
+            continue;
         xml_open(w, "tr");
         rp_cell(w, "th", "name", more[i][0]);
-        rp_cell(w, "td", "name", more[i][1]);
+        rp_cell(w, "td", "wrap", more[i][1]);
         xml_close(w);
     }
     xml_close(w);
+    xml_close(w);
 }
 
-/* An Error cell: the fitted Error, and under it the published one and the ratio. */
+/* An Error cell: the fitted Error (data-v, what the matrix sorts by) and ★
+ * when it is the material's lowest; under it the published Error and the
+ * ratio (×r = Error / published Error), in full on hover. */
 static void error_cell(xml_writer *w, const fit_record *fit, const fit_record *pub, int best,
                        int have_pub)
 {
-    char b[64], r[64];
+    char b[64], p[64], r[64];
     xml_open(w, "td");
     if (best)
         xml_attr(w, "class", "best");
+    int ok = fit && fr_ok(fit) && isfinite(fit->error);
+    xml_attrf(w, "data-v", "%s", ok ? rp_num(b, sizeof b, "%.10g", fit->error) : "");
     if (!fit)
         xml_text(w, "-");
     else if (!fr_ok(fit))
         xml_textf(w, "failed: %s", fr_status_text(fit));
-    else
-        xml_textf(w, "%s%s", rp_num(b, sizeof b, "%.4g", fit->error), best ? " \xe2\x98\x85" : "");
+    else /* a no-break space keeps the star with its number */
+        xml_textf(w, "%s%s", rp_compact(b, sizeof b, 4, fit->error), best ? "\xc2\xa0\xe2\x98\x85" : "");
     if (have_pub && pub) {
         xml_open(w, "span");
         xml_attr(w, "class", "pub");
-        if (fr_ok(pub))
-            xml_textf(w, "published %s, ratio %s", rp_num(b, sizeof b, "%.4g", pub->error),
-                      rp_num(r, sizeof r, "%.3g", fr_ratio(fit, pub)));
-        else
-            xml_textf(w, "published: %s", pub->message);
+        if (fr_ok(pub)) {
+            double ratio = fr_ratio(fit, pub);
+            xml_attrf(w, "title", "published Error %s; ratio Error / published Error %s",
+                      rp_num(p, sizeof p, "%.5g", pub->error), rp_num(r, sizeof r, "%.4g", ratio));
+            xml_textf(w, "%s\xc2\xa0\xc3\x97%s", rp_compact(p, sizeof p, 3, pub->error),
+                      rp_compact(r, sizeof r, 3, ratio));
+        } else {
+            xml_attr(w, "title", pub->message);
+            xml_text(w, "published: invalid");
+        }
         xml_close(w);
     }
     xml_close(w);
-}
-
-/* ------------------------------------------------------------------ the headline figure */
-
-typedef struct order_item {
-    int i;
-    double e;   /* the sort model's Error */
-    int any;    /* the material has an Error of some model */
-} order_item;
-
-static int by_error(const void *a, const void *b)
-{
-    const order_item *x = a, *y = b;
-    if (x->any != y->any)
-        return y->any - x->any; /* materials without any Error last (not drawn) */
-    int fx = isfinite(x->e), fy = isfinite(y->e);
-    if (fx != fy)
-        return fy - fx; /* materials without an Error last */
-    if (fx && x->e != y->e)
-        return x->e < y->e ? -1 : 1;
-    return x->i - y->i;
-}
-
-static double fit_error(const rp_material *m, int k)
-{
-    const fit_record *f = m->fit[k];
-    return f && fr_ok(f) && f->error > 0 && isfinite(f->error) ? f->error : NAN;
-}
-
-#define HF_W 960.0
-#define HF_H 540.0
-#define HF_L 72.0
-#define HF_R 190.0
-#define HF_T 44.0
-#define HF_B 130.0
-
-static void headline_axes(xml_writer *w, int lo, int hi, const rp_report *rep, const order_item *ord,
-                          int np)
-{
-    double pw = HF_W - HF_L - HF_R, ph = HF_H - HF_T - HF_B;
-    svg_rect(w, HF_L, HF_T, pw, ph, NULL, "#888888");
-    for (int d = lo; d <= hi; d++) {
-        double y = HF_T + ph * (1 - (double)(d - lo) / (hi - lo));
-        char t[32];
-        if (d >= -3 && d <= 3)
-            snprintf(t, sizeof t, "%g", pow(10, d));
-        else
-            snprintf(t, sizeof t, "1e%d", d);
-        svg_line(w, HF_L, y, HF_L + pw, y, "#dddddd", 1, NULL);
-        svg_text(w, HF_L - 6, y + 4, "end", 11, t);
-        for (int m = 2; m <= 9 && d < hi; m++) {
-            double ym = y - ph / (hi - lo) * log10((double)m);
-            svg_line(w, HF_L, ym, HF_L + 4, ym, "#888888", 1, NULL);
-        }
-    }
-    svg_text_rotated(w, 18, HF_T + ph / 2, -90, "middle", 12, "Error (ngan-l2, 1/sr), log scale");
-    for (int i = 0; i < np && np <= 150; i++) {
-        double x = HF_L + pw * (i + 0.5) / np;
-        svg_text_rotated(w, x + 3, HF_T + ph + 8, 60, "start", np > 60 ? 7 : 10,
-                         rep->m[ord[i].i].name);
-    }
-}
-
-static void headline_series(xml_writer *w, const rp_report *rep, const order_item *ord, int np,
-                            int k, int lo, int hi)
-{
-    double pw = HF_W - HF_L - HF_R, ph = HF_H - HF_T - HF_B;
-    double *x = malloc((size_t)rep->n * sizeof *x), *y = malloc((size_t)rep->n * sizeof *y);
-    if (!x || !y) {
-        free(x);
-        free(y);
-        return;
-    }
-    const char *col = svg_color((int)rep->models[k]); /* a model's colour in every figure */
-    int run = 0;
-    for (int i = 0; i <= np; i++) {
-        double e = i < np ? fit_error(&rep->m[ord[i].i], k) : NAN;
-        if (isfinite(e)) {
-            x[run] = HF_L + pw * (i + 0.5) / np;
-            y[run] = HF_T + ph * (1 - (log10(e) - lo) / (hi - lo));
-            svg_circle(w, x[run], y[run], 2.5, col, NULL);
-            run++;
-        } else {
-            svg_polyline(w, x, y, run, col, 1.2, NULL); /* a gap ends the line */
-            run = 0;
-        }
-    }
-    free(x);
-    free(y);
-}
-
-int rp_write_headline(const rp_report *rep, const out_dir *dir, int sort_k, brdffit_error *err)
-{
-    out_file o;
-    if (out_open(&o, dir, "headline.svg", err) != 0)
-        return -1;
-    order_item *ord = malloc((size_t)(rep->n > 0 ? rep->n : 1) * sizeof *ord);
-    if (!ord) {
-        out_abandon(&o);
-        err->status = BRDFFIT_E_NO_MEMORY;
-        snprintf(err->message, sizeof err->message, "out of memory");
-        return -1;
-    }
-    double emin = INFINITY, emax = -INFINITY;
-    int np = 0;
-    for (int i = 0; i < rep->n; i++) {
-        ord[i].i = i;
-        ord[i].e = sort_k >= 0 ? fit_error(&rep->m[i], sort_k) : NAN;
-        ord[i].any = 0;
-        for (int k = 0; k < rep->nmodels; k++) {
-            double e = fit_error(&rep->m[i], k);
-            if (isfinite(e)) {
-                emin = fmin(emin, e);
-                emax = fmax(emax, e);
-                ord[i].any = 1;
-            }
-        }
-        np += ord[i].any;
-    }
-    qsort(ord, (size_t)rep->n, sizeof *ord, by_error);
-    int lo = isfinite(emin) ? (int)floor(log10(emin)) : -3;
-    int hi = isfinite(emax) ? (int)ceil(log10(emax)) : 0;
-    if (hi <= lo)
-        hi = lo + 1;
-    xml_writer w;
-    svg_begin(&w, o.f, HF_W, HF_H);
-    char title[256];
-    snprintf(title, sizeof title, "Error of every model per material, materials sorted by %s's Error",
-             sort_k >= 0 ? brdffit_model_get(rep->models[sort_k])->title : "(none)");
-    svg_text(&w, HF_W / 2, 24, "middle", 15, title);
-    headline_axes(&w, lo, hi, rep, ord, np);
-    for (int k = 0; k < rep->nmodels; k++) {
-        headline_series(&w, rep, ord, np, k, lo, hi);
-        double ly = HF_T + 10 + 20 * k, lx = HF_W - HF_R + 16;
-        svg_line(&w, lx, ly, lx + 22, ly, svg_color((int)rep->models[k]), 2, NULL);
-        svg_circle(&w, lx + 11, ly, 2.5, svg_color((int)rep->models[k]), NULL);
-        svg_text(&w, lx + 28, ly + 4, "start", 12, brdffit_model_get(rep->models[k])->title);
-    }
-    free(ord);
-    if (svg_end(&w) != 0 && !ferror(o.f)) {
-        out_abandon(&o);
-        err->status = BRDFFIT_E_FILE_WRITE;
-        snprintf(err->message, sizeof err->message, "cannot write %.1800s: a non-finite coordinate",
-                 o.path);
-        return -1;
-    }
-    return out_commit(&o, err);
 }
 
 /* ------------------------------------------------------------------ fits.tsv */
@@ -245,18 +118,29 @@ static void summary_table(xml_writer *w, const rp_report *rep)
 {
     char b[64];
     xml_open(w, "table");
+    xml_open(w, "thead");
     xml_open(w, "tr");
     rp_cell(w, "th", "name", "model");
     rp_cell(w, "th", NULL, "median Error");
+    if (rep->have_published)
+        rp_cell(w, "th", NULL, "median ratio to published");
     rp_cell(w, "th", NULL, "best on");
     rp_cell(w, "th", NULL, "fitted");
     xml_close(w);
+    xml_close(w);
+    xml_open(w, "tbody");
     for (int k = 0; k < rep->nmodels; k++) {
-        int nbest = 0, nfit = 0;
+        int nbest = 0, nfit = 0, nratio = 0;
         double med = rp_median(rep, k, &nbest, &nfit);
         xml_open(w, "tr");
         rp_cell(w, "td", "name", brdffit_model_get(rep->models[k])->title);
-        rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.4g", med));
+        rp_cell(w, "td", NULL, rp_compact(b, sizeof b, 4, med));
+        if (rep->have_published) {
+            double r = rp_median_ratio(rep, k, &nratio);
+            char t[96];
+            snprintf(t, sizeof t, "%s (of %d)", rp_compact(b, sizeof b, 3, r), nratio);
+            rp_cell(w, "td", NULL, nratio ? t : "-");
+        }
         snprintf(b, sizeof b, "%d", nbest);
         rp_cell(w, "td", NULL, b);
         snprintf(b, sizeof b, "%d of %d", nfit, rep->n);
@@ -264,17 +148,23 @@ static void summary_table(xml_writer *w, const rp_report *rep)
         xml_close(w);
     }
     xml_close(w);
+    xml_close(w);
 }
 
 static void error_matrix(xml_writer *w, const rp_report *rep)
 {
     char href[BJ_NAME_MAX * 3 + 16];
     xml_open(w, "table");
+    xml_attr(w, "class", "sortable");
+    xml_attr(w, "id", "matrix");
+    xml_open(w, "thead");
     xml_open(w, "tr");
     rp_cell(w, "th", "name", "material");
     for (int k = 0; k < rep->nmodels; k++)
-        rp_cell(w, "th", NULL, brdffit_model_get(rep->models[k])->name);
+        rp_cell(w, "th", NULL, brdffit_model_get(rep->models[k])->title);
     xml_close(w);
+    xml_close(w);
+    xml_open(w, "tbody");
     for (int i = 0; i < rep->n; i++) {
         const rp_material *m = &rep->m[i];
         int best = rp_best(rep, i);
@@ -298,7 +188,28 @@ static void error_matrix(xml_writer *w, const rp_report *rep)
         xml_close(w);
     }
     xml_close(w);
+    xml_close(w);
 }
+
+/* Click (or Enter on) a column's header: the rows sorted by it, again: the
+ * other way; a cell's data-v is its number ("" none: last), else its text. */
+static const char *const sort_script =
+    "(function(){var t=document.getElementById('matrix');if(!t||!t.tHead)return;"
+    "var hs=t.tHead.rows[0].cells,b=t.tBodies[0];"
+    "function key(r,c){if(r.cells.length<hs.length)return null;var x=r.cells[c],"
+    "v=x.getAttribute('data-v');return v===null?x.textContent:v===''?null:parseFloat(v);}"
+    "function go(c){var th=hs[c],up=th.getAttribute('aria-sort')!=='ascending';"
+    "for(var i=0;i<hs.length;i++)hs[i].removeAttribute('aria-sort');"
+    "th.setAttribute('aria-sort',up?'ascending':'descending');"
+    "var rows=Array.prototype.slice.call(b.rows);rows.sort(function(a,z){"
+    "var p=key(a,c),q=key(z,c);if(p===null||q===null)return (p===null)-(q===null);"
+    "var d=typeof p==='number'?p-q:p.localeCompare(q);return up?d:-d;});"
+    "rows.forEach(function(r){b.appendChild(r);});}"
+    "Array.prototype.forEach.call(hs,function(th,c){th.tabIndex=0;"
+    "th.title='sort by this column (again: the other way)';"
+    "th.addEventListener('click',function(){go(c);});"
+    "th.addEventListener('keydown',function(e){if(e.key==='Enter'||e.key===' ')"
+    "{e.preventDefault();go(c);}});});})();";
 
 int rp_write_index(const rp_report *rep, const out_dir *dir, int sort_k, brdffit_error *err)
 {
@@ -314,6 +225,7 @@ int rp_write_index(const rp_report *rep, const out_dir *dir, int sort_k, brdffit
              rep->n == 1 ? "" : "s", rep->nmodels, rep->nmodels == 1 ? "" : "s");
     rp_html_begin(&w, o.f, title);
     xml_element_text(&w, "h1", title);
+    rp_scale_warning(&w, rep);
     if (failed) {
         xml_open(&w, "p");
         xml_attr(&w, "class", "failed");
@@ -327,13 +239,17 @@ int rp_write_index(const rp_report *rep, const out_dir *dir, int sort_k, brdffit
     summary_table(&w, rep);
     xml_element_text(&w, "h2", "Error of every material");
     xml_open(&w, "figure");
+    xml_open(&w, "object"); /* not an img: the SVG's <title>s show on hover */
+    xml_attr(&w, "data", "headline.svg");
+    xml_attr(&w, "type", "image/svg+xml");
     xml_open(&w, "img");
     xml_attr(&w, "src", "headline.svg");
     xml_attr(&w, "alt", "Error of every model per material, log scale");
     xml_close(&w);
+    xml_close(&w);
     xml_open(&w, "figcaption");
     xml_textf(&w, "Each model's Error per material (log scale); materials sorted by %s's Error "
-                  "(the lowest median).",
+                  "(the lowest median); hover a point for its material, model and Error.",
               sort_k >= 0 ? brdffit_model_get(rep->models[sort_k])->title : "(none)");
     xml_close(&w);
     xml_close(&w);
@@ -343,10 +259,14 @@ int rp_write_index(const rp_report *rep, const out_dir *dir, int sort_k, brdffit
     xml_attr(&w, "class", "note");
     xml_text(&w, "Error = ngan-l2 (1/sr); \xe2\x98\x85 the lowest Error of the material");
     if (rep->have_published)
-        xml_text(&w, "; published = the Error of the published parameters on the same table, "
-                     "ratio = Error / published Error");
-    xml_text(&w, ". Every fit, one line: ");
+        xml_text(&w, "; under it: the Error of the published parameters on the same table "
+                     "and \xc3\x97 the ratio Error / published Error (below 1: this fit is "
+                     "closer), in full on hover");
+    xml_text(&w, "; click a column's header to sort by it. Every fit, one line: ");
     rp_link(&w, "fits.tsv", "fits.tsv");
+    xml_close(&w);
+    xml_open(&w, "script");
+    xml_raw(&w, sort_script);
     xml_close(&w);
     rp_html_end(&w);
     return rp_finish(&o, &w, err);

@@ -69,71 +69,143 @@ int rp_write_params_json(const rp_report *rep, const rp_material *m, const out_d
 
 /* ------------------------------------------------------------------ a material's page */
 
-/* The parameter table of a material. */
+/* The columns after the lobe parameters: Error, ratio (with published fits),
+ * iterations, time, on a bound. */
+static int tail_columns(const rp_report *rep)
+{
+    return rep->have_published ? 5 : 4;
+}
+
+/* The lobe-parameter columns: the most parameters of the report's models. */
+static int lobe_columns(const rp_report *rep)
+{
+    int n = 0;
+    for (int k = 0; k < rep->nmodels; k++)
+        if (brdffit_model_get(rep->models[k])->nparams > n)
+            n = brdffit_model_get(rep->models[k])->nparams;
+    return n;
+}
+
+/* A model's header row: its title, then d and s by channel and its lobe
+ * parameters by name (the numbers under them carry no names). */
+static void model_head(xml_writer *w, const rp_report *rep, int k)
+{
+    static const char *const ds[] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b" };
+    xml_open(w, "tr");
+    xml_attr(w, "class", "mhead");
+    rp_cell(w, "th", "name", brdffit_model_get(rep->models[k])->title);
+    for (int c = 0; c < 6; c++)
+        rp_cell(w, "th", NULL, ds[c]);
+    for (int q = 0; q < lobe_columns(rep); q++)
+        rp_cell(w, "th", NULL, param_label(rep->models[k], q));
+    rp_cell(w, "th", NULL, "Error");
+    if (rep->have_published)
+        rp_cell(w, "th", NULL, "ratio");
+    rp_cell(w, "th", NULL, "iter.");
+    rp_cell(w, "th", NULL, "time (s)");
+    rp_cell(w, "th", "name", "at a bound");
+    xml_close(w);
+}
+
+/* d, s and the lobe parameters of r, compact. */
+static void param_cells(xml_writer *w, const rp_report *rep, const fit_record *r)
+{
+    char b[64];
+    for (int c = 0; c < 3; c++)
+        rp_cell(w, "td", NULL, rp_compact(b, sizeof b, 4, r->params.d[c]));
+    for (int c = 0; c < 3; c++)
+        rp_cell(w, "td", NULL, rp_compact(b, sizeof b, 4, r->params.s[c]));
+    for (int q = 0; q < lobe_columns(rep); q++)
+        rp_cell(w, "td", NULL, q < r->nparams ? rp_compact(b, sizeof b, 4, r->params.p[q]) : "");
+}
+
+/* The fitted row of model slot k (f: its record). */
+static void fitted_row(xml_writer *w, const rp_report *rep, int k, const fit_record *f,
+                       const fit_record *p, int best)
+{
+    char b[64], e[32];
+    xml_open(w, "tr");
+    rp_cell(w, "td", "name", "fitted");
+    if (!fr_ok(f)) {
+        xml_open(w, "td");
+        xml_attr(w, "class", "failed");
+        xml_attrf(w, "colspan", "%d", 6 + lobe_columns(rep) + tail_columns(rep));
+        xml_textf(w, "failed: %s: %s", fr_status_text(f), f->message);
+        xml_close(w);
+        xml_close(w);
+        return;
+    }
+    param_cells(w, rep, f);
+    /* a no-break space keeps the star with its number */
+    snprintf(b, sizeof b, "%s%s", rp_compact(e, sizeof e, 4, f->error),
+             k == best ? "\xc2\xa0\xe2\x98\x85" : "");
+    rp_cell(w, "td", k == best ? "best" : NULL, b);
+    if (rep->have_published)
+        rp_cell(w, "td", NULL, rp_compact(b, sizeof b, 3, fr_ratio(f, p)));
+    snprintf(b, sizeof b, "%d", f->iterations);
+    rp_cell(w, "td", NULL, f->has_counts ? b : "-");
+    rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.2f", f->seconds));
+    char bound[128] = "";
+    if (f->has_counts)
+        fr_at_bound_text(rep->models[k], f->at_bound, ", ", bound, sizeof bound);
+    rp_cell(w, "td", "wrap", bound[0] ? bound : "-"); /* names, not numbers: may wrap */
+    xml_close(w);
+}
+
+/* The published row under a model: the published parameters and their
+ * Error on this table, or why they have none. */
+static void published_row(xml_writer *w, const rp_report *rep, const fit_record *p)
+{
+    char b[64];
+    xml_open(w, "tr");
+    xml_attr(w, "class", "pub");
+    rp_cell(w, "td", "name", "published");
+    if (!p) {
+        xml_open(w, "td");
+        xml_attr(w, "class", "wrap");
+        xml_attrf(w, "colspan", "%d", 6 + lobe_columns(rep) + tail_columns(rep));
+        xml_text(w, "(no published parameters of this material and model)");
+        xml_close(w);
+        xml_close(w);
+        return;
+    }
+    if (p->has_params)
+        param_cells(w, rep, p);
+    else
+        for (int c = 0; c < 6 + lobe_columns(rep); c++)
+            rp_cell(w, "td", NULL, "-");
+    xml_open(w, "td");
+    if (!fr_ok(p))
+        xml_attr(w, "title", p->message);
+    xml_text(w, fr_ok(p) ? rp_compact(b, sizeof b, 4, p->error) : "invalid");
+    xml_close(w);
+    for (int c = 1; c < tail_columns(rep); c++)
+        rp_cell(w, "td", NULL, "");
+    xml_close(w);
+}
+
+/* The parameter table of a material: per model a header row naming its
+ * parameters, the fitted row and (with published fits) the published row. */
 static void params_table(xml_writer *w, const rp_report *rep, const rp_material *m, int best)
 {
-    static const char *const head[] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b",
-                                        "p0", "p1", "p2", "p3" };
-    char b[64];
     xml_open(w, "table");
-    xml_open(w, "tr");
-    rp_cell(w, "th", "name", "model");
-    for (int i = 0; i < 10; i++)
-        rp_cell(w, "th", NULL, head[i]);
-    rp_cell(w, "th", NULL, "Error");
-    if (rep->have_published) {
-        rp_cell(w, "th", NULL, "published Error");
-        rp_cell(w, "th", NULL, "ratio");
-    }
-    rp_cell(w, "th", NULL, "iterations");
-    rp_cell(w, "th", NULL, "seconds");
-    rp_cell(w, "th", "name", "on a bound");
-    xml_close(w);
+    xml_attr(w, "class", "params");
     for (int k = 0; k < rep->nmodels; k++) {
         const fit_record *f = m->fit[k], *p = m->published[k];
         if (!f)
             continue;
-        xml_open(w, "tr");
-        rp_cell(w, "td", "name", f->model);
-        if (!fr_ok(f)) {
-            xml_open(w, "td");
-            xml_attr(w, "class", "failed");
-            xml_attr(w, "colspan", "11");
-            xml_textf(w, "failed: %s: %s", fr_status_text(f), f->message);
-            xml_close(w);
-        } else {
-            for (int c = 0; c < 3; c++)
-                rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.4g", f->params.d[c]));
-            for (int c = 0; c < 3; c++)
-                rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.4g", f->params.s[c]));
-            for (int q = 0; q < BRDFFIT_MAX_LOBE_PARAMS; q++) {
-                char t[96];
-                if (q < f->nparams)
-                    snprintf(t, sizeof t, "%s %.4g", param_label(rep->models[k], q), f->params.p[q]);
-                else
-                    snprintf(t, sizeof t, "-");
-                rp_cell(w, "td", NULL, t);
-            }
-            snprintf(b, sizeof b, "%.5g%s", f->error, k == best ? " \xe2\x98\x85" : "");
-            rp_cell(w, "td", k == best ? "best" : NULL, b);
-        }
-        if (rep->have_published) {
-            rp_cell(w, "td", NULL, p && fr_ok(p) ? rp_num(b, sizeof b, "%.5g", p->error) : p ? "invalid" : "-");
-            rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.3g", fr_ratio(f, p)));
-        }
-        snprintf(b, sizeof b, "%d", f->iterations);
-        rp_cell(w, "td", NULL, f->has_counts ? b : "-");
-        rp_cell(w, "td", NULL, rp_num(b, sizeof b, "%.2f", f->seconds));
-        char bound[128] = "";
-        if (f->has_counts)
-            fr_at_bound_text(rep->models[k], f->at_bound, ", ", bound, sizeof bound);
-        rp_cell(w, "td", "name", bound[0] ? bound : "-");
+        xml_open(w, "tbody");
+        model_head(w, rep, k);
+        fitted_row(w, rep, k, f, p, best);
+        if (rep->have_published)
+            published_row(w, rep, p);
         xml_close(w);
     }
     xml_close(w);
 }
 
-/* The figures of one kind ("image", "plot") from the assets list. */
+/* The figures of one kind ("image", "plot") from the assets list, under the
+ * heading title (none: NULL) when there is one. */
 static void figures(xml_writer *w, const rp_material *m, const char *kind, const char *title)
 {
     if (!m->assets)
@@ -152,7 +224,7 @@ static void figures(xml_writer *w, const rp_material *m, const char *kind, const
         *t1 = *t2 = '\0';
         if (strcmp(line, kind) != 0)
             continue;
-        if (!any++)
+        if (!any++ && title)
             xml_element_text(w, "h2", title);
         rp_url_segment(href, sizeof href, t1 + 1);
         if (strcmp(kind, "data") == 0) {
@@ -172,6 +244,42 @@ static void figures(xml_writer *w, const rp_material *m, const char *kind, const
     }
 }
 
+static void legend(xml_writer *w, const char *text)
+{
+    xml_open(w, "p");
+    xml_attr(w, "class", "note");
+    xml_text(w, text);
+    xml_close(w);
+}
+
+/* The difference images and FLIP maps, each kind under its colour bar and a
+ * legend saying what the colours mean. */
+static void comparisons(xml_writer *w, const rp_material *m)
+{
+    figures(w, m, "diffbar",
+            "Differences from the reference: lightness of each model's PNG minus the reference's");
+    if (m->assets && strstr(m->assets->assets, "diffbar\t")) {
+        legend(w, "Blue: the model is darker than the reference there; red: brighter; white: "
+                  "the same. \xce\x94L* is CIE lightness (0 black, 100 white) of the PNGs "
+                  "above; one scale for all models of this material (the 95th percentile of "
+                  "|\xce\x94L*| over them, rounded up), so that their images compare. Black: "
+                  "off the sphere. Reference pixels whose table lookups met a masked bin (the "
+                  "thin arc where the rim light's terminator crosses bins the table leaves "
+                  "unmeasured) take the mean of their measured neighbours within 2 pixels, so a "
+                  "faint trace of the arc can remain; any with none would be grey.");
+    }
+    figures(w, m, "diff", NULL);
+    figures(w, m, "flipbar",
+            "\xea\x9f\xbbLIP: the difference a viewer sees, per pixel (the image error is its mean)");
+    if (m->assets && strstr(m->assets->assets, "flipbar\t"))
+        legend(w, "\xea\x9f\xbbLIP (Andersson et al. 2020; NVIDIA's definition, LDR) of each "
+                  "model's PNG against the reference's, viewed at 67 pixels per degree (a 0.7 m "
+                  "wide 4K display at 0.7 m); black: no visible difference, yellow-white: the "
+                  "most. Its mean over the image is the image error in renders.json; the same "
+                  "number as NVIDIA's flip tool on these PNGs.");
+    figures(w, m, "flip", NULL);
+}
+
 int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
                                const out_dir *dir, brdffit_error *err)
 {
@@ -181,6 +289,7 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
     xml_writer w;
     rp_html_begin(&w, o.f, m->name);
     xml_element_text(&w, "h1", m->name);
+    rp_scale_warning(&w, rep);
     xml_open(&w, "p");
     rp_link(&w, "../index.html", "all materials");
     xml_text(&w, " \xc2\xb7 ");
@@ -207,17 +316,20 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
         xml_open(&w, "p");
         xml_attr(&w, "class", "note");
         xml_text(&w, "d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s, "
-                     "p0..p3 the lobe parameters in the paper's units (gltf, gltf-ext: "
-                     "d = base_color, s = specular_color, linear sRGB; p in glTF's names); "
-                     "Error = ngan-l2 (1/sr); "
+                     "then the lobe parameters by name, in the paper's units (gltf, gltf-ext: "
+                     "d = base_color, s = specular_color, linear sRGB; the parameters in glTF's "
+                     "names; brdffit models lists them); Error = ngan-l2 (1/sr); "
                      "\xe2\x98\x85 the lowest Error");
         if (rep->have_published)
-            xml_text(&w, "; published Error = the Error of the published parameters on this "
-                         "table, ratio = Error / published Error (below 1: this fit is closer)");
+            xml_text(&w, "; published = the published parameters and their Error, computed on "
+                         "this table with this report's settings; ratio = Error / published "
+                         "Error (below 1: this fit is closer)");
         xml_close(&w);
         rp_gltf_section(&w, rep, m);
+        rp_mitsuba_section(&w, rep, m);
+        rp_energy_section(&w, rep, m);
         figures(&w, m, "image", "Renders (reference and each model, same exposure)");
-        figures(&w, m, "diff", "Differences from the reference");
+        comparisons(&w, m);
         figures(&w, m, "plot", "Incidence-plane plots (cube root)");
         figures(&w, m, "data", "Data: linear images (OpenEXR, alpha = coverage), render settings");
     }

@@ -23,6 +23,28 @@ const char *rp_num(char *buf, size_t len, const char *fmt, double x)
     return buf;
 }
 
+/* x with sig significant digits, short: "0.006531", "2.8e4", "1.2e-5" (no '+',
+ * no leading zero in the exponent); "-" when it is not finite. */
+const char *rp_compact(char *buf, size_t len, int sig, double x)
+{
+    if (!isfinite(x)) {
+        snprintf(buf, len, "-");
+        return buf;
+    }
+    char t[64];
+    snprintf(t, sizeof t, "%.*g", sig, x);
+    char *e = strchr(t, 'e');
+    if (e) {
+        char *q = e + 1;
+        int neg = *q == '-';
+        q += *q == '-' || *q == '+';
+        q += strspn(q, "0");
+        snprintf(e + 1, sizeof t - (size_t)(e + 1 - t), "%s%s", neg ? "-" : "", *q ? q : "0");
+    }
+    snprintf(buf, len, "%s", t);
+    return buf;
+}
+
 /* A path segment of a relative URL: every byte but [A-Za-z0-9._~-] percent-encoded. */
 const char *rp_url_segment(char *buf, size_t len, const char *s)
 {
@@ -72,14 +94,24 @@ void rp_tsv_material(FILE *f, const rp_report *rep, const rp_material *m)
 
 /* ------------------------------------------------------------------ HTML pieces */
 
+/* Numbers and names never wrap (white-space:nowrap); prose cells (class
+ * wrap, failed) do. */
 static const char *const page_css =
     "body{font-family:sans-serif;margin:1.5em;color:#222}"
-    "table{border-collapse:collapse;margin:0.5em 0}"
-    "td,th{border:1px solid #bbb;padding:2px 6px;text-align:right;font-variant-numeric:tabular-nums}"
+    "table{border-collapse:collapse;margin:0.5em 0;font-size:0.9em}"
+    "td,th{border:1px solid #bbb;padding:2px 4px;text-align:right;"
+    "font-variant-numeric:tabular-nums;white-space:nowrap}"
     "th{background:#eee}td.name,th.name{text-align:left}"
+    "td.wrap{white-space:normal;text-align:left}"
     "td.best{background:#d8f0d0;font-weight:bold}"
-    "td.failed{color:#a00;text-align:left}"
-    "span.pub{display:block;color:#555;font-size:85%}"
+    "td.failed{color:#a00;text-align:left;white-space:normal}"
+    "span.pub{display:block;color:#555;font-size:85%;font-weight:normal}"
+    "tr.pub td{color:#555;background:#f7f7f7}tr.pub td.name{font-style:italic}"
+    "tr.mhead th{background:#e4e4ee}tr.mhead th.name{font-weight:bold}"
+    "table.sortable thead th{cursor:pointer}"
+    "th[aria-sort=ascending]::after{content:\" \\25B2\"}"
+    "th[aria-sort=descending]::after{content:\" \\25BC\"}"
+    "p.warn{background:#fff3cd;border:1px solid #c9a400;padding:4px 8px}"
     "figure{display:inline-block;margin:4px;text-align:center}"
     "figure img{display:block}figcaption{font-size:90%}"
     "p.note{color:#555;font-size:90%}"
@@ -96,7 +128,9 @@ void rp_html_begin(xml_writer *w, FILE *f, const char *title)
     xml_attr(w, "charset", "utf-8");
     xml_close(w);
     xml_element_text(w, "title", title);
-    xml_element_text(w, "style", page_css);
+    xml_open(w, "style");
+    xml_raw(w, page_css); /* raw text in HTML: entities would not be decoded there */
+    xml_close(w);
     xml_close(w);
     xml_open(w, "body");
 }
@@ -105,6 +139,17 @@ void rp_html_end(xml_writer *w)
 {
     xml_close(w); /* body */
     xml_close(w); /* html */
+}
+
+/* The scale mismatch of the published fits, when the report has one. */
+void rp_scale_warning(xml_writer *w, const rp_report *rep)
+{
+    if (!rep->scale_note[0])
+        return;
+    xml_open(w, "p");
+    xml_attr(w, "class", "warn");
+    xml_textf(w, "Warning: %s.", rep->scale_note);
+    xml_close(w);
 }
 
 void rp_link(xml_writer *w, const char *href, const char *text)
@@ -168,6 +213,7 @@ static int write_material(const rp_report *rep, int i, const out_dir *dir, brdff
     int rc = copy_assets(m, &mdir, err) != 0 || rp_write_params_tsv(rep, m, &mdir, err) != 0 ||
                      rp_write_params_json(rep, m, &mdir, err) != 0 ||
                      rp_write_gltf_files(rep, m, &mdir, err) != 0 ||
+                     rp_write_mitsuba_files(rep, m, &mdir, err) != 0 ||
                      rp_write_material_page(rep, m, rp_best(rep, i), &mdir, err) != 0
                  ? -1 : 0;
     od_close(&mdir);

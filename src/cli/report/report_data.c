@@ -103,6 +103,15 @@ int rp_best(const rp_report *rep, int i)
     return best_slot(rep, &rep->m[i]);
 }
 
+/* The median of e[0..n) (sorted in place), NAN when n is 0. */
+static double median_of(double *e, int n)
+{
+    if (n <= 0)
+        return NAN;
+    qsort(e, (size_t)n, sizeof *e, cmp_double);
+    return n % 2 ? e[n / 2] : 0.5 * (e[n / 2 - 1] + e[n / 2]);
+}
+
 double rp_median(const rp_report *rep, int k, int *nbest, int *nfitted)
 {
     double *e = malloc((size_t)(rep->n > 0 ? rep->n : 1) * sizeof *e);
@@ -114,16 +123,28 @@ double rp_median(const rp_report *rep, int k, int *nbest, int *nfitted)
         if (best_slot(rep, &rep->m[i]) == k)
             best++;
     }
-    double med = NAN;
-    if (n > 0) {
-        qsort(e, (size_t)n, sizeof *e, cmp_double);
-        med = n % 2 ? e[n / 2] : 0.5 * (e[n / 2 - 1] + e[n / 2]);
-    }
+    double med = median_of(e, n);
     free(e);
     if (nbest)
         *nbest = best;
     if (nfitted)
         *nfitted = n;
+    return med;
+}
+
+double rp_median_ratio(const rp_report *rep, int k, int *n)
+{
+    double *e = malloc((size_t)(rep->n > 0 ? rep->n : 1) * sizeof *e);
+    int m = 0;
+    for (int i = 0; i < rep->n && e; i++) {
+        double r = fr_ratio(rep->m[i].fit[k], rep->m[i].published[k]);
+        if (isfinite(r))
+            e[m++] = r;
+    }
+    double med = median_of(e, m);
+    free(e);
+    if (n)
+        *n = m;
     return med;
 }
 

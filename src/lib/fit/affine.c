@@ -11,8 +11,11 @@
  * kept off their bounds, where the sine map has no slope) are screened by
  * their Error on every screen_stride-th sample of the mirror set; the best
  * (at least two, brdffit_fit_options.refine if more) are refined by LM on
- * that subset; the lowest end is refined by LM on all samples; its Error is
- * then summed directly (bf_model_rr), as brdffit_error_of does. */
+ * that subset; the lowest end is refined on all samples (Gauss-Newton steps
+ * with a secant along each when at most AF_GN_MAX_NX coordinates are free,
+ * then LM if they have not converged; coordinates near an end of their
+ * range pinned there, af_pinned); its Error is then summed directly
+ * (bf_model_rr), as brdffit_error_of does. */
 #define _DEFAULT_SOURCE /* M_PI */
 #include "affine.h"
 
@@ -34,6 +37,16 @@
  * freed again when the Error is lower AF_PIN_PROBE inside the end. */
 #define AF_PIN_NEAR 0.05
 #define AF_PIN_PROBE 1e-4
+/* The Gauss-Newton steps on all samples before LM (af_newton): at most this
+ * many, each at most this long in every coordinate (radians of the sine map). */
+#define AF_GN_STEPS 4
+#define AF_GN_MAX_STEP 0.1
+/* ... with at most this many free coordinates (gltf's two: with more, as
+ * gltf-ext's, the steps fall short in more than one direction and the
+ * secant along one does not save LM's passes). */
+#define AF_GN_MAX_NX 2
+/* The secant's point along a step at most this many steps from its start. */
+#define AF_GN_MAX_T 4.0
 
 /* An LM run's point: every lobe coordinate u (the pinned ones too). */
 typedef struct afrun {
@@ -61,88 +74,6 @@ typedef struct afstate {
     brdffit_status st;
     brdffit_error *err;
 } afstate;
-
-/* The best base colour of channel c at a pass's sums (x = argmin over [0, 1]
- * of the channel's r^T r, a parabola in x), and whether it is inside. */
-static double best_colour(const af_mom *m, int c, int *free)
-{
-    *free = 0;
-    if (!(m->bb > 0.0))
-        return 0.0;
-    double x = (m->rb[c] - m->ab) / m->bb;
-    if (!(x > 0.0))
-        return 0.0;
-    if (!(x < 1.0))
-        return 1.0;
-    *free = 1;
-    return x;
-}
-
-/* r^T r, H = J_red^T J_red and g = J^T r (nx x nx, nx) at the best colours
- * into *rr, H, g and base; hdiag: H's diagonal before the colours are
- * projected out.  With f = A + x B: r = A + x B - rho, J_j = dA_j + x dB_j,
- * and for a colour inside (0, 1) its column B projected out (Kaufman's
- * approximation, as linear.h). */
-static void reduce(const af_mom *m, int nx, double *rr, double H[][AF_NP], double *g,
-                   double *hdiag, double *base)
-{
-    *rr = 0.0;
-    memset(H, 0, sizeof(double) * AF_NP * AF_NP);
-    memset(g, 0, sizeof(double) * AF_NP);
-    memset(hdiag, 0, sizeof(double) * AF_NP);
-    for (int c = 0; c < 3; c++) {
-        int free;
-        double x = best_colour(m, c, &free);
-        base[c] = x;
-        *rr += m->rr[c] - 2.0 * (m->ra[c] + x * m->rb[c]) + m->aa + x * (2.0 * m->ab + x * m->bb);
-        double v[AF_NP];
-        for (int j = 0; j < nx; j++) {
-            g[j] += m->daa[j] + x * (m->dab[j] + m->dba[j] + x * m->dbb[j]) - m->rda[c][j]
-                    - x * m->rdb[c][j];
-            v[j] = m->dab[j] + x * m->dbb[j];
-        }
-        for (int j = 0; j < nx; j++)
-            for (int l = j; l < nx; l++) {
-                double h = m->dada[j][l] + x * (m->dadb[j][l] + m->dadb[l][j]) + x * x * m->dbdb[j][l];
-                if (l == j)
-                    hdiag[j] += h;
-                if (free)
-                    h -= v[j] * v[l] / m->bb;
-                H[j][l] += h;
-            }
-    }
-    for (int j = 0; j < nx; j++)
-        for (int l = 0; l < j; l++)
-            H[j][l] = H[l][j];
-    *rr = fmax(*rr, 0.0);
-}
-
-/* H = R^T R (upper R) and z = R^-T g; a pivot that vanishes against hdiag (a
- * direction the data does not see) gives a zero row. */
-static void chol(int nx, double H[][AF_NP], const double *g, const double *hdiag,
-                 double R[][AF_NP], double *z)
-{
-    memset(R, 0, sizeof(double) * AF_NP * AF_NP);
-    for (int k = 0; k < nx; k++) {
-        double piv = H[k][k];
-        for (int i = 0; i < k; i++)
-            piv -= R[i][k] * R[i][k];
-        z[k] = 0.0;
-        if (!(piv > 1e-13 * hdiag[k]) || !(piv > 0))
-            continue;
-        R[k][k] = sqrt(piv);
-        for (int j = k + 1; j < nx; j++) {
-            double v = H[k][j];
-            for (int i = 0; i < k; i++)
-                v -= R[i][k] * R[i][j];
-            R[k][j] = v / R[k][k];
-        }
-        double v = g[k];
-        for (int i = 0; i < k; i++)
-            v -= R[i][k] * z[i];
-        z[k] = v / R[k][k];
-    }
-}
 
 /* Every coordinate u from the active ones x (the rest: S->ufix). */
 static void expand(const afstate *S, const double *x, double *u)
@@ -195,8 +126,8 @@ static brdffit_status evaluate(afstate *S, const double *x)
     if (st != BRDFFIT_OK)
         return st;
     double H[AF_NP][AF_NP], g[AF_NP], hdiag[AF_NP], R[AF_NP][AF_NP], z[AF_NP];
-    reduce(&m, S->nx, &S->rr, H, g, hdiag, S->base);
-    chol(S->nx, H, g, hdiag, R, z);
+    bf_affine_reduce(&m, S->nx, &S->rr, H, g, hdiag, S->base);
+    bf_affine_chol(S->nx, H, g, hdiag, R, z);
     const int nx = S->nx, mres = nx + 1;
     double zz = 0.0;
     for (int j = 0; j < nx; j++) {
@@ -272,6 +203,107 @@ static brdffit_status af_lm(afstate *S, const brdffit_fit_options *o, afrun *run
     return BRDFFIT_OK;
 }
 
+/* At evaluate's point: the Gauss-Newton step d (R d = -z, R upper, in
+ * S->fjac) into d, its longest coordinate returned. */
+static double gn_step(const afstate *S, double *d)
+{
+    const int nx = S->nx, m = nx + 1;
+    double big = 0.0;
+    for (int i = nx - 1; i >= 0; i--) {
+        double rii = S->fjac[i + m * i], v = -S->fvec[i];
+        for (int j = i + 1; j < nx; j++)
+            v -= S->fjac[i + m * j] * d[j];
+        d[i] = rii != 0.0 ? v / rii : 0.0;
+        big = fmax(big, fabs(d[i]));
+    }
+    return big;
+}
+
+/* At evaluate's point: g . d, g = J^T r = R^T z the gradient of r^T r / 2. */
+static double slope(const afstate *S, const double *d)
+{
+    const int nx = S->nx, m = nx + 1;
+    double v = 0.0;
+    for (int j = 0; j < nx; j++)
+        for (int i = 0; i <= j; i++)
+            v += S->fjac[i + m * j] * S->fvec[i] * d[j];
+    return v;
+}
+
+/* At evaluate's point: the reduction of r^T r a Gauss-Newton step predicts
+ * (|z|^2), relative to r^T r. */
+static double predicted(const afstate *S)
+{
+    double zz = 0.0;
+    for (int j = 0; j < S->nx; j++)
+        zz += S->fvec[j] * S->fvec[j];
+    return S->rr > 0.0 ? zz / S->rr : 0.0;
+}
+
+/* Take the point x (evaluated last) as the run's. */
+static void take(afstate *S, const double *x, afrun *run, double *base)
+{
+    expand(S, x, run->u);
+    run->rr = S->rr;
+    memcpy(base, S->base, 3 * sizeof *base);
+}
+
+/* Steps on S's samples from run->u (its active coordinates) before LM: from
+ * a subset's end the minimum on all samples is near.  Each step is a
+ * Gauss-Newton step d, then a secant along it: with large residuals the
+ * Gauss-Newton model's curvature is below the Error's, its steps fall short
+ * by a steady fraction (LM's would too, one pass each), and the slopes g . d
+ * at both ends of d place the minimum along d.  The steps end, converged
+ * (*done = 1), where the reduction a Gauss-Newton step predicts is at most
+ * o->ftol of r^T r.  A step that does not lower r^T r, is not finite or is
+ * longer than AF_GN_MAX_STEP, or AF_GN_STEPS steps that do not converge,
+ * leave *done = 0 and run->u at the lowest point, for lmder. */
+static brdffit_status af_newton(afstate *S, const brdffit_fit_options *o, afrun *run, double *base,
+                                int *done)
+{
+    const int nx = S->nx;
+    double x[AF_NP] = { 0 };
+    *done = 0;
+    memcpy(S->ufix, run->u, sizeof S->ufix);
+    for (int j = 0; j < nx; j++)
+        x[j] = run->u[S->act[j]];
+    S->valid = 0;
+    brdffit_status st = evaluate(S, x);
+    for (int it = 0; st == BRDFFIT_OK && it < AF_GN_STEPS; it++) {
+        if (predicted(S) <= o->ftol) {
+            take(S, x, run, base);
+            run->info = 1;
+            *done = 1;
+            return BRDFFIT_OK;
+        }
+        double d[AF_NP] = { 0 }, x1[AF_NP] = { 0 }, x2[AF_NP] = { 0 };
+        if (!(gn_step(S, d) <= AF_GN_MAX_STEP))
+            return BRDFFIT_OK;
+        const double rr0 = S->rr, s0 = slope(S, d);
+        for (int j = 0; j < nx; j++)
+            x1[j] = x[j] + d[j];
+        if ((st = evaluate(S, x1)) != BRDFFIT_OK || !(S->rr < rr0))
+            return st;
+        memcpy(x, x1, sizeof x);
+        take(S, x, run, base);
+        run->njev++;
+        const double rr1 = S->rr, s1 = slope(S, d);
+        if (!(s0 < s1 && s1 < 0.0))
+            continue; /* no minimum beyond x1 along d */
+        double t = s0 / (s0 - s1); /* the minimum along d at x0 + t d */
+        if (!(t < AF_GN_MAX_T))
+            continue;
+        for (int j = 0; j < nx; j++)
+            x2[j] = x1[j] - d[j] + t * d[j];
+        if ((st = evaluate(S, x2)) != BRDFFIT_OK || !(S->rr < rr1))
+            return st; /* lmder from x1 */
+        memcpy(x, x2, sizeof x);
+        take(S, x, run, base);
+        run->njev++;
+    }
+    return st;
+}
+
 /* Start i's coordinates: the registry's starts, roughness (the grid's
  * parameter) over its grid, metallic near 0 and near 1 in turn, all kept
  * AF_START_INSIDE inside their ranges. */
@@ -315,7 +347,7 @@ static brdffit_status value_at(afstate *S, const double *u, double *rr, double *
     if (st != BRDFFIT_OK)
         return st;
     double H[AF_NP][AF_NP], g[AF_NP], hdiag[AF_NP];
-    reduce(&m, 0, rr, H, g, hdiag, base);
+    bf_affine_reduce(&m, 0, rr, H, g, hdiag, base);
     return BRDFFIT_OK;
 }
 
@@ -401,37 +433,43 @@ static unsigned pin_ends(const fitmap *fm, double *u)
 /* LM on all samples from *best with the coordinates near an end of their
  * range pinned there (where the sine map's slope vanishes, LM would crawl
  * towards the end, halving the distance each step): then each pinned one is
- * tried AF_PIN_PROBE inside, and where that is lower (the end is not the
- * minimum along it) the run is taken again with it free, from where the
+ * tried AF_PIN_PROBE inside, on the subset (the test is the Error's slope
+ * along it at the end, which the subset's samples show as well as all of
+ * them, at an eighth of the cost), and where that is lower (the end is not
+ * the minimum along it) the run is taken again with it free, from where the
  * subset's run left it. */
-static brdffit_status af_pinned(afstate *all, const brdffit_fit_options *o, afrun *best,
-                                double *base, double *solver_s)
+static brdffit_status af_pinned(afstate *all, afstate *sub, const brdffit_fit_options *o,
+                                afrun *best, double *base, double *solver_s)
 {
     const afrun from = *best;
     unsigned pins = pin_ends(&all->fm, best->u);
     for (;;) {
         set_active(all, pins);
-        brdffit_status st = af_lm(all, o, best, base, solver_s);
+        int done = all->nx == 0;
+        brdffit_status st = done || all->nx > AF_GN_MAX_NX ? BRDFFIT_OK
+                                                           : af_newton(all, o, best, base, &done);
+        if (st == BRDFFIT_OK && !done)
+            st = af_lm(all, o, best, base, solver_s);
         if (st != BRDFFIT_OK || pins == 0)
             return st;
+        double at_end, b[3];
+        st = value_at(sub, best->u, &at_end, b);
         int freed = 0;
-        for (int j = 0; j < all->fm.nl && !freed; j++) {
+        for (int j = 0; j < all->fm.nl && !freed && st == BRDFFIT_OK; j++) {
             if (!(pins & (1u << j)))
                 continue;
             afrun in = *best;
-            double t = best->u[j] < 0.0 ? AF_PIN_PROBE : 1.0 - AF_PIN_PROBE, b[3];
+            double t = best->u[j] < 0.0 ? AF_PIN_PROBE : 1.0 - AF_PIN_PROBE;
             in.u[j] = asin(2.0 * t - 1.0);
-            st = value_at(all, in.u, &in.rr, b);
-            if (st != BRDFFIT_OK)
-                return st;
-            if (in.rr < best->rr) { /* the minimum is inside: from the subset's end */
+            st = value_at(sub, in.u, &in.rr, b);
+            if (st == BRDFFIT_OK && in.rr < at_end) { /* the minimum is inside: from the subset's end */
                 best->u[j] = from.u[j];
                 pins &= ~(1u << j);
                 freed = 1;
             }
         }
-        if (!freed)
-            return BRDFFIT_OK;
+        if (st != BRDFFIT_OK || !freed)
+            return st;
     }
 }
 
@@ -456,7 +494,7 @@ static brdffit_status af_stages(afstate *sub, afstate *all, const brdffit_fit_op
     if (lo < 0)
         return bf_fail(all->err, BRDFFIT_E_FIT_FAILED, "no start gave a finite Error");
     *best = keep[lo];
-    return af_pinned(all, o, best, base, solver_s);
+    return af_pinned(all, sub, o, best, base, solver_s);
 }
 
 brdffit_status bf_affine_fit(brdffit_context *ctx, const brdffit_samples *samples,

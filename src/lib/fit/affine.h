@@ -41,9 +41,27 @@ brdffit_status bf_affine_pass(const brdffit_samples *samples, brdffit_model mode
                               const double (*pts)[AF_NP], int np, const double *inv_h, af_mom *m,
                               brdffit_error *err);
 
+/* fn on each of njobs jobs of size bytes from jobs, on the pass workers (at
+ * most nworkers threads, made once a process) while the caller waits, or in
+ * the calling thread when the workers are in use or cannot be made
+ * (affine_pool.c). */
+void bf_affine_run(void (*fn)(void *), void *jobs, size_t size, int njobs, int nworkers);
+
+/* From a pass's sums m: r^T r, H = J^T J and g = J^T r in the first nx
+ * coordinates (nx x nx, nx) at the best base colours (into base; each
+ * solved in [0, 1], a colour inside projected out of H), and hdiag, H's
+ * diagonal before that (affine_reduce.c). */
+void bf_affine_reduce(const af_mom *m, int nx, double *rr, double H[][AF_NP], double *g,
+                      double *hdiag, double *base);
+
+/* H = R^T R (R upper) and z = R^-T g; a pivot that vanishes against hdiag
+ * (a direction the data does not see) gives a zero row. */
+void bf_affine_chol(int nx, double H[][AF_NP], const double *g, const double *hdiag,
+                    double R[][AF_NP], double *z);
+
 /* sum_s a^2 (rho_c - f_c)^2 over the three channels (with the samples'
- * pair_see) at params: the Error squared, computed directly, for a model of
- * either colour form. */
+ * pair_see) at params: the Error squared of a glTF model's parameters,
+ * computed directly (the residuals, not the pass's sums). */
 double bf_model_rr(const brdffit_samples *samples, brdffit_model model,
                    const brdffit_params *params);
 

@@ -458,9 +458,7 @@ brdffit_status brdffit_samples_options(const brdffit_samples *samples,
  * pi - phi_d, which every model gives one value, merged into one:
  * docs/fitting.md), the subsets its starts are screened on (every 8th
  * sample, He: every 12th and a bin subset) and, for He, the bin tables of
- * the mirror set and of those subsets, and the pairs of samples (with g(rho)
- * of each) that the "log" and "cube-root" passes read (every fit's Errors
- * under them: docs/metrics.md).  A set keeps them until it is freed,
+ * the mirror set and of those subsets.  A set keeps them until it is freed,
  * and every fit of it (any context, any thread) uses the same ones, so that
  * a fit need not read the whole set to make them (~8 ms each for a MERL
  * table: docs/performance.md).  Optional: without it the

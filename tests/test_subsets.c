@@ -105,22 +105,21 @@ START_TEST(prepare_makes_what_fits_use)
     ck_assert_msg(brdffit_samples_prepare(s, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_int_eq(err.status, BRDFFIT_OK);
     const brdffit_samples *every = NULL, *bins = NULL, *mirror = NULL;
-    /* the mirror set, every 12th, the bin subset, the metric passes' pairs */
-    ck_assert_uint_eq(bf_derived_count(s), 4);
+    ck_assert_uint_eq(bf_derived_count(s), 3); /* the mirror set, every 12th, the bin subset */
     ck_assert_msg(bf_samples_mirror_kept(s, &mirror, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_uint_eq(bf_derived_count(mirror), 1); /* its bin table */
     ck_assert_msg(bf_screen_subsets(s, BRDFFIT_HE, &every, &bins, &err) == BRDFFIT_OK, "%s",
                   err.message);
     ck_assert(every && bins);
-    ck_assert_uint_eq(bf_derived_count(s), 4);
+    ck_assert_uint_eq(bf_derived_count(s), 3);
     ck_assert_uint_eq(bf_derived_count(every), 1);
     ck_assert_uint_eq(bf_derived_count(bins), 1);
     ck_assert_msg(brdffit_samples_prepare(s, BRDFFIT_HE, &err) == BRDFFIT_OK, "%s", err.message);
-    ck_assert_uint_eq(bf_derived_count(s), 4);
+    ck_assert_uint_eq(bf_derived_count(s), 3);
     /* Cook-Torrance: every 8th sample, no bin tables */
     ck_assert_msg(brdffit_samples_prepare(s, BRDFFIT_COOK_TORRANCE, &err) == BRDFFIT_OK, "%s",
                   err.message);
-    ck_assert_uint_eq(bf_derived_count(s), 5);
+    ck_assert_uint_eq(bf_derived_count(s), 4);
     ck_assert_msg(bf_screen_subsets(s, BRDFFIT_COOK_TORRANCE, &every, &bins, &err) == BRDFFIT_OK,
                   "%s", err.message);
     ck_assert(every && !bins);
@@ -133,7 +132,7 @@ START_TEST(prepare_makes_what_fits_use)
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_HE, NULL, &r, &err) == BRDFFIT_OK, "%s", err.message);
     ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_COOK_TORRANCE, NULL, &r, &err) == BRDFFIT_OK, "%s",
                   err.message);
-    ck_assert_uint_eq(bf_derived_count(s), 5); /* the fits made nothing more */
+    ck_assert_uint_eq(bf_derived_count(s), 4); /* the fits made nothing more */
     ck_assert_uint_eq(bf_derived_count(mirror), 1);
     brdffit_context_free(ctx);
     brdffit_samples_free(s);
@@ -190,12 +189,12 @@ START_TEST(prepare_refuses_and_small_sets)
     ck_assert_int_eq(tu_ward_duer_samples(6, &s, &err), BRDFFIT_OK);
     ck_assert_uint_lt(s->n, 8 * BF_SCREEN_MIN_SAMPLES);
     ck_assert_int_eq(brdffit_samples_prepare(s, BRDFFIT_WARD, &err), BRDFFIT_OK);
-    ck_assert_uint_eq(bf_derived_count(s), 2); /* the mirror set, the metric passes' pairs */
+    ck_assert_uint_eq(bf_derived_count(s), 1);
     const brdffit_samples *mirror = NULL;
     ck_assert_int_eq(bf_samples_mirror_kept(s, &mirror, &err), BRDFFIT_OK);
     ck_assert_uint_eq(bf_derived_count(mirror), 0);
     ck_assert_int_eq(brdffit_samples_prepare(s, BRDFFIT_HE, &err), BRDFFIT_OK);
-    ck_assert_uint_eq(bf_derived_count(s), 2);
+    ck_assert_uint_eq(bf_derived_count(s), 1);
     ck_assert_uint_eq(bf_derived_count(mirror), 1);
     brdffit_samples_free(s);
 }

@@ -271,9 +271,8 @@ START_TEST(one_set_fitted_in_four_threads)
     int rc = tu_in_child(run_shared, NULL, &r, sizeof r);
     ck_assert_msg(rc == 0, "the child process failed (%d): a crash or a ThreadSanitizer report", rc);
     ck_assert_msg(r.setup_ok, "no sample set or no threads");
-    /* the mirror set, every 12th, He's bin subset, every 8th, the metric
-     * passes' pairs (every fit's Errors under log and cube-root): each made once */
-    ck_assert_uint_eq(r.kept, 5);
+    /* the mirror set, every 12th, He's bin subset, every 8th: each made once */
+    ck_assert_uint_eq(r.kept, 4);
     ck_assert_uint_eq(r.kept_mirror, 1); /* the mirror set's bin table, once */
     for (int i = 0; i < NTHREADS; i++) {
         const worker *t = &r.threaded[i], *q = &r.sequential[i];

@@ -3,7 +3,6 @@
  * starts on (registry: screen_stride, screen_bins), kept with the set so
  * that every fit of it shares them, and brdffit_samples_prepare, which
  * makes them (and He's bin tables) before any fit asks. */
-#include "metric.h"
 #include "internal.h"
 #include "pass.h"
 #include "registry.h"
@@ -52,9 +51,6 @@ brdffit_status brdffit_samples_prepare(const brdffit_samples *samples, brdffit_m
     for (int i = 0; i < 3 && st == BRDFFIT_OK; i++)
         if (sets[i] && sets[i]->n > 0 && bf_lobe_has_own_fd((int)model))
             st = bf_pass_bins_prepare(sets[i], err);
-    const bf_metric_set *pairs = NULL; /* every fit's Errors under log and cube-root */
-    if (st == BRDFFIT_OK)
-        st = bf_metric_set_kept(samples, &pairs, err);
     if (st == BRDFFIT_OK)
         bf_ok(err);
     return st;

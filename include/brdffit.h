@@ -566,7 +566,11 @@ typedef struct brdffit_fit_options {
     double lambda_um[3]; /* He only: wavelengths; 0 = (0.645, 0.526, 0.444)  */
     int metric;          /* the brdffit_metric the fit minimises; default
                             BRDFFIT_METRIC_NGAN_L2 (docs/metrics.md)        */
-    int reserved;        /* 0 (ends the struct on a member: no tail padding) */
+    int all_errors;      /* 1: an "ngan-l2" fit also gives its Error under
+                            every other metric (result errors[]; one more
+                            host pass over the samples); default 0: NaN
+                            there.  A fit under "log" or "cube-root" gives
+                            all three whatever this is (docs/metrics.md)    */
 } brdffit_fit_options;
 
 void brdffit_fit_options_init(brdffit_fit_options *opt, size_t size);
@@ -578,7 +582,8 @@ static inline void brdffit_fit_options_default(brdffit_fit_options *opt)
 /* What a fit found.  `error` is the fit's Error, the metric it minimised
  * (`metric`; "ngan-l2" by default) of params, as brdffit_error_metric gives
  * it (brdffit_error_of for "ngan-l2"); `errors` holds params' Error under
- * every metric.  A measure of the fit, not a failure; failures are the
+ * every metric (NaN under "log" and "cube-root" for an "ngan-l2" fit
+ * without brdffit_fit_options.all_errors).  A measure of the fit, not a failure; failures are the
  * brdffit_status a call returns, with its message in a brdffit_error. */
 typedef struct brdffit_fit_result {
     size_t size;             /* sizeof(brdffit_fit_result), set by the caller:
@@ -609,7 +614,8 @@ typedef struct brdffit_fit_result {
                                 kernels, 0 when the context had them
                                 (brdffit_context_prepare, an earlier fit)   */
     double errors[BRDFFIT_METRIC_COUNT]; /* the Error of params under each
-                                brdffit_metric (errors[metric] == error)    */
+                                brdffit_metric (errors[metric] == error);
+                                NaN where not computed (all_errors)         */
     int metric;              /* the brdffit_metric the fit minimised        */
     int metric_iterations;   /* LM iterations after the "ngan-l2" fit (0
                                 for an "ngan-l2" fit; docs/metrics.md)      */

@@ -106,7 +106,7 @@ class FitOptions(C.Structure):
         ("max_evals", C.c_int),
         ("lambda_um", _d3),
         ("metric", C.c_int),
-        ("reserved", C.c_int),
+        ("all_errors", C.c_int),
     ]
 
 

@@ -102,7 +102,8 @@ class FitResult:
     """What brdffit_fit returns.  ``params`` in the paper's units, ``error``
     the Error of params under ``metric``, the metric the fit minimised
     ("ngan-l2" unless asked), ``errors`` its Error under every metric (a dict
-    by name), ``metric_iterations`` the LM iterations after the "ngan-l2"
+    by name; None under "log" and "cube-root" for an "ngan-l2" fit unless
+    fit(..., all_errors=True)), ``metric_iterations`` the LM iterations after the "ngan-l2"
     fit (docs/metrics.md), ``status`` the call's Status (OK: a
     result), ``cminpack_info`` lmder's info of the run kept (1..4 converged),
     ``iterations`` its Jacobian evaluations, ``passes`` all data passes
@@ -166,7 +167,7 @@ def fit_options(**options):
     if "metric" in options:
         opt.metric = _metric_id(options.pop("metric"))
     for name, value in options.items():
-        if name not in _OPTION_FIELDS or name == "reserved":
+        if name not in _OPTION_FIELDS:
             raise TypeError(
                 f"fit() got an unknown option {name!r} (options: {', '.join(_OPTION_FIELDS)})"
             )
@@ -226,7 +227,8 @@ def fit(ctx, samples, model, **options):
         at_bound=AtBound(r.at_bound),
         flags=FitFlag(r.flags),
         metric=METRICS[r.metric],
-        errors={name: r.errors[k] for k, name in enumerate(METRICS)},
+        errors={name: None if np.isnan(r.errors[k]) else r.errors[k]
+                for k, name in enumerate(METRICS)},
         metric_iterations=r.metric_iterations,
     )
 

@@ -109,7 +109,18 @@ def test_fit_under_a_metric_equals_the_program(brdffit, ctx, cli, alum_bronze):
             r.errors[name], rel=1e-12)
     base = brdffit.fit(ctx, s, "ward", starts=2)
     assert base.metric == "ngan-l2" and base.metric_iterations == 0
-    assert r.errors["log"] < base.errors["log"] and base.error == base.errors["ngan-l2"]
+    assert base.errors == {"ngan-l2": base.error, "log": None, "cube-root": None}
+    every = brdffit.fit(ctx, s, "ward", starts=2, all_errors=True)
+    assert every.params == base.params and every.errors["ngan-l2"] == base.error
+    assert r.errors["log"] < every.errors["log"]
+    for name in brdffit.METRICS:
+        assert brdffit.error_of(ctx, s, "ward", every, metric=name) == pytest.approx(
+            every.errors[name], rel=1e-12)
+    [plain] = cli_fit(cli, alum_bronze, "--model", "ward", "--cutoff", "40", "--starts", "2")
+    assert plain["errors"] == base.errors
+    [full] = cli_fit(cli, alum_bronze, "--model", "ward", "--cutoff", "40", "--starts", "2",
+                     "--errors", "all")
+    assert full["errors"] == every.errors and full["d"] + full["s"] + full["p"] == plain["d"] + plain["s"] + plain["p"]
 
 
 def test_unknown_metric_refused(brdffit, ctx):

@@ -71,7 +71,7 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, max_evals),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, lambda_um),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, metric),
-    M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, reserved),
+    M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, all_errors),
 
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, size),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, model),

@@ -45,6 +45,9 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
     if (o->metric < 0 || o->metric >= BRDFFIT_METRIC_COUNT)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
                        "metric = %d is not a metric (0 ngan-l2, 1 log, 2 cube-root)", o->metric);
+    if (o->all_errors != 0 && o->all_errors != 1)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "all_errors = %d must be 0 or 1",
+                       o->all_errors);
     if (o->max_evals < 1)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "max_evals = %d must be >= 1", o->max_evals);
     for (int c = 0; c < 3; c++)
@@ -148,7 +151,9 @@ static brdffit_status open_all_samples(bf_pass_driver *ps, brdffit_context *ctx,
     return st == BRDFFIT_OK ? bf_driver_open(ps, ctx, all, model, err) : st;
 }
 
-/* r holds the "ngan-l2" fit of o: its Errors under the other metrics, or,
+/* r holds the "ngan-l2" fit of o: its Errors under the other metrics (when
+ * o asks for all_errors; NaN otherwise, so that a default fit makes no more
+ * passes), or,
  * for another metric, the fit under it from there (metric_fit.c) and the
  * "ngan-l2" Error of what that fit returns. */
 static brdffit_status metric_finish(brdffit_context *ctx, const brdffit_samples *samples,
@@ -158,8 +163,13 @@ static brdffit_status metric_finish(brdffit_context *ctx, const brdffit_samples 
     r->errors[BRDFFIT_METRIC_NGAN_L2] = r->error;
     r->metric = BRDFFIT_METRIC_NGAN_L2;
     r->metric_iterations = 0;
-    if (o->metric == BRDFFIT_METRIC_NGAN_L2)
-        return bf_metric_errors(samples, model, &r->params, r->errors, err);
+    if (o->metric == BRDFFIT_METRIC_NGAN_L2) {
+        if (o->all_errors)
+            return bf_metric_errors(samples, model, &r->params, r->errors, err);
+        for (int m = 1; m < BRDFFIT_METRIC_COUNT; m++)
+            r->errors[m] = NAN;
+        return BRDFFIT_OK;
+    }
     brdffit_status st = bf_metric_refit(samples, model, (brdffit_metric)o->metric, r, err);
     if (st == BRDFFIT_OK)
         st = brdffit_error_of(ctx, samples, model, &r->params,

@@ -446,8 +446,11 @@ static brdffit_status af_pinned(afstate *all, afstate *sub, const brdffit_fit_op
     for (;;) {
         set_active(all, pins);
         int done = all->nx == 0;
-        brdffit_status st = done || all->nx > AF_GN_MAX_NX ? BRDFFIT_OK
-                                                           : af_newton(all, o, best, base, &done);
+        brdffit_status st = BRDFFIT_OK;
+        if (done) /* every coordinate pinned: the base colour at that point */
+            st = value_at(all, best->u, &best->rr, base);
+        else if (all->nx <= AF_GN_MAX_NX)
+            st = af_newton(all, o, best, base, &done);
         if (st == BRDFFIT_OK && !done)
             st = af_lm(all, o, best, base, solver_s);
         if (st != BRDFFIT_OK || pins == 0)

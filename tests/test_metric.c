@@ -128,9 +128,10 @@ START_TEST(metric_values_match_a_direct_sum)
 END_TEST
 
 /* A fit's errors[] are its parameters' Errors under each metric, the one it
- * minimised its error; a fit under log or cube-root is lower there than the
- * ngan-l2 fit (which it starts from), and the ngan-l2 fit is unchanged by
- * asking for the others. */
+ * minimised its error; an ngan-l2 fit has the others (NaN otherwise) only
+ * with all_errors, its parameters and Error the same; a fit under log or
+ * cube-root has all three, lower under its metric than the ngan-l2 fit
+ * (which it starts from). */
 START_TEST(fit_errors_under_every_metric)
 {
     brdffit_context *ctx = make_context();
@@ -139,10 +140,23 @@ START_TEST(fit_errors_under_every_metric)
     brdffit_fit_result base;
     brdffit_error err;
     brdffit_fit_result_init(&base);
-    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_COOK_TORRANCE, NULL, &base, &err) == BRDFFIT_OK,
+    brdffit_fit_result plain;
+    brdffit_fit_result_init(&plain);
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_COOK_TORRANCE, NULL, &plain, &err) == BRDFFIT_OK,
+                  "%s", err.message);
+    ck_assert(plain.errors[0] == plain.error && isnan(plain.errors[1]) && isnan(plain.errors[2]));
+    brdffit_fit_options all;
+    brdffit_fit_options_default(&all);
+    all.all_errors = 1;
+    ck_assert_msg(brdffit_fit(ctx, s, BRDFFIT_COOK_TORRANCE, &all, &base, &err) == BRDFFIT_OK,
                   "%s", err.message);
     ck_assert_int_eq(base.metric, BRDFFIT_METRIC_NGAN_L2);
-    ck_assert(base.errors[0] == base.error);
+    ck_assert(base.errors[0] == base.error && base.error == plain.error);
+    ck_assert(memcmp(&base.params, &plain.params, sizeof base.params) == 0);
+    all.all_errors = 2;
+    ck_assert_int_eq(brdffit_fit(ctx, s, BRDFFIT_COOK_TORRANCE, &all, &plain, &err),
+                     BRDFFIT_E_INVALID_ARGUMENT);
+    ck_assert_msg(strstr(err.message, "all_errors = 2") != NULL, "%s", err.message);
     for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++) {
         double e;
         ck_assert_int_eq(brdffit_error_metric(ctx, s, BRDFFIT_COOK_TORRANCE, &base.params,

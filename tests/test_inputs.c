@@ -236,6 +236,7 @@ static const tamper tampers[] = {
     { "iterations", "null", "a fit without its iterations" },
     { "errors", "{\"ngan-l2\":1,\"log\":2,\"cube-root\":3}", "is not its Error under its metric ngan-l2" },
     { "errors", "{\"ngan-l2\":1,\"log\":-2,\"cube-root\":3}", "the Error under log is not a finite number" },
+    { "errors", "{\"ngan-l2\":1,\"log\":null,\"cube-root\":null}", "is not its Error under its metric ngan-l2" },
     { "metric", "\"l3\"", "metric \"l3\" is not a metric" },
 };
 enum { NTAMPER = (int)(sizeof tampers / sizeof tampers[0]) };

@@ -12,6 +12,7 @@
 #include "cli.h"
 
 #include <check.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -215,6 +216,39 @@ END_TEST
 
 /* A fit that failed and a material that could not be read: status code and
  * message read back; no parameters, no counts. */
+/* An ngan-l2 fit without its Errors under log and cube-root (not asked
+ * for): null in the record, read back as NaN, and the record passes the
+ * check; its Error under ngan-l2, when given, must be its Error. */
+START_TEST(record_round_trips_errors_not_computed)
+{
+    fit_record r, back;
+    char line[16384];
+    key_of(&r, FR_FIT);
+    snprintf(r.settings.metric, sizeof r.settings.metric, "ngan-l2");
+    snprintf(r.model, sizeof r.model, "ward");
+    r.nparams = 1;
+    r.has_params = 1;
+    r.params = (brdffit_params){ { 0.08, 0.05, 0.02 }, { 0.04, 0.02, 0.01 }, { 0.1 }, { 0 } };
+    r.error = 0.0712;
+    r.errors[0] = 0.0712;
+    r.has_counts = 1;
+    r.iterations = 3;
+    r.passes = 13;
+    r.cminpack_info = 1;
+    round_trip(&r, &back, line, sizeof line);
+    ck_assert_msg(strstr(line, "\"errors\":{\"ngan-l2\":0.0711999999999"), "%s", line);
+    ck_assert_msg(strstr(line, "\"log\":null,\"cube-root\":null}"), "%s", line);
+    ck_assert(back.errors[0] == r.error && isnan(back.errors[1]) && isnan(back.errors[2]));
+    char why[320];
+    const char *bad = fr_check(&back, why, sizeof why);
+    ck_assert_msg(bad == NULL, "%s", bad);
+    back.errors[0] = 0.07;
+    bad = fr_check(&back, why, sizeof why);
+    ck_assert_msg(bad && strstr(bad, "not its Error under its metric ngan-l2"), "%s",
+                  bad ? bad : "ok");
+}
+END_TEST
+
 START_TEST(record_round_trips_failures)
 {
     fit_record r, back;
@@ -455,6 +489,7 @@ Suite *journal_suite(void)
     tcase_add_loop_test(tc, journal_refuses_impossible_lines, 0, NBAD);
     tcase_add_loop_test(tc, journal_refuses_out_of_range_numbers, 0, 3);
     tcase_add_test(tc, record_round_trips_a_fit);
+    tcase_add_test(tc, record_round_trips_errors_not_computed);
     tcase_add_test(tc, record_round_trips_failures);
     tcase_add_test(tc, unknown_model_failure_round_trips);
     tcase_add_test(tc, record_keys_are_the_same_for_every_kind);

@@ -166,6 +166,11 @@ def fit_options(**options):
     options = dict(options)
     if "metric" in options:
         opt.metric = _metric_id(options.pop("metric"))
+    if "all_errors" in options:  # a yes or no: True/False (or 0/1)
+        v = options.pop("all_errors")
+        if not isinstance(v, (bool, np.bool_, int)) or v not in (0, 1):
+            raise InvalidArgumentError(_BAD, f"fit option all_errors: bad value {v!r} (True or False)")
+        opt.all_errors = int(v)
     for name, value in options.items():
         if name not in _OPTION_FIELDS:
             raise TypeError(

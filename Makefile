@@ -88,7 +88,7 @@ CLI_SRC  = $(wildcard src/cli/*.c src/cli/*/*.c)
 # The program's files but its main: the tests link them to test svg.c etc.
 CLI_SUPPORT_OBJ = $(filter-out $(BUILD)/cli/brdffit.o,$(CLI_SRC:src/cli/%.c=$(BUILD)/cli/%.o))
 TEST_SRC = $(wildcard tests/*.c)
-BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_record.c \
+BENCH_SRC = bench/bench.c bench/bench_batch.c bench/bench_cli.c bench/bench_database.c bench/bench_metric.c bench/bench_record.c \
             bench/bench_render.c bench/bench_summary.c \
             bench/bench_stream.c bench/cli_run.c
 

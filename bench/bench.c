@@ -12,7 +12,9 @@
  *  2. per model, one complete fit (the fastest of 3 identical runs, kernels
  *     built beforehand): wall time, passes, share inside cminpack; then the
  *     He / Cook-Torrance ratio from 3 more runs of each, alternating (the
- *     fastest of each);
+ *     fastest of each); then each model's fit under ngan-l2, log and
+ *     cube-root in turn, the fastest of each and their ratios
+ *     (bench_metric.c, docs/metrics.md);
  *  3. `brdffit fit` over 10 materials x every model end to end (bench_cli.c):
  *     wall time, inside and outside the fits, median fits, the projection to
  *     the 100 tables;
@@ -40,6 +42,7 @@
 #include "bench_batch.h"
 #include "bench_cli.h"
 #include "bench_database.h"
+#include "bench_metric.h"
 #include "bench_record.h"
 #include "bench_render.h"
 #include "bench_stream.h"
@@ -468,7 +471,9 @@ static int bench_fits(brdffit_context *ctx, const brdffit_samples *s, const benc
         sum->he_per_ct = fit_seconds[BRDFFIT_HE] / fit_seconds[BRDFFIT_COOK_TORRANCE];
         bench_record("fit/he/alum-bronze", "fit / cook-torrance's fit ratio", sum->he_per_ct);
     }
-    return gltf_ratios(ctx, s, a, fit_seconds);
+    if (gltf_ratios(ctx, s, a, fit_seconds) != 0)
+        return 1;
+    return bench_metric_fits(ctx, s, a->models, a->quick ? 1 : 3);
 }
 
 int main(int argc, char **argv)

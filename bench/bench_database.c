@@ -22,6 +22,7 @@
  * (MODELS: the --model list, or every-model) and database/MODEL. */
 #define _POSIX_C_SOURCE 200809L
 #include "bench_database.h"
+#include "bench_metric.h"
 #include "bench_record.h"
 #include "cli_run.h"
 #include "testutil.h"
@@ -265,6 +266,8 @@ int bench_database(int rounds, const char *models, const char *baseline_path)
     if (b.rows)
         print_baseline(&b, baseline_path, rounds + 1, benchmark);
     print_summary(ntab, models, wall_ahead, med, rounds);
+    if (bench_metric_batch(names, ntab, models) != 0)
+        goto done;
     rc = 0;
 done:
     free(b.rows);

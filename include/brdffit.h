@@ -79,6 +79,12 @@
  *   over the valid samples (all channels >= 0, theta_i and theta_o <= the
  *   cutoff, default 80 deg), w_s = the bin's solid angle
  *   (cos th_lo - cos th_hi)(sin^2 td_hi - sin^2 td_lo)/2.
+ *   Two more metrics (brdffit_metric) over the same samples, weights and
+ *   channel scale, E = sqrt( sum_s sum_c w_s (g(rho_c) - g(f_c))^2 / (3 sum_s w_s) ):
+ *     "log"        g(v) = ln(1 + v cos ti(s))     (Low et al. 2012, E2)
+ *     "cube-root"  g(v) = (v + eps)^(1/3), eps = BRDFFIT_CUBE_ROOT_EPS
+ *                  = 1e-6 1/sr: finite slope (1/3) eps^(-2/3) at f = 0
+ *   ("ngan-l2" is g(v) = v cos ti(s)).  docs/metrics.md.
  *
  *   Renders and incidence-plane curves: the sphere, camera, shading frame,
  *   lights, environment map, coverage and image-error conventions are at
@@ -549,6 +555,16 @@ brdffit_status brdffit_context_prepare(brdffit_context *ctx, brdffit_model model
  * context (0 when they are not built, and on the host backend). */
 double brdffit_context_build_seconds(const brdffit_context *ctx, brdffit_model model);
 
+/* The Error metrics (see "Error metric" at the top; docs/metrics.md).  A fit
+ * minimises the one its options name and reports its Error under each. */
+typedef enum brdffit_metric {
+    BRDFFIT_METRIC_NGAN_L2 = 0,   /* "ngan-l2": the paper's; the default     */
+    BRDFFIT_METRIC_LOG = 1,       /* "log": ln(1 + f cos ti)                */
+    BRDFFIT_METRIC_CUBE_ROOT = 2  /* "cube-root": (f + eps)^(1/3)            */
+} brdffit_metric;
+#define BRDFFIT_METRIC_COUNT 3
+#define BRDFFIT_CUBE_ROOT_EPS 1e-6
+
 typedef struct brdffit_fit_options {
     size_t size;         /* sizeof(brdffit_fit_options), set by _default()  */
     int starts;          /* starting points screened; 0 (default): the model's
@@ -557,6 +573,13 @@ typedef struct brdffit_fit_options {
     double ftol, xtol, gtol; /* cminpack tolerances; default 1e-8, 1e-8, 0    */
     int max_evals;       /* data passes per LM run; default 200              */
     double lambda_um[3]; /* He only: wavelengths; 0 = (0.645, 0.526, 0.444)  */
+    int metric;          /* the brdffit_metric the fit minimises; default
+                            BRDFFIT_METRIC_NGAN_L2 (docs/metrics.md)        */
+    int all_errors;      /* 1: an "ngan-l2" fit also gives its Error under
+                            every other metric (result errors[]; one more
+                            host pass over the samples); default 0: NaN
+                            there.  A fit under "log" or "cube-root" gives
+                            all three whatever this is (docs/metrics.md)    */
 } brdffit_fit_options;
 
 void brdffit_fit_options_init(brdffit_fit_options *opt, size_t size);
@@ -565,16 +588,18 @@ static inline void brdffit_fit_options_default(brdffit_fit_options *opt)
     brdffit_fit_options_init(opt, sizeof *opt);
 }
 
-/* What a fit found.  `error` is the fit's Error, the metric "ngan-l2" of
- * params (as brdffit_error_of gives it): a measure of the fit, not a
- * failure; failures are the brdffit_status a call returns, with its
- * message in a brdffit_error. */
+/* What a fit found.  `error` is the fit's Error, the metric it minimised
+ * (`metric`; "ngan-l2" by default) of params, as brdffit_error_metric gives
+ * it (brdffit_error_of for "ngan-l2"); `errors` holds params' Error under
+ * every metric (NaN under "log" and "cube-root" for an "ngan-l2" fit
+ * without brdffit_fit_options.all_errors).  A measure of the fit, not a failure; failures are the
+ * brdffit_status a call returns, with its message in a brdffit_error. */
 typedef struct brdffit_fit_result {
     size_t size;             /* sizeof(brdffit_fit_result), set by the caller:
                                 brdffit_fit_result_init (ABI CONVENTIONS)   */
     brdffit_model model;
     brdffit_params params;   /* in the paper's units                        */
-    double error;            /* the "ngan-l2" Error of params               */
+    double error;            /* the Error of params under `metric`          */
     int cminpack_info;       /* lmder's info of the run kept (1..4 converged) */
     int iterations;          /* Jacobian evaluations (njev) of the LM runs that
                                 led to params, those on the screening's subset
@@ -597,6 +622,12 @@ typedef struct brdffit_fit_result {
     double seconds_build;    /* of `seconds`: building the model's OpenCL
                                 kernels, 0 when the context had them
                                 (brdffit_context_prepare, an earlier fit)   */
+    double errors[BRDFFIT_METRIC_COUNT]; /* the Error of params under each
+                                brdffit_metric (errors[metric] == error);
+                                NaN where not computed (all_errors)         */
+    int metric;              /* the brdffit_metric the fit minimised        */
+    int metric_iterations;   /* LM iterations after the "ngan-l2" fit (0
+                                for an "ngan-l2" fit; docs/metrics.md)      */
 } brdffit_fit_result;
 
 /* Every member 0 and size = sizeof *result as the caller is compiled. */
@@ -660,8 +691,23 @@ brdffit_status brdffit_error_of(brdffit_context *ctx, const brdffit_samples *sam
                                 brdffit_model model, const brdffit_params *params,
                                 double *error, brdffit_error *err);
 
-/* "ngan-l2" */
+/* The Error of given parameters under a metric (brdffit_metric), into
+ * *error.  "ngan-l2" is brdffit_error_of's; "log" and "cube-root" are
+ * summed on the host over the set's samples (each pair of mirror samples,
+ * one model value, summed as two), split over the online CPUs.  An
+ * unknown metric is BRDFFIT_E_INVALID_ARGUMENT. */
+brdffit_status brdffit_error_metric(brdffit_context *ctx, const brdffit_samples *samples,
+                                    brdffit_model model, const brdffit_params *params,
+                                    brdffit_metric metric, double *error, brdffit_error *err);
+
+/* "ngan-l2" (the default metric's name) */
 const char *brdffit_metric_name(void);
+/* A metric's name ("ngan-l2", "log", "cube-root"), NULL for an unknown one. */
+const char *brdffit_metric_get_name(brdffit_metric metric);
+/* A metric by name (any case, '_' for '-'): BRDFFIT_E_INVALID_ARGUMENT, the
+ * message listing the metrics, for any other. */
+brdffit_status brdffit_metric_from_name(const char *name, brdffit_metric *out,
+                                        brdffit_error *err);
 
 /* ------------------------------------------------------------------ ABI introspection */
 

@@ -205,6 +205,8 @@ static char *with_member(const char *line, const char *key, const char *value)
     const char *v = at + strlen(k), *end;
     if (*v == '[')
         end = strchr(v, ']') + 1;
+    else if (*v == '{')
+        end = strchr(v, '}') + 1;
     else if (*v == '"')
         end = strchr(v + 1, '"') + 1;
     else
@@ -232,6 +234,10 @@ static const tamper tampers[] = {
     { "material", "\"\"", "the material name is empty" },
     { "hash", "\"xyz\"", "size or hash" },
     { "iterations", "null", "a fit without its iterations" },
+    { "errors", "{\"ngan-l2\":1,\"log\":2,\"cube-root\":3}", "is not its Error under its metric ngan-l2" },
+    { "errors", "{\"ngan-l2\":1,\"log\":-2,\"cube-root\":3}", "the Error under log is not a finite number" },
+    { "errors", "{\"ngan-l2\":1,\"log\":null,\"cube-root\":null}", "is not its Error under its metric ngan-l2" },
+    { "metric", "\"l3\"", "metric \"l3\" is not a metric" },
 };
 enum { NTAMPER = (int)(sizeof tampers / sizeof tampers[0]) };
 
@@ -294,6 +300,8 @@ typedef struct message_case {
 
 static const message_case messages[] = {
     { "score '%1$s/t.binary' --model ward --params ''", 2, "brdffit: --params needs a value" },
+    { "fit '%1$s/t.binary' --metric l3", 2, "brdffit: --metric 'l3': expected ngan-l2, log or cube-root" },
+    { "batch '%1$s/t.binary' --out '%1$s/o' --metric", 2, "brdffit: --metric needs a value" },
     { "score '%1$s/t.binary' --model ward --params=", 2, "brdffit: --params needs a value" },
     { "batch '%1$s/t.binary' --out=", 2, "brdffit: --out needs a value" },
     { "score '%1$s/t.binary' --model ward --params 1e308,0,0,1e308,0,0,0.1", 1,

@@ -12,6 +12,7 @@
 #include "cli.h"
 
 #include <check.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -135,6 +136,7 @@ static void key_of(fit_record *r, fr_kind kind)
     snprintf(r->settings.scale, sizeof r->settings.scale, "flat");
     r->settings.cutoff_deg = 75;
     r->settings.starts = 4;
+    snprintf(r->settings.metric, sizeof r->settings.metric, "log");
 }
 
 /* A fit that succeeded: every field written reads back the same. */
@@ -149,6 +151,9 @@ START_TEST(record_round_trips_a_fit)
     r.params = (brdffit_params){ { 0.08, 0.05, 0.02 }, { 0.04, 0.02, 0.01 }, { 0.25, 0.3, 1.6 },
                                  { 0.645, 0.526, 0.444 } };
     r.error = 0.0568;
+    r.errors[0] = 0.0712;
+    r.errors[1] = 0.0568;
+    r.errors[2] = 0.1234;
     r.has_counts = 1;
     r.iterations = 3;
     r.passes = 13;
@@ -180,7 +185,19 @@ START_TEST(record_round_trips_a_fit)
     ck_assert_int_eq(back.nparams, 3);
     ck_assert(memcmp(&back.params, &r.params, sizeof r.params) == 0);
     ck_assert(back.error == r.error);
-    ck_assert_int_eq(back.has_counts, 1);
+    ck_assert_str_eq(back.settings.metric, "log");
+    for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++)
+        ck_assert(back.errors[m] == r.errors[m]);
+    ck_assert_msg(strstr(line, "\"errors\":{\"ngan-l2\":0.0711999999999"), "%s", line);
+    char why[320];
+    back.params.p[0] = 3.0; /* tau in He's range: the check gets to the Errors */
+    const char *bad = fr_check(&back, why, sizeof why);
+    ck_assert_msg(bad == NULL, "%s", bad);
+    back.errors[1] = 0.05; /* its Error under log is not its Error */
+    bad = fr_check(&back, why, sizeof why);
+    ck_assert_msg(bad && strstr(bad, "not its Error under its metric log"), "%s", bad ? bad : "ok");
+    back.errors[1] = r.errors[1];
+    back.params.p[0] = r.params.p[0];
     ck_assert_int_eq(back.iterations, 3);
     ck_assert_int_eq(back.passes, 13);
     ck_assert_int_eq(back.cminpack_info, 5);
@@ -199,6 +216,39 @@ END_TEST
 
 /* A fit that failed and a material that could not be read: status code and
  * message read back; no parameters, no counts. */
+/* An ngan-l2 fit without its Errors under log and cube-root (not asked
+ * for): null in the record, read back as NaN, and the record passes the
+ * check; its Error under ngan-l2, when given, must be its Error. */
+START_TEST(record_round_trips_errors_not_computed)
+{
+    fit_record r, back;
+    char line[16384];
+    key_of(&r, FR_FIT);
+    snprintf(r.settings.metric, sizeof r.settings.metric, "ngan-l2");
+    snprintf(r.model, sizeof r.model, "ward");
+    r.nparams = 1;
+    r.has_params = 1;
+    r.params = (brdffit_params){ { 0.08, 0.05, 0.02 }, { 0.04, 0.02, 0.01 }, { 0.1 }, { 0 } };
+    r.error = 0.0712;
+    r.errors[0] = 0.0712;
+    r.has_counts = 1;
+    r.iterations = 3;
+    r.passes = 13;
+    r.cminpack_info = 1;
+    round_trip(&r, &back, line, sizeof line);
+    ck_assert_msg(strstr(line, "\"errors\":{\"ngan-l2\":0.0711999999999"), "%s", line);
+    ck_assert_msg(strstr(line, "\"log\":null,\"cube-root\":null}"), "%s", line);
+    ck_assert(back.errors[0] == r.error && isnan(back.errors[1]) && isnan(back.errors[2]));
+    char why[320];
+    const char *bad = fr_check(&back, why, sizeof why);
+    ck_assert_msg(bad == NULL, "%s", bad);
+    back.errors[0] = 0.07;
+    bad = fr_check(&back, why, sizeof why);
+    ck_assert_msg(bad && strstr(bad, "not its Error under its metric ngan-l2"), "%s",
+                  bad ? bad : "ok");
+}
+END_TEST
+
 START_TEST(record_round_trips_failures)
 {
     fit_record r, back;
@@ -439,6 +489,7 @@ Suite *journal_suite(void)
     tcase_add_loop_test(tc, journal_refuses_impossible_lines, 0, NBAD);
     tcase_add_loop_test(tc, journal_refuses_out_of_range_numbers, 0, 3);
     tcase_add_test(tc, record_round_trips_a_fit);
+    tcase_add_test(tc, record_round_trips_errors_not_computed);
     tcase_add_test(tc, record_round_trips_failures);
     tcase_add_test(tc, unknown_model_failure_round_trips);
     tcase_add_test(tc, record_keys_are_the_same_for_every_kind);

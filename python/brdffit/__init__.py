@@ -53,7 +53,7 @@ from .errors import (
 from .albedo import albedo
 from .curves import incidence_curves
 from .evaluate import eval  # noqa: A004 (the C API's name)
-from .fitting import AtBound, Context, FitFlag, FitResult, error_of, fit
+from .fitting import METRICS, AtBound, Context, FitFlag, FitResult, error_of, fit
 from .models import Model, Param, Params, metric_name, model, models
 from .render import COVERAGE_MASKED, Light, default_lights, flip, image_error, render
 from .samples import Sample, Samples
@@ -84,7 +84,7 @@ def release_memory():
 
 
 __all__ = [
-    "AtBound", "BrdffitError", "COVERAGE_MASKED", "CacheDirError", "Context", "FileDimsError",
+    "METRICS", "AtBound", "BrdffitError", "COVERAGE_MASKED", "CacheDirError", "Context", "FileDimsError",
     "FileEmptyError", "FileError", "FileNonfiniteError", "FileNotRegularError", "FileOpenError",
     "FileReadError", "FileTrailingError", "FileTruncatedError", "FileWriteError", "FitFailedError",
     "FitFlag", "FitResult", "InvalidArgumentError", "KernelBuildError", "Library", "LibraryError",

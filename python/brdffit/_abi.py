@@ -105,6 +105,8 @@ class FitOptions(C.Structure):
         ("gtol", C.c_double),
         ("max_evals", C.c_int),
         ("lambda_um", _d3),
+        ("metric", C.c_int),
+        ("all_errors", C.c_int),
     ]
 
 
@@ -125,6 +127,9 @@ class FitResult(_SizedResult):
         ("at_bound", C.c_uint),
         ("flags", C.c_uint),
         ("seconds_build", C.c_double),
+        ("errors", C.c_double * 3),
+        ("metric", C.c_int),
+        ("metric_iterations", C.c_int),
     ]
 
 
@@ -251,6 +256,10 @@ FUNCTIONS = {
     "brdffit_error_of": (
         _status,
         [_P, _P, c_enum, C.POINTER(Params), C.POINTER(C.c_double), _err],
+    ),
+    "brdffit_error_metric": (
+        _status,
+        [_P, _P, c_enum, C.POINTER(Params), c_enum, C.POINTER(C.c_double), _err],
     ),
     # renders and incidence-plane curves
     "brdffit_render_default_lights": (C.c_int, [C.POINTER(Light)]),

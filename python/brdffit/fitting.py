@@ -14,6 +14,19 @@ from .models import Model, Params, model as _model, resolve
 from .samples import Samples
 
 _BAD = Status.INVALID_ARGUMENT
+
+METRICS = ("ngan-l2", "log", "cube-root")
+"""The Error metrics, by their brdffit_metric number (docs/metrics.md)."""
+
+
+def _metric_id(metric):
+    """A metric's number from its name (any case, '_' for '-')."""
+    name = str(metric).lower().replace("_", "-") if isinstance(metric, str) else None
+    if name not in METRICS:
+        raise InvalidArgumentError(
+            _BAD, f"unknown metric {metric!r} (metrics: {', '.join(METRICS)})"
+        )
+    return METRICS.index(name)
 _BACKEND_NAMES = {v: k for k, v in _abi.BACKENDS.items()}
 
 AtBound = enum.IntFlag("AtBound", _abi.AT_BOUND_BITS, module=__name__)
@@ -87,7 +100,11 @@ class Context:
 @dataclass(frozen=True)
 class FitResult:
     """What brdffit_fit returns.  ``params`` in the paper's units, ``error``
-    the "ngan-l2" Error of params, ``status`` the call's Status (OK: a
+    the Error of params under ``metric``, the metric the fit minimised
+    ("ngan-l2" unless asked), ``errors`` its Error under every metric (a dict
+    by name; None under "log" and "cube-root" for an "ngan-l2" fit unless
+    fit(..., all_errors=True)), ``metric_iterations`` the LM iterations after the "ngan-l2"
+    fit (docs/metrics.md), ``status`` the call's Status (OK: a
     result), ``cminpack_info`` lmder's info of the run kept (1..4 converged),
     ``iterations`` its Jacobian evaluations, ``passes`` all data passes
     of the fit, ``seconds`` its wall time (``seconds_solver`` inside
@@ -114,6 +131,9 @@ class FitResult:
     seconds_build: float = 0.0
     at_bound: AtBound = AtBound(0)
     flags: FitFlag = FitFlag(0)
+    metric: str = "ngan-l2"
+    errors: dict = None
+    metric_iterations: int = 0
 
     @property
     def converged(self):
@@ -140,9 +160,17 @@ _OPTION_FIELDS = tuple(f[0] for f in _abi.FitOptions._fields_ if f[0] != "size")
 
 def fit_options(**options):
     """A brdffit_fit_options: the library's defaults, then options by name
-    (the struct's members: starts, refine, ftol, ...)."""
+    (the struct's members: starts, refine, ftol, ...; metric by its name)."""
     opt = _abi.FitOptions()
     _lib.cdll().brdffit_fit_options_init(ctypes.byref(opt), ctypes.sizeof(opt))
+    options = dict(options)
+    if "metric" in options:
+        opt.metric = _metric_id(options.pop("metric"))
+    if "all_errors" in options:  # a yes or no: True/False (or 0/1)
+        v = options.pop("all_errors")
+        if not isinstance(v, (bool, np.bool_, int)) or v not in (0, 1):
+            raise InvalidArgumentError(_BAD, f"fit option all_errors: bad value {v!r} (True or False)")
+        opt.all_errors = int(v)
     for name, value in options.items():
         if name not in _OPTION_FIELDS:
             raise TypeError(
@@ -178,7 +206,8 @@ def _check_args(ctx, samples):
 def fit(ctx, samples, model, **options):
     """Fit a model to a sample set; returns a FitResult.  options are
     brdffit_fit_options members (starts=, refine=, ftol=, xtol=, gtol=,
-    max_evals=, lambda_um=); unset ones keep the library's defaults."""
+    max_evals=, lambda_um=, metric="ngan-l2" | "log" | "cube-root"); unset
+    ones keep the library's defaults."""
     _check_args(ctx, samples)
     m = _model(model)
     opt = fit_options(**options)
@@ -202,17 +231,29 @@ def fit(ctx, samples, model, **options):
         seconds_build=r.seconds_build,
         at_bound=AtBound(r.at_bound),
         flags=FitFlag(r.flags),
+        metric=METRICS[r.metric],
+        errors={name: None if np.isnan(r.errors[k]) else r.errors[k]
+                for k, name in enumerate(METRICS)},
+        metric_iterations=r.metric_iterations,
     )
 
 
-def error_of(ctx, samples, model, params):
-    """The "ngan-l2" Error of given parameters on a sample set (params: a
-    Params, a FitResult or d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]])."""
+def error_of(ctx, samples, model, params, metric="ngan-l2"):
+    """The Error of given parameters on a sample set under a metric
+    ("ngan-l2", the default, "log" or "cube-root"; params: a Params, a
+    FitResult or d_r d_g d_b s_r s_g s_b p0 [p1 [p2 [p3]]])."""
     _check_args(ctx, samples)
+    mid = _metric_id(metric)
     m, _, cp = resolve(model, params)
     out = ctypes.c_double()
     _lib.call(
-        "brdffit_error_of", ctx._ptr(), samples._h.ptr, m.id, ctypes.byref(cp), ctypes.byref(out)
+        "brdffit_error_metric",
+        ctx._ptr(),
+        samples._h.ptr,
+        m.id,
+        ctypes.byref(cp),
+        mid,
+        ctypes.byref(out),
     )
     return out.value
 

@@ -90,3 +90,43 @@ def test_context_and_fit_errors(brdffit, ctx, alum_bronze):
         brdffit.fit(ctx, s, "phong")
     with pytest.raises(brdffit.ParamRangeError):
         brdffit.error_of(ctx, s, "ward", [0.1] * 6 + [-1.0])
+
+
+def test_fit_under_a_metric_equals_the_program(brdffit, ctx, cli, alum_bronze):
+    """metric="log": the program's --metric log fit to the last digit, its
+    Errors under every metric, error_of under each metric the same."""
+    s = brdffit.Samples(brdffit.Table.read(alum_bronze), cutoff=40)
+    r = brdffit.fit(ctx, s, "ward", metric="log", starts=2)
+    [rec] = cli_fit(cli, alum_bronze, "--model", "ward", "--cutoff", "40", "--starts", "2",
+                    "--metric", "log")
+    assert rec["settings"]["metric"] == "log" and r.metric == "log"
+    assert r.params.vector().tolist() == rec["d"] + rec["s"] + rec["p"]
+    assert r.error == rec["error"] == r.errors["log"]
+    assert r.errors == rec["errors"]
+    assert r.metric_iterations >= 1
+    for name in brdffit.METRICS:
+        assert brdffit.error_of(ctx, s, "ward", r, metric=name) == pytest.approx(
+            r.errors[name], rel=1e-12)
+    base = brdffit.fit(ctx, s, "ward", starts=2)
+    assert base.metric == "ngan-l2" and base.metric_iterations == 0
+    assert base.errors == {"ngan-l2": base.error, "log": None, "cube-root": None}
+    every = brdffit.fit(ctx, s, "ward", starts=2, all_errors=True)
+    assert every.params == base.params and every.errors["ngan-l2"] == base.error
+    assert r.errors["log"] < every.errors["log"]
+    for name in brdffit.METRICS:
+        assert brdffit.error_of(ctx, s, "ward", every, metric=name) == pytest.approx(
+            every.errors[name], rel=1e-12)
+    [plain] = cli_fit(cli, alum_bronze, "--model", "ward", "--cutoff", "40", "--starts", "2")
+    assert plain["errors"] == base.errors
+    [full] = cli_fit(cli, alum_bronze, "--model", "ward", "--cutoff", "40", "--starts", "2",
+                     "--errors", "all")
+    assert full["errors"] == every.errors and full["d"] + full["s"] + full["p"] == plain["d"] + plain["s"] + plain["p"]
+
+
+def test_unknown_metric_refused(brdffit, ctx):
+    s = brdffit.Samples(brdffit.Table.from_model("ward", [0.1] * 6 + [0.2]), cutoff=30)
+    with pytest.raises(brdffit.InvalidArgumentError, match="unknown metric 'l1'"):
+        brdffit.fit(ctx, s, "ward", metric="l1")
+    with pytest.raises(brdffit.InvalidArgumentError, match="metrics: ngan-l2, log, cube-root"):
+        brdffit.error_of(ctx, s, "ward", [0.1] * 6 + [0.2], metric=2)
+    assert brdffit.error_of(ctx, s, "ward", [0.1] * 6 + [0.2], metric="cube_root") < 1e-12

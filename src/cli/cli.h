@@ -177,6 +177,7 @@ typedef struct cli_options {
     brdffit_fit_options fit;
     brdffit_context_options context;
     int json;
+    int all_metrics;                            /* --metric all (batch: the three in turn) */
     int read_ahead;                             /* 1 (default): the next table is read
                                                  * while this one is fitted (prefetch.h);
                                                  * 0 after --no-read-ahead             */
@@ -246,7 +247,7 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
 void report_row(FILE *f, const char *label, const brdffit_model_info *mi,
                 const brdffit_params *p, double error, const brdffit_fit_result *r);
 void report_row_failed(FILE *f, brdffit_model model, const brdffit_error *err);
-void report_legend(FILE *f, const brdffit_model *models, int nmodels);
+void report_legend(FILE *f, const brdffit_model *models, int nmodels, brdffit_metric metric);
 
 /* ---- json.c ---- */
 

@@ -70,6 +70,8 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, gtol),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, max_evals),
     M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, lambda_um),
+    M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, metric),
+    M(BRDFFIT_STRUCT_FIT_OPTIONS, brdffit_fit_options, all_errors),
 
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, size),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, model),
@@ -86,6 +88,9 @@ static const abi_member members[] = {
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, at_bound),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, flags),
     M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, seconds_build),
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, errors),
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, metric),
+    M(BRDFFIT_STRUCT_FIT_RESULT, brdffit_fit_result, metric_iterations),
 
     M(BRDFFIT_STRUCT_LIGHT, brdffit_light, dir),
     M(BRDFFIT_STRUCT_LIGHT, brdffit_light, rgb),

@@ -82,7 +82,8 @@ brdffit_status bf_samples_mirror(const brdffit_samples *src, brdffit_samples **o
 /* ---- derived data kept with a set (samples_derived.c) */
 
 /* The kinds of derived data (the key's meaning is the kind's). */
-enum { BF_DERIVED_EVERY = 1, BF_DERIVED_BINS = 2, BF_DERIVED_BIN_TABLE = 3, BF_DERIVED_MIRROR = 4 };
+enum { BF_DERIVED_EVERY = 1, BF_DERIVED_BINS = 2, BF_DERIVED_BIN_TABLE = 3, BF_DERIVED_MIRROR = 4,
+       BF_DERIVED_METRIC = 5 /* the pairs a metric pass reads (metric.c) */ };
 
 /* Makes the data of (kind, key) from s into *out; frees it. */
 typedef brdffit_status (*bf_derive_fn)(const brdffit_samples *s, const int key[3], void **out,

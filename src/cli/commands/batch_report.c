@@ -33,6 +33,16 @@ int batch_write_report(batch_run *R, const material_list *L)
     for (int i = 0; i < L->n && rc == 0; i++)
         if (L->m[i].identified || L->m[i].id.size < 0)
             rc = rp_add(&rep, L->m[i].name, &L->m[i].id, &R->all, dirs, 1);
+    if (rc == 0 && R->summary) {
+        metric_summary *S = R->summary;
+        S->nmodels = rep.nmodels;
+        S->nmaterials = rep.n;
+        S->sort_model = rp_sort_model(&rep);
+        for (int k = 0; k < rep.nmodels; k++) {
+            S->models[k] = rep.models[k];
+            S->median[k] = rp_median(&rep, k, &S->nbest[k], &S->nfit[k]);
+        }
+    }
     if (rc == 0)
         rc = rp_write(&rep, &R->out, &R->out_err);
     else

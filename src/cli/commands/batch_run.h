@@ -67,7 +67,17 @@ typedef struct batch_run {
     struct render_job *job;  /* the renders and plots in flight        */
     table_prefetch *pre;     /* the next material's table, read meanwhile */
     fp_job fit_job;          /* the models and settings of every material's fits */
+    struct metric_summary *summary; /* --metric all: this metric's model table, or NULL */
 } batch_run;
+
+/* --metric all: one metric's model table, for DIR/index.html (cmd_batch.c). */
+typedef struct metric_summary {
+    int nmodels, nmaterials;
+    brdffit_model models[BJ_MAX_MODELS];
+    double median[BJ_MAX_MODELS];  /* NAN: no fit */
+    int nbest[BJ_MAX_MODELS], nfit[BJ_MAX_MODELS];
+    int sort_model;                /* the slot of the lowest median, or -1 */
+} metric_summary;
 
 /* What is left to do for a material. */
 typedef struct todo {

@@ -7,10 +7,12 @@
 #define _POSIX_C_SOURCE 200809L
 #include "batch_run.h"
 
+#include <errno.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* ------------------------------------------------------------------ one material */
@@ -412,21 +414,21 @@ static int run_batch(batch_run *R, material_list *L)
     return R->failures ? CLI_FAILED : CLI_OK;
 }
 
-int cmd_batch(int argc, char **argv)
+/* One batch of b's materials under b's metric into b->out; its model
+ * table into *summary when not NULL. */
+static int batch_once(batch_options *bp, material_list *Lp, metric_summary *summary)
 {
-    batch_options b;
-    int rc = batch_parse_options(argc, argv, &b);
-    if (rc != CLI_OK) { /* CLI_HELP too: main prints the usage */
-        cli_options_free(&b.common);
-        return rc;
-    }
-    material_list L = { NULL, 0, 0 };
-    rc = batch_collect(&b, &L);
-    if (rc == CLI_OK) {
+    batch_options b = *bp;
+    material_list L = *Lp;
+    int rc;
+    {
         batch_run R;
         static render_job job;
         static table_prefetch pre;
+        memset(&job, 0, sizeof job); /* --metric all: a batch after another */
+        memset(&pre, 0, sizeof pre);
         memset(&R, 0, sizeof R);
+        R.summary = summary;
         R.b = &b;
         R.job = &job;
         R.pre = &pre;
@@ -451,6 +453,60 @@ int cmd_batch(int argc, char **argv)
         pub_free(&R.pub);
         brdffit_context_free(R.ctx);
     }
+    return rc;
+}
+
+int batch_metrics_page(const char *out, const metric_summary *sums);
+
+/* --metric all: the batch under each metric in turn, into OUT/METRIC (each a
+ * report of its own: its model table and headline under that metric; every
+ * record carries its Errors under all three).  The worst status. */
+static int batch_all_metrics(batch_options *b, material_list *L)
+{
+    const char *out = b->out;
+    if (mkdir(out, 0777) != 0 && errno != EEXIST) {
+        cli_error("%s: cannot make the directory: %s", out, strerror(errno));
+        return CLI_FAILED;
+    }
+    int worst = CLI_OK;
+    metric_summary sums[BRDFFIT_METRIC_COUNT];
+    memset(sums, 0, sizeof sums);
+    for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++) {
+        char dir[BJ_PATH_MAX];
+        const char *name = brdffit_metric_get_name((brdffit_metric)m);
+        if ((size_t)snprintf(dir, sizeof dir, "%s/%s", out, name) >= sizeof dir) {
+            cli_error("%s: the path is too long", out);
+            return CLI_FAILED;
+        }
+        b->out = dir;
+        b->common.fit.metric = m;
+        int rc = batch_once(b, L, &sums[m]);
+        b->out = out;
+        if (rc > worst)
+            worst = rc;
+        if (rc >= 128 || batch_stop_signal) /* stopped by a signal: not the next metric */
+            return rc;
+    }
+    if (batch_metrics_page(out, sums) != 0)
+        return CLI_FAILED;
+    char index[BJ_PATH_MAX];
+    snprintf(index, sizeof index, "%s/index.html", out);
+    printf("%s\n", index);
+    return worst;
+}
+
+int cmd_batch(int argc, char **argv)
+{
+    batch_options b;
+    int rc = batch_parse_options(argc, argv, &b);
+    if (rc != CLI_OK) { /* CLI_HELP too: main prints the usage */
+        cli_options_free(&b.common);
+        return rc;
+    }
+    material_list L = { NULL, 0, 0 };
+    rc = batch_collect(&b, &L);
+    if (rc == CLI_OK)
+        rc = b.common.all_metrics ? batch_all_metrics(&b, &L) : batch_once(&b, &L, NULL);
     free(L.m);
     cli_options_free(&b.common);
     return rc;

@@ -225,7 +225,7 @@ static void fit_file(runner *R, const char *path, const char *next, int first)
     brdffit_table_free(src.table);
     if (failed || o->json)
         return;
-    report_legend(stdout, o->models, o->nmodels);
+    report_legend(stdout, o->models, o->nmodels, (brdffit_metric)o->fit.metric);
     print_best(R, brdffit_seconds() - t0);
 }
 
@@ -287,7 +287,7 @@ static int run_demo(const cli_options *o)
     }
     double total = brdffit_seconds() - t0;
     if (!o->json) {
-        report_legend(stdout, o->models, o->nmodels);
+        report_legend(stdout, o->models, o->nmodels, (brdffit_metric)o->fit.metric);
         printf("\nsummary: %d of %d models fitted in %.1f s on %s",
                R.fits_ok, o->nmodels, total,
                brdffit_context_backend(R.ctx) == BRDFFIT_BACKEND_OPENCL ? "OpenCL" : "the host");
@@ -316,6 +316,9 @@ static int fit_or_demo(int argc, char **argv, int demo)
             rc = cli_usage_error("demo takes no files (got '%s')", o.files[0]);
         else if (!demo && o.nfiles == 0)
             rc = cli_usage_error("fit needs at least one MERL .binary file");
+        else if (o.all_metrics)
+            rc = cli_usage_error("--metric all is batch's; %s takes one of ngan-l2, log, cube-root",
+                                 demo ? "demo" : "fit");
         else
             rc = demo ? run_demo(&o) : run_fit(&o);
     }

@@ -62,6 +62,7 @@ typedef struct score_job {
     brdffit_context *ctx;
     const brdffit_samples *s;
     int failures;
+    brdffit_metric metric; /* --metric: the Error printed */
 } score_job;
 
 /* The Error of p, printed; origin names where p came from ("--params",
@@ -78,7 +79,7 @@ static void score_one(score_job *J, brdffit_model model, const brdffit_params *p
     int checked = st == BRDFFIT_OK;
     if (checked) {
         int note = kernel_note_begin(stderr, J->ctx, model);
-        st = brdffit_error_of(J->ctx, J->s, model, p, &e, &err);
+        st = brdffit_error_metric(J->ctx, J->s, model, p, J->metric, &e, &err);
         kernel_note_end(stderr, note, J->ctx, model);
     }
     if (checked && (st == BRDFFIT_E_FIT_FAILED || (st == BRDFFIT_OK && !isfinite(e)))) {
@@ -143,6 +144,9 @@ static int parse_score(int argc, char **argv, score_args *a)
         return rc;
     if (a->common.nfiles != 1)
         return cli_usage_error("score needs one table (got %d)", a->common.nfiles);
+    if (a->common.all_metrics)
+        return cli_usage_error("--metric all is batch's; score takes one of ngan-l2, log, "
+                               "cube-root");
     if (!a->params == !a->fits)
         return cli_usage_error("score needs --params P,... (with one --model) or --fits FILE");
     if (a->params && (!a->model_given || a->common.nmodels != 1))
@@ -203,7 +207,7 @@ static int score_run(const score_args *a)
     memset(&err, 0, sizeof err);
     brdffit_table *t = NULL;
     brdffit_samples *s = NULL;
-    score_job J = { NULL, NULL, 0 };
+    score_job J = { NULL, NULL, 0, (brdffit_metric)a->common.fit.metric };
     int rc = CLI_FAILED;
     if (brdffit_table_read(path, &t, &err) != BRDFFIT_OK ||
         brdffit_samples_create(t, &a->common.sample, &s, &err) != BRDFFIT_OK ||
@@ -215,7 +219,7 @@ static int score_run(const score_args *a)
     }
     J.s = s;
     printf("# %s: metric %s, cutoff %g deg, scale %s, %zu samples\n", material,
-           brdffit_metric_name(), a->common.sample.cutoff_deg,
+           brdffit_metric_get_name(J.metric), a->common.sample.cutoff_deg,
            brdffit_scale_name(a->common.sample.scale), brdffit_samples_count(s));
     if (a->params) {
         score_one(&J, a->common.models[0], &p, NULL, "--params");

@@ -20,6 +20,8 @@ void fr_init(fit_record *r, fr_kind kind)
     r->status = BRDFFIT_OK;
     r->id.size = -1;
     r->error = NAN;
+    for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++)
+        r->errors[m] = NAN;
     r->seconds = r->seconds_solver = r->seconds_passes = r->seconds_build = NAN;
     r->albedo_max = r->albedo_max_theta_o = r->albedo_departure = NAN;
     r->albedo_departure_theta_o = r->seconds_albedo = NAN;
@@ -57,6 +59,8 @@ void fr_set_fit(fit_record *r, brdffit_model model, brdffit_status st, const brd
     r->has_params = 1;
     r->params = res->params;
     r->error = res->error;
+    for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++)
+        r->errors[m] = res->errors[m];
     r->has_counts = 1;
     r->iterations = res->iterations;
     r->passes = res->passes;

@@ -31,6 +31,7 @@ typedef struct bj_settings {
     char scale[16];        /* "standard" | "flat"                     */
     double cutoff_deg;
     int starts;            /* --starts; 0 = each model's own default  */
+    char metric[16];       /* --metric: the metric the fits minimise  */
 } bj_settings;
 
 /* A material's identity: its path (made absolute), size and a hash of its bytes
@@ -74,7 +75,9 @@ typedef struct fit_record {
                                        succeeded, published parameters)    */
     brdffit_params params;          /* d, s, p (nparams), lambda_um (He)    */
     int nparams;
-    double error;                   /* NAN: none                            */
+    double error;                   /* NAN: none; under settings.metric     */
+    double errors[BRDFFIT_METRIC_COUNT]; /* the Error under each brdffit_metric
+                                       (NAN: none, a record without them)   */
     int has_counts;                 /* iterations .. cminpack_info, flags, at_bound
                                        are a fit's (FR_FIT that succeeded)  */
     int iterations, passes, cminpack_info;

@@ -96,6 +96,30 @@ static const char *check_result(const fit_record *r, const brdffit_model_info *m
     return NULL;
 }
 
+/* A fit's metric is one of the metrics; its Errors under them, each a
+ * finite number >= 0 or absent (NaN: not computed, or a record of a version
+ * without them), the one of its metric, when present, its Error. */
+static const char *check_errors(const fit_record *r, char *why, size_t len)
+{
+    brdffit_metric m;
+    if (brdffit_metric_from_name(r->settings.metric, &m, NULL) != BRDFFIT_OK) {
+        snprintf(why, len, "metric \"%.32s\" is not a metric", r->settings.metric);
+        return why;
+    }
+    for (int k = 0; k < BRDFFIT_METRIC_COUNT; k++)
+        if (!isnan(r->errors[k]) && !(isfinite(r->errors[k]) && r->errors[k] >= 0)) {
+            snprintf(why, len, "the Error under %s is not a finite number >= 0",
+                     brdffit_metric_get_name((brdffit_metric)k));
+            return why;
+        }
+    if (!isnan(r->errors[m]) && r->errors[m] != r->error) {
+        snprintf(why, len, "the Error %.17g is not its Error under its metric %s, %.17g",
+                 r->error, r->settings.metric, r->errors[m]);
+        return why;
+    }
+    return NULL;
+}
+
 /* The energy fields: a successful fit's only, curves of numbers >= 0. */
 static const char *check_albedo(const fit_record *r)
 {
@@ -141,7 +165,9 @@ const char *fr_check(const fit_record *r, char *why, size_t len)
             return r->has_params ? "a failed fit with parameters" : check_failed(r);
         if (!r->has_counts)
             return "a fit without its iterations and passes";
-        return check_result(r, mi, why, len);
+        if ((bad = check_result(r, mi, why, len)) != NULL)
+            return bad;
+        return check_errors(r, why, len);
     case FR_PUBLISHED: /* parameters as published, in range or not (then its status says) */
         if (r->status != BRDFFIT_OK)
             return (bad = check_params(r, mi, why, len)) ? bad : check_failed(r);

@@ -58,7 +58,7 @@ void fr_write_json(FILE *f, const fit_record *r)
     fputs(",\"settings\":{\"version\":", f);
     json_string(f, r->settings.version);
     fputs(",\"metric\":", f);
-    json_string(f, brdffit_metric_name());
+    json_string(f, r->settings.metric[0] ? r->settings.metric : brdffit_metric_name());
     fputs(",\"scale\":", f);
     json_string(f, r->settings.scale);
     fputs(",\"cutoff_deg\":", f);
@@ -109,6 +109,16 @@ void fr_write_json(FILE *f, const fit_record *r)
     }
     fputs(",\"error\":", f);
     json_number(f, r->error);
+    fputs(",\"errors\":", f);
+    if (isfinite(r->errors[0]) || isfinite(r->errors[1]) || isfinite(r->errors[2])) {
+        for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++) {
+            fprintf(f, "%s\"%s\":", m ? "," : "{", brdffit_metric_get_name((brdffit_metric)m));
+            json_number(f, r->errors[m]);
+        }
+        putc('}', f);
+    } else {
+        fputs("null", f);
+    }
     json_count(f, "iterations", r->has_counts, r->iterations);
     json_count(f, "passes", r->has_counts, r->passes);
     json_count(f, "cminpack_info", r->has_counts, r->cminpack_info);
@@ -306,6 +316,9 @@ int fr_read_json(const char *line, fit_record *r, fr_need need)
             get_whole(&o, set, "starts", 0, INT_MAX, &v) != 1)
             goto done;
         r->settings.starts = (int)v;
+        /* "metric": the one the fits minimised ("ngan-l2" before there were others) */
+        if (get_str(&o, set, "metric", r->settings.metric, sizeof r->settings.metric, 0) != 0)
+            goto done;
     } else if (need == FR_NEED_KEY) {
         goto done;
     } else {
@@ -315,6 +328,9 @@ int fr_read_json(const char *line, fit_record *r, fr_need need)
              get_num(&o, met, "cutoff_deg", &r->settings.cutoff_deg, 0) != 0))
             goto done;
     }
+
+    if (!r->settings.metric[0])
+        snprintf(r->settings.metric, sizeof r->settings.metric, "%s", brdffit_metric_name());
 
     /* the status: "status_code"; earlier versions: the "status" text and "ok" */
     int limit = 0;
@@ -362,6 +378,14 @@ int fr_read_json(const char *line, fit_record *r, fr_need need)
     }
     if (get_num(&o, NULL, "error", &r->error, 0) != 0)
         goto done;
+    const jr_member *errs = jr_get(&o, "errors");
+    if (errs && errs->type == JR_OBJECT) {
+        for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++)
+            if (get_num(&o, errs, brdffit_metric_get_name((brdffit_metric)m), &r->errors[m], 0) != 0)
+                goto done;
+    } else if (errs && errs->type != JR_NULL) {
+        goto done;
+    }
 
     /* what the fit did */
     long long it = 0, np = 0, info = 0;

@@ -52,7 +52,8 @@ void fr_write_tsv_header(FILE *f)
 {
     fputs("material\tmodel\td_r\td_g\td_b\ts_r\ts_g\ts_b\tp0\tp1\tp2\tp3\terror\tstatus\tstatus_code"
           "\titerations\tpasses\tcminpack_info\tseconds\tsamples\tat_bound\tflags\tbackend"
-          "\tpublished_error\tratio\tfile\tsize\thash\tmessage",
+          "\tpublished_error\tratio\tfile\tsize\thash\tmetric\terror_ngan_l2\terror_log"
+          "\terror_cube_root\tmessage",
           f);
     fr_albedo_tsv_header(f);
     putc('\n', f);
@@ -106,6 +107,10 @@ void fr_write_tsv_row(FILE *f, const fit_record *r, const fit_record *pub)
     else
         fputs("\t-\t", f);
     fr_write_tsv_text(f, r->id.hash);
+    putc('\t', f);
+    fr_write_tsv_text(f, r->kind == FR_FIT ? r->settings.metric : NULL);
+    for (int m = 0; m < BRDFFIT_METRIC_COUNT; m++)
+        tsv_num(f, "%.10g", r->errors[m]);
     putc('\t', f);
     if (r->message[0]) /* "" when the record did not fail */
         fr_write_tsv_text(f, r->message);

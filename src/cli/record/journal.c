@@ -31,12 +31,14 @@ void bj_settings_make(bj_settings *s, const brdffit_sample_options *so, const br
     snprintf(s->scale, sizeof s->scale, "%s", brdffit_scale_name(so->scale));
     s->cutoff_deg = so->cutoff_deg;
     s->starts = fo->starts;
+    snprintf(s->metric, sizeof s->metric, "%s", brdffit_metric_get_name((brdffit_metric)fo->metric));
 }
 
 int bj_settings_equal(const bj_settings *a, const bj_settings *b)
 {
     return strcmp(a->version, b->version) == 0 && strcmp(a->scale, b->scale) == 0 &&
-           a->cutoff_deg == b->cutoff_deg && a->starts == b->starts;
+           a->cutoff_deg == b->cutoff_deg && a->starts == b->starts &&
+           strcmp(a->metric, b->metric) == 0;
 }
 
 const char *bj_settings_diff(const bj_settings *journal, const bj_settings *run, char *buf,
@@ -61,6 +63,8 @@ const char *bj_settings_diff(const bj_settings *journal, const bj_settings *run,
         ADD("cutoff %g deg (this run: %g)", journal->cutoff_deg, run->cutoff_deg);
     if (journal->starts != run->starts)
         ADD("starts %d (this run: %d; 0 = each model's default)", journal->starts, run->starts);
+    if (strcmp(journal->metric, run->metric) != 0)
+        ADD("metric %s (this run: %s)", journal->metric, run->metric);
 #undef ADD
     return buf;
 }

@@ -18,7 +18,7 @@ static void settings_table(xml_writer *w, const rp_report *rep)
     xml_open(w, "table");
     xml_open(w, "tbody");
     const char *rows[][2] = {
-        { "metric", brdffit_metric_name() },
+        { "metric", rep->settings.metric[0] ? rep->settings.metric : brdffit_metric_name() },
         { "cutoff", (snprintf(b, sizeof b, "%g deg (theta_i, theta_o)", rep->settings.cutoff_deg), b) },
     };
     for (int i = 0; i < 2; i++) {
@@ -104,7 +104,7 @@ int rp_write_fits_tsv(const rp_report *rep, const out_dir *dir, brdffit_error *e
         return -1;
     fprintf(o.f, "# every fit of the report: metric %s, cutoff %g deg, scale %s, starts %d, "
                  "brdffit %s; ratio = error / published_error; the columns: docs/fit-record.md\n",
-            brdffit_metric_name(), rep->settings.cutoff_deg, rep->settings.scale,
+            rep->settings.metric, rep->settings.cutoff_deg, rep->settings.scale,
             rep->settings.starts, rep->settings.version);
     fr_write_tsv_header(o.f);
     for (int i = 0; i < rep->n; i++)

@@ -26,7 +26,7 @@ int rp_write_params_tsv(const rp_report *rep, const rp_material *m, const out_di
                  "ratio = error / published_error; p0..p3 per model (gltf: d = base_color, "
                  "s = specular_color): brdffit models; "
                  "the columns: docs/fit-record.md\n",
-            brdffit_metric_name(), rep->settings.cutoff_deg, rep->settings.scale,
+            rep->settings.metric, rep->settings.cutoff_deg, rep->settings.scale,
             rep->settings.starts, rep->settings.version);
     fr_write_tsv_header(o.f);
     rp_tsv_material(o.f, rep, m);
@@ -301,7 +301,7 @@ int rp_write_material_page(const rp_report *rep, const rp_material *m, int best,
     xml_attr(&w, "class", "note");
     if (m->id.size >= 0)
         xml_textf(&w, "table %s (%lld bytes, hash %s); metric %s, cutoff %g deg, scale %s",
-                  m->id.path, m->id.size, m->id.hash, brdffit_metric_name(),
+                  m->id.path, m->id.size, m->id.hash, rep->settings.metric,
                   rep->settings.cutoff_deg, rep->settings.scale);
     else
         xml_textf(&w, "table %s", m->id.path);

@@ -30,7 +30,8 @@ void report_header(FILE *f, const cli_material *m, const brdffit_samples *s,
     fputc('\n', f);
     if (m->about)
         fprintf(f, "  %s\n", m->about);
-    fprintf(f, "  metric %s, cutoff %g deg, scale %s\n", brdffit_metric_name(),
+    fprintf(f, "  metric %s, cutoff %g deg, scale %s\n",
+            brdffit_metric_get_name((brdffit_metric)(fo ? fo->metric : 0)),
             m->sample.cutoff_deg, brdffit_scale_name(m->sample.scale));
     fputs("  backend ", f);
     plain_string(f, brdffit_context_describe(ctx));
@@ -123,7 +124,7 @@ void report_row_failed(FILE *f, brdffit_model model, const brdffit_error *err)
     fflush(f);
 }
 
-void report_legend(FILE *f, const brdffit_model *models, int nmodels)
+void report_legend(FILE *f, const brdffit_model *models, int nmodels, brdffit_metric metric)
 {
     fputs("\n  p0..p3:", f);
     for (int i = 0; i < nmodels; i++) {
@@ -143,5 +144,5 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels)
     fprintf(f, "\n  d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s;"
                " Error = %s (1/sr);\n  iter = Jacobian evaluations of the LM run kept,"
                " seconds = wall time of the fit\n",
-            brdffit_metric_name());
+            brdffit_metric_get_name(metric));
 }

@@ -18,6 +18,14 @@ const cli_help_block *cli_options_help(void)
                                    "(1, 1.15, 1.66)/1500; flat = 1/1500, as Ngan et al.)" },
         { "--cutoff DEG", "fit directions with theta_i, theta_o <= DEG, in (0, 90]\n(default 80)" },
         { "--starts N", starts_text },
+        { "--metric NAME", "the Error each fit minimises: ngan-l2 (default, the\n"
+                           "paper's), log or cube-root (docs/metrics.md); a fit under\n"
+                           "log or cube-root reports its Error under all three.\n"
+                           "batch: also all (the three in turn, into OUT/ngan-l2,\n"
+                           "OUT/log, OUT/cube-root; implies --errors all)" },
+        { "--errors metric|all", "all: every fit's Error under every metric (an ngan-l2\n"
+                                 "fit: one more pass over the samples); metric\n"
+                                 "(default): an ngan-l2 fit's under ngan-l2 alone" },
         { "--backend auto|opencl|host", "where the data passes run (default auto: OpenCL when a\n"
                                         "device is found, else C on the host)" },
         { "--device SPEC", "OpenCL device, PLATFORM:DEVICE by index or name\n"
@@ -125,6 +133,33 @@ static int set_starts(cli_options *o, const char *v)
     return CLI_OK;
 }
 
+static int set_metric(cli_options *o, const char *v)
+{
+    brdffit_metric m;
+    if (strcmp(v, "all") == 0) { /* batch alone takes it (cmd_batch.c); fit, score refuse */
+        o->all_metrics = 1;
+        o->fit.metric = BRDFFIT_METRIC_NGAN_L2;
+        o->fit.all_errors = 1; /* each fit's Error under the three, for the side by side */
+        return CLI_OK;
+    }
+    if (brdffit_metric_from_name(v, &m, NULL) != BRDFFIT_OK)
+        return cli_usage_error("--metric '%s': expected ngan-l2, log or cube-root", v);
+    o->fit.metric = (int)m;
+    o->all_metrics = 0;
+    return CLI_OK;
+}
+
+/* --errors all: every fit's Error under every metric (one more pass over
+ * the samples for an ngan-l2 fit); metric (default): under its own, and
+ * ngan-l2's. */
+static int set_errors(cli_options *o, const char *v)
+{
+    if (strcmp(v, "all") != 0 && strcmp(v, "metric") != 0)
+        return cli_usage_error("--errors '%s': expected all or metric", v);
+    o->fit.all_errors = strcmp(v, "all") == 0;
+    return CLI_OK;
+}
+
 static int set_backend(cli_options *o, const char *v)
 {
     static const struct { const char *name; brdffit_backend backend; } backends[] = {
@@ -155,6 +190,7 @@ static const struct {
 } with_value[] = {
     { "--model", set_models },   { "--scale", set_scale },     { "--cutoff", set_cutoff },
     { "--starts", set_starts },  { "--backend", set_backend }, { "--device", set_device },
+    { "--metric", set_metric },  { "--errors", set_errors },
 };
 
 /* ------------------------------------------------------------------ the parser */

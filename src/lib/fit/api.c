@@ -42,6 +42,12 @@ static brdffit_status check_fit_options(const brdffit_fit_options *o, brdffit_er
     if (!(o->ftol >= 0) || !(o->xtol >= 0) || !(o->gtol >= 0) || !isfinite(o->ftol) ||
         !isfinite(o->xtol) || !isfinite(o->gtol))
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "tolerances must be finite and >= 0");
+    if (o->metric < 0 || o->metric >= BRDFFIT_METRIC_COUNT)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT,
+                       "metric = %d is not a metric (0 ngan-l2, 1 log, 2 cube-root)", o->metric);
+    if (o->all_errors != 0 && o->all_errors != 1)
+        return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "all_errors = %d must be 0 or 1",
+                       o->all_errors);
     if (o->max_evals < 1)
         return bf_fail(err, BRDFFIT_E_INVALID_ARGUMENT, "max_evals = %d must be >= 1", o->max_evals);
     for (int c = 0; c < 3; c++)
@@ -145,6 +151,33 @@ static brdffit_status open_all_samples(bf_pass_driver *ps, brdffit_context *ctx,
     return st == BRDFFIT_OK ? bf_driver_open(ps, ctx, all, model, err) : st;
 }
 
+/* r holds the "ngan-l2" fit of o: its Errors under the other metrics (when
+ * o asks for all_errors; NaN otherwise, so that a default fit makes no more
+ * passes), or,
+ * for another metric, the fit under it from there (metric_fit.c) and the
+ * "ngan-l2" Error of what that fit returns. */
+static brdffit_status metric_finish(brdffit_context *ctx, const brdffit_samples *samples,
+                                    brdffit_model model, const brdffit_fit_options *o,
+                                    brdffit_fit_result *r, brdffit_error *err)
+{
+    r->errors[BRDFFIT_METRIC_NGAN_L2] = r->error;
+    r->metric = BRDFFIT_METRIC_NGAN_L2;
+    r->metric_iterations = 0;
+    if (o->metric == BRDFFIT_METRIC_NGAN_L2) {
+        if (o->all_errors)
+            return bf_metric_errors(samples, model, &r->params, r->errors, err);
+        for (int m = 1; m < BRDFFIT_METRIC_COUNT; m++)
+            r->errors[m] = NAN;
+        return BRDFFIT_OK;
+    }
+    brdffit_status st = bf_metric_refit(samples, model, (brdffit_metric)o->metric, r, err);
+    if (st == BRDFFIT_OK)
+        st = brdffit_error_of(ctx, samples, model, &r->params,
+                              &r->errors[BRDFFIT_METRIC_NGAN_L2], err);
+    r->error = r->errors[o->metric];
+    return st;
+}
+
 /* brdffit_fit of a model without a lobe (the glTF models: affine.c). */
 static brdffit_status affine_fit(brdffit_context *ctx, const brdffit_samples *samples,
                                  brdffit_model model, const brdffit_fit_options *o,
@@ -152,6 +185,8 @@ static brdffit_status affine_fit(brdffit_context *ctx, const brdffit_samples *sa
 {
     brdffit_fit_result r; /* the library's whole struct; the caller gets its size of it */
     brdffit_status st = bf_affine_fit(ctx, samples, model, o, &r, err);
+    if (st == BRDFFIT_OK)
+        st = metric_finish(ctx, samples, model, o, &r, err);
     if (st != BRDFFIT_OK)
         return st;
     r.seconds = bf_now() - t_start;
@@ -236,6 +271,9 @@ brdffit_status brdffit_fit(brdffit_context *ctx, const brdffit_samples *samples,
     r.backend = brdffit_context_backend(ctx);
     r.seconds_passes = ps.seconds + sd.seconds + bd.seconds;
     r.seconds_solver = solver_seconds;
+    st = metric_finish(ctx, samples, model, &o, &r, err);
+    if (st != BRDFFIT_OK)
+        goto done;
     r.seconds = bf_now() - t_start;
     st = bf_options_write(BRDFFIT_STRUCT_FIT_RESULT, &r, result, err);
     if (st == BRDFFIT_OK)

@@ -142,4 +142,16 @@ brdffit_status bf_refine_kept(lmstate *S, const fitsubsets *D, const brdffit_fit
 /* The model's polish of the best run: one more LM run on all samples, kept when lower. */
 brdffit_status bf_polish(lmstate *S, const brdffit_fit_options *o, lmrun *best, double *solver_s);
 
+/* ---- metric_fit.c: the fit under "log" and "cube-root" (docs/metrics.md) */
+
+/* r holds the "ngan-l2" fit: refits all its parameters under metric (LM,
+ * host passes) and sets params, errors[1..], metric, metric_iterations,
+ * at_bound and adds its passes, iterations and seconds; error and
+ * errors[0] are the caller's. */
+brdffit_status bf_metric_refit(const brdffit_samples *samples, brdffit_model model,
+                               brdffit_metric metric, brdffit_fit_result *r, brdffit_error *err);
+/* errors[1..] (log, cube-root) of params: one host value pass. */
+brdffit_status bf_metric_errors(const brdffit_samples *samples, brdffit_model model,
+                                const brdffit_params *params, double *errors, brdffit_error *err);
+
 #endif /* BRDFFIT_FIT_INTERNAL_H */

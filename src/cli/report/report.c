@@ -141,6 +141,12 @@ void report_legend(FILE *f, const brdffit_model *models, int nmodels, brdffit_me
                   " roughness = sqrt(alpha)", f);
             break;
         }
+    for (int i = 0; i < nmodels; i++)
+        if (brdffit_model_get(models[i])->colour_form == BRDFFIT_COLOUR_OPENPBR) {
+            fputs("\n  openpbr: d = base_color, s = specular_color (linear sRGB);"
+                  " alpha = specular_roughness^2; base_weight 1, base_diffuse_roughness 0", f);
+            break;
+        }
     fprintf(f, "\n  d = Lambertian albedo (diffuse = d/pi), s = specular coefficient rho_s;"
                " Error = %s (1/sr);\n  iter = Jacobian evaluations of the LM run kept,"
                " seconds = wall time of the fit\n",

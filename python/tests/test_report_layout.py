@@ -19,7 +19,7 @@ import pytest
 
 # every model: the glTF ones have four parameters, the widest parameter table
 MODELS = ["ward", "ward-duer", "blinn-phong", "lafortune", "cook-torrance",
-          "ashikhmin-shirley", "he", "ggx", "gltf", "gltf-ext"]
+          "ashikhmin-shirley", "he", "ggx", "gltf", "gltf-ext", "openpbr"]
 DEMO = "synthetic-alum-bronze-ct"
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta",
         "source", "track", "wbr"}
@@ -172,8 +172,9 @@ def test_index_tables(report):
     for c in values:
         assert float(c[1]["data-v"]) >= 0
     # the published Error and the ratio under the Error, in full on hover
-    # every model but GGX and the glTF ones has published parameters: their Error and the ratio
-    assert sum("\u00d7" in c[2] for c in values) == len(MODELS) - 3
+    # every model but GGX and the renderers' (glTF, OpenPBR) has published parameters: their
+    # Error and the ratio
+    assert sum("\u00d7" in c[2] for c in values) == len(MODELS) - 4
     src = (report / "index.html").read_text()
     assert "<script>" in src and "aria-sort" in src and 'id="matrix"' in src
     assert 'data="headline.svg"' in src  # an object: the SVG's titles show on hover
@@ -185,7 +186,7 @@ def test_material_page_tables(report):
     heads = [r for r in t if r[0].get("class") == "mhead"]
     assert [cells(h)[0] for h in heads] == ["Ward", "Ward-Duer", "Blinn-Phong", "Lafortune",
                                            "Cook-Torrance", "Ashikhmin-Shirley", "He", "GGX",
-                                           "glTF 2.0", "glTF 2.0 extended"]
+                                           "glTF 2.0", "glTF 2.0 extended", "OpenPBR Surface"]
     assert cells(heads[8])[7:11] == ["metallic", "roughness", "ior", "specular"]
     assert cells(heads[3])[7:10] == ["Cxy", "Cz", "n"]  # names in the header, not in cells
     assert cells(heads[0])[7] == "alpha"

@@ -200,7 +200,7 @@ static const bf_model_def registry[] = {
      * albedo scaling is not reciprocal: the fit takes every sample, not the
      * mirror set's merged pairs. */
     [BRDFFIT_OPENPBR] = {
-        .info = { BRDFFIT_OPENPBR, "openpbr", "OpenPBR Surface (base + specular)",
+        .info = { BRDFFIT_OPENPBR, "openpbr", "OpenPBR Surface",
                   PARAMS(openpbr_params), .chromatic = 0, .default_starts = 8, OPENPBR_COLOURS },
         .grid = { .param = 1, .spacing = BRDFFIT_MAP_LOG, .lo = 0.1, .hi = 0.8, .period = 4,
                   NO_ROUNDS },

@@ -160,8 +160,8 @@ static void error_matrix(xml_writer *w, const rp_report *rep)
     xml_open(w, "thead");
     xml_open(w, "tr");
     rp_cell(w, "th", "name", "material");
-    for (int k = 0; k < rep->nmodels; k++)
-        rp_cell(w, "th", NULL, brdffit_model_get(rep->models[k])->title);
+    for (int k = 0; k < rep->nmodels; k++) /* a title may wrap at its spaces */
+        rp_cell(w, "th", "wrap", brdffit_model_get(rep->models[k])->title);
     xml_close(w);
     xml_close(w);
     xml_open(w, "tbody");

@@ -4,6 +4,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "html_report.h"
 
+#include <stdio.h>
 #include <string.h>
 
 static const char *param_label(brdffit_model model, int k)
@@ -86,6 +87,26 @@ static int lobe_columns(const rp_report *rep)
     return n;
 }
 
+/* A header cell naming a parameter, which may break after an underscore
+ * (specular_roughness): a long name does not widen the column of numbers
+ * under it. */
+static void name_cell(xml_writer *w, const char *name)
+{
+    xml_open(w, "th");
+    xml_attr(w, "class", "wrap");
+    for (const char *p = name; *p;) {
+        const char *u = strchr(p, '_');
+        size_t n = u ? (size_t)(u - p) + 1 : strlen(p);
+        char part[64];
+        snprintf(part, sizeof part, "%.*s", (int)(n < sizeof part ? n : sizeof part - 1), p);
+        xml_text(w, part);
+        if (u && u[1])
+            xml_raw(w, "<wbr>");
+        p += n;
+    }
+    xml_close(w);
+}
+
 /* A model's header row: its title, then d and s by channel and its lobe
  * parameters by name (the numbers under them carry no names). */
 static void model_head(xml_writer *w, const rp_report *rep, int k)
@@ -93,11 +114,11 @@ static void model_head(xml_writer *w, const rp_report *rep, int k)
     static const char *const ds[] = { "d_r", "d_g", "d_b", "s_r", "s_g", "s_b" };
     xml_open(w, "tr");
     xml_attr(w, "class", "mhead");
-    rp_cell(w, "th", "name", brdffit_model_get(rep->models[k])->title);
+    rp_cell(w, "th", "name wrap", brdffit_model_get(rep->models[k])->title);
     for (int c = 0; c < 6; c++)
         rp_cell(w, "th", NULL, ds[c]);
     for (int q = 0; q < lobe_columns(rep); q++)
-        rp_cell(w, "th", NULL, param_label(rep->models[k], q));
+        name_cell(w, param_label(rep->models[k], q));
     rp_cell(w, "th", NULL, "Error");
     if (rep->have_published)
         rp_cell(w, "th", NULL, "ratio");

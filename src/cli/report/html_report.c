@@ -102,7 +102,7 @@ static const char *const page_css =
     "td,th{border:1px solid #bbb;padding:2px 4px;text-align:right;"
     "font-variant-numeric:tabular-nums;white-space:nowrap}"
     "th{background:#eee}td.name,th.name{text-align:left}"
-    "td.wrap{white-space:normal;text-align:left}"
+    "td.wrap{white-space:normal;text-align:left}th.wrap{white-space:normal}"
     "td.best{background:#d8f0d0;font-weight:bold}"
     "td.failed{color:#a00;text-align:left;white-space:normal}"
     "span.pub{display:block;color:#555;font-size:85%;font-weight:normal}"

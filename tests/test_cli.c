@@ -121,7 +121,8 @@ START_TEST(models_lists_all)
         char line[256];
         snprintf(line, sizeof line, "\n%-18s %-18s %s [%g, %g]", mi->name, mi->title,
                  mi->params[0].name, mi->params[0].lower, mi->params[0].upper);
-        ck_assert_msg(strstr(r.out, line) != NULL, "models does not list %s:\n%s", mi->name, r.out);
+        ck_assert_msg(strstr(r.out, line) != NULL, "models does not list %s as '%s'", mi->name,
+                      line + 1);
         const char *row = strstr(r.out, line) + 1, *end = strchr(row, '\n');
         char want[64];
         snprintf(want, sizeof want, "; %d starts", mi->default_starts);

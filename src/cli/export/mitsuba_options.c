@@ -18,24 +18,8 @@ static int add_light(mitsuba_scene *sc, const char *v)
     sc->lights_given = 1;
     if (sc->nlights >= BRDFFIT_RENDER_MAX_LIGHTS)
         return cli_usage_error("--light: at most %d lights", BRDFFIT_RENDER_MAX_LIGHTS);
-    brdffit_light *l = &sc->lights[sc->nlights];
-    char dir[192];
-    const char *colon = strchr(v, ':');
-    size_t n = colon ? (size_t)(colon - v) : strlen(v);
-    double rgb[3] = { 1, 1, 1 };
-    int ok = n < sizeof dir;
-    if (ok) {
-        memcpy(dir, v, n);
-        dir[n] = '\0';
-        ok = draw_numbers(dir, l->dir, 3) == 3 && (!colon || draw_numbers(colon + 1, rgb, 3) == 3);
-    }
-    if (!ok)
-        return cli_usage_error("--light '%s': expected X,Y,Z or X,Y,Z:R,G,B (finite numbers)", v);
-    if (l->dir[0] == 0 && l->dir[1] == 0 && l->dir[2] == 0)
-        return cli_usage_error("--light '%s': the direction is zero", v);
-    if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0)
-        return cli_usage_error("--light '%s': the irradiance must be >= 0", v);
-    memcpy(l->rgb, rgb, sizeof rgb);
+    if (draw_light(v, &sc->lights[sc->nlights]) != CLI_OK)
+        return CLI_USAGE;
     sc->nlights++;
     return CLI_OK;
 }

@@ -57,6 +57,28 @@ int draw_numbers(const char *s, double *v, int n)
     }
 }
 
+int draw_light(const char *v, brdffit_light *l)
+{
+    char dir[192];
+    const char *colon = strchr(v, ':');
+    size_t n = colon ? (size_t)(colon - v) : strlen(v);
+    double rgb[3] = { 1, 1, 1 };
+    int ok = n < sizeof dir;
+    if (ok) {
+        memcpy(dir, v, n);
+        dir[n] = '\0';
+        ok = draw_numbers(dir, l->dir, 3) == 3 && (!colon || draw_numbers(colon + 1, rgb, 3) == 3);
+    }
+    if (!ok)
+        return cli_usage_error("--light '%s': expected X,Y,Z or X,Y,Z:R,G,B (finite numbers)", v);
+    if (l->dir[0] == 0 && l->dir[1] == 0 && l->dir[2] == 0)
+        return cli_usage_error("--light '%s': the direction is zero", v);
+    if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0)
+        return cli_usage_error("--light '%s': the irradiance must be >= 0", v);
+    memcpy(l->rgb, rgb, sizeof rgb);
+    return CLI_OK;
+}
+
 int draw_common_option(draw_job *j, int argc, char **argv, int *i)
 {
     const char *v;

@@ -28,6 +28,10 @@ int draw_option(int argc, char **argv, int *i, const char *name, const char **va
 int draw_common_option(draw_job *j, int argc, char **argv, int *i);
 /* Up to n comma-separated finite numbers of s into v: how many, or -1. */
 int draw_numbers(const char *s, double *v, int n);
+/* The value of --light, X,Y,Z[:R,G,B] (irradiance 1,1,1 unless given), into
+ * l: CLI_OK, or CLI_USAGE with the message printed.  render and export
+ * --format mitsuba take it alike. */
+int draw_light(const char *v, brdffit_light *l);
 /* Keep argv[i] for the fit options. */
 void draw_keep(draw_job *j, char *arg);
 /* Parse what was kept (TABLE, --model, --scale, ...), then read the table

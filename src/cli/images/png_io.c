@@ -69,7 +69,7 @@ int png_write_rgb8(const out_dir *dir, const char *name, const unsigned char *rg
     if (rc != 0) {
         out_abandon(&o);
         err->status = BRDFFIT_E_FILE_WRITE;
-        snprintf(err->message, sizeof err->message, "%.1800s: cannot write the PNG: %s", o.path,
+        snprintf(err->message, sizeof err->message, "%.1700s: cannot write the PNG: %s", o.path,
                  pf.message[0] ? pf.message : "write error");
         return -1;
     }
